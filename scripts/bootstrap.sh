@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages stiction needs (only those missing), then configures and
+# builds it in ./build (Release). Usage: scripts/bootstrap.sh [extra cmake args...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libeigen3-dev libtomlplusplus-dev libmuparser-dev nlohmann-json3-dev libcli11-dev
+  catch2 libbenchmark-dev
+  libosmesa6-dev libglm-dev libpng-dev libfreetype-dev
+  libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "Installing: ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >&2
+cmake --build build -j"$(nproc)" >&2

@@ -1,0 +1,75 @@
+// Planar serial arm of n revolute joints (paper eq. 8): state [theta, omega] (2n), input
+// joint torques tau (n). Joint axes are parallel to the world z axis through `base`;
+// joint i sits at the base end of link i and theta_i is measured relative to link i-1
+// (theta_0 from the world x axis). H(theta) omega_dot + c(theta, omega) = tau.
+// Signals theta, omega (axes 0..n-1). energy() is the kinetic energy 0.5 omega^T H omega:
+// the arm moves in a horizontal plane, so gravity does no work on it.
+// Not thread-safe: derivative() and dynamics() work in preallocated mutable scratch so that
+// no step allocates; one arm is evaluated by one thread at a time.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Cholesky>
+
+#include "core/body.hpp"
+
+namespace stiction::components {
+
+struct ArmLink {
+  double length = 0.2;      // joint to joint (m)
+  double mass = 0.2;        // kg
+  double com = 0.1;         // distance of the centre of mass from the link's joint (m)
+  double inertia = 0.0;     // about the centre of mass, about the joint axis (kg m^2)
+};
+
+// A uniform box link: com at the middle, I = m (length^2 + width^2) / 12.
+ArmLink box_link(double length, double width, double mass);
+
+struct PlanarArmParams {
+  std::vector<ArmLink> links;
+  core::Vec3 base = core::Vec3::Zero();
+  core::Vec angles;  // initial theta (n), zero if empty
+  core::Vec rates;   // initial omega (n), zero if empty
+};
+
+class PlanarArm final : public core::JointSpace {
+ public:
+  PlanarArm(std::string name, const PlanarArmParams& params);
+  std::string_view type() const override { return "planar_arm"; }
+  int state_size() const override { return 2 * joint_count(); }
+  int input_size() const override { return joint_count(); }
+  std::vector<std::string> state_labels() const override;
+  void initial_state(core::VecRef x) const override;
+  void derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::VecRef x_dot) const override;
+  std::vector<core::SignalInfo> signals() const override;
+  void write_signals(core::ConstVecRef x, core::VecRef out) const override;
+  double energy(core::ConstVecRef x) const override;
+
+  int joint_count() const override { return static_cast<int>(params_.links.size()); }
+  double joint_angle(core::ConstVecRef x, int joint) const override { return x[joint]; }
+  double joint_rate(core::ConstVecRef x, int joint) const override {
+    return x[joint_count() + joint];
+  }
+  void add_joint_torque(int joint, double torque, core::VecRef u_hat) const override {
+    u_hat[joint] += torque;
+  }
+
+  // Inertia matrix H(theta) and Coriolis/centrifugal vector c(theta, omega) (eq. 8).
+  void dynamics(core::ConstVecRef theta, core::ConstVecRef omega, Eigen::Ref<Eigen::MatrixXd> H,
+                core::VecRef c) const;
+  const PlanarArmParams& params() const { return params_; }
+
+ private:
+  PlanarArmParams params_;
+  // Scratch for derivative()/energy(), sized once in the constructor.
+  mutable Eigen::MatrixXd H_;
+  mutable Eigen::VectorXd c_;
+  mutable Eigen::VectorXd rhs_;
+  mutable Eigen::LLT<Eigen::MatrixXd> llt_;
+  mutable Eigen::Matrix2Xd joints_;  // joint positions P_0..P_{n-1} in the plane
+  mutable Eigen::Matrix2Xd coms_;    // centre-of-mass positions C_0..C_{n-1}
+  mutable Eigen::Matrix2Xd accel_;   // C_i acceleration at zero joint acceleration
+};
+
+}  // namespace stiction::components

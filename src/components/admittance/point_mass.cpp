@@ -1,0 +1,55 @@
+#include "components/admittance/point_mass.hpp"
+
+#include <stdexcept>
+
+namespace stiction::components {
+
+using core::ConstVecRef;
+using core::Vec3;
+using core::VecRef;
+
+PointMass::PointMass(std::string name, const PointMassParams& params)
+    : Body(std::move(name)), params_(params) {
+  if (!(params_.mass > 0.0)) throw std::invalid_argument("point mass: mass must be > 0");
+}
+
+std::vector<std::string> PointMass::state_labels() const {
+  return {"p.x", "p.y", "p.z", "v.x", "v.y", "v.z"};
+}
+
+void PointMass::initial_state(VecRef x) const {
+  x.segment<3>(0) = params_.position;
+  x.segment<3>(3) = params_.velocity;
+}
+
+void PointMass::derivative(ConstVecRef x, ConstVecRef u_hat, VecRef x_dot) const {
+  x_dot.segment<3>(0) = x.segment<3>(3);
+  x_dot.segment<3>(3) = u_hat.segment<3>(0) / params_.mass + params_.gravity;
+}
+
+std::vector<core::SignalInfo> PointMass::signals() const {
+  return {{"p", core::xyz_axes()}, {"v", core::xyz_axes()}};
+}
+
+void PointMass::write_signals(ConstVecRef x, VecRef out) const { out.head<6>() = x.head<6>(); }
+
+double PointMass::energy(ConstVecRef x) const {
+  const Vec3 v = x.segment<3>(3);
+  return 0.5 * params_.mass * v.squaredNorm() - params_.mass * params_.gravity.dot(x.segment<3>(0));
+}
+
+core::BodyMotion PointMass::motion(ConstVecRef x) const {
+  core::BodyMotion m;
+  m.p = x.segment<3>(0);
+  m.v = x.segment<3>(3);
+  return m;
+}
+
+void PointMass::add_wrench(ConstVecRef /*x*/, const Vec3& /*at*/, const Vec3& force,
+                           const Vec3& /*torque*/, VecRef u_hat) const {
+  // A point has no rotational inertia: a force acts at the point itself whatever the
+  // lever arm, and a free torque has nothing to turn. Maps only attach at the origin.
+  u_hat.segment<3>(0) += force;
+}
+
+}  // namespace stiction::components

@@ -1,0 +1,91 @@
+#include "components/admittance/rigid_body.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <stdexcept>
+
+namespace stiction::components {
+
+using core::ConstVecRef;
+using core::Quat;
+using core::Vec3;
+using core::VecRef;
+
+namespace {
+Quat quat_of(ConstVecRef x) { return Quat(x[6], x[7], x[8], x[9]); }
+}  // namespace
+
+RigidBody::RigidBody(std::string name, const RigidBodyParams& params)
+    : Body(std::move(name)), params_(params) {
+  if (!(params_.mass > 0.0)) throw std::invalid_argument("rigid body: mass must be > 0");
+  Eigen::SelfAdjointEigenSolver<core::Mat3> eig(params_.inertia);
+  if (eig.eigenvalues().minCoeff() <= 0.0) {
+    throw std::invalid_argument("rigid body: inertia must be positive definite");
+  }
+  inertia_inverse_ = params_.inertia.inverse();
+  params_.orientation.normalize();
+}
+
+std::vector<std::string> RigidBody::state_labels() const {
+  return {"p.x", "p.y", "p.z", "v.x", "v.y", "v.z", "q.w",
+          "q.x", "q.y", "q.z", "w.x", "w.y", "w.z"};
+}
+
+void RigidBody::initial_state(VecRef x) const {
+  x.segment<3>(0) = params_.position;
+  x.segment<3>(3) = params_.velocity;
+  const Quat& q = params_.orientation;
+  x.segment<4>(6) << q.w(), q.x(), q.y(), q.z();
+  x.segment<3>(10) = params_.angular_velocity;
+}
+
+void RigidBody::derivative(ConstVecRef x, ConstVecRef u_hat, VecRef x_dot) const {
+  // (26): p_dot = v, v_dot = f/M (+ g), q_dot = 0.5 q (x) (0, w), w_dot = J^-1 (tau - w x Jw).
+  const Vec3 w = x.segment<3>(10);
+  const double qw = x[6];
+  const Vec3 qv = x.segment<3>(7);
+  x_dot.segment<3>(0) = x.segment<3>(3);
+  x_dot.segment<3>(3) = u_hat.segment<3>(0) / params_.mass + params_.gravity;
+  x_dot[6] = -0.5 * qv.dot(w);
+  x_dot.segment<3>(7) = 0.5 * (qw * w + qv.cross(w));
+  x_dot.segment<3>(10) =
+      inertia_inverse_ * (u_hat.segment<3>(3) - w.cross(params_.inertia * w));
+}
+
+void RigidBody::project(VecRef x) const { x.segment<4>(6).normalize(); }
+
+std::vector<core::SignalInfo> RigidBody::signals() const {
+  return {{"p", core::xyz_axes()},
+          {"v", core::xyz_axes()},
+          {"q", core::wxyz_axes()},
+          {"w", core::xyz_axes()}};
+}
+
+void RigidBody::write_signals(ConstVecRef x, VecRef out) const { out.head<13>() = x.head<13>(); }
+
+double RigidBody::energy(ConstVecRef x) const {
+  const Vec3 v = x.segment<3>(3);
+  const Vec3 w = x.segment<3>(10);
+  return 0.5 * params_.mass * v.squaredNorm() + 0.5 * w.dot(params_.inertia * w) -
+         params_.mass * params_.gravity.dot(x.segment<3>(0));
+}
+
+core::BodyMotion RigidBody::motion(ConstVecRef x) const {
+  core::BodyMotion m;
+  m.p = x.segment<3>(0);
+  m.v = x.segment<3>(3);
+  // Stage states are not renormalized (the derivative must stay plain vector arithmetic),
+  // so use the normalized rotation for kinematics.
+  m.q = quat_of(x).normalized();
+  m.w_world = m.q * Vec3(x.segment<3>(10));
+  return m;
+}
+
+void RigidBody::add_wrench(ConstVecRef x, const Vec3& at, const Vec3& force, const Vec3& torque,
+                           VecRef u_hat) const {
+  const Vec3 p = x.segment<3>(0);
+  const Quat q = quat_of(x).normalized();
+  u_hat.segment<3>(0) += force;
+  u_hat.segment<3>(3) += q.conjugate() * ((at - p).cross(force) + torque);
+}
+
+}  // namespace stiction::components

@@ -1,0 +1,47 @@
+// Rigid body with a unit quaternion (paper eqs. 25-26): state [p, v, q, w] (13) with
+// q = (w, x, y, z) body-to-world and w the angular velocity in the body frame; input
+// [f (world), tau (body frame)] (6). q_dot = 0.5 q (x) (0, w), w_dot = J^-1 (tau - w x J w).
+// q is renormalized after each step (project), never inside the derivative.
+// Signals p, v, q, w (w in the body frame, as in the state).
+#pragma once
+
+#include "core/body.hpp"
+
+namespace stiction::components {
+
+struct RigidBodyParams {
+  double mass = 1.0;
+  core::Mat3 inertia = core::Mat3::Identity();  // body frame, about the centre of mass
+  core::Vec3 position = core::Vec3::Zero();
+  core::Vec3 velocity = core::Vec3::Zero();
+  core::Quat orientation = core::Quat::Identity();
+  core::Vec3 angular_velocity = core::Vec3::Zero();  // body frame
+  core::Vec3 gravity{0.0, 0.0, -9.8};
+};
+
+class RigidBody final : public core::Body {
+ public:
+  RigidBody(std::string name, const RigidBodyParams& params);
+  std::string_view type() const override { return "rigid_body"; }
+  int state_size() const override { return 13; }
+  int input_size() const override { return 6; }
+  std::vector<std::string> state_labels() const override;
+  void initial_state(core::VecRef x) const override;
+  void derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::VecRef x_dot) const override;
+  void project(core::VecRef x) const override;
+  std::vector<core::SignalInfo> signals() const override;
+  void write_signals(core::ConstVecRef x, core::VecRef out) const override;
+  double energy(core::ConstVecRef x) const override;
+
+  core::BodyMotion motion(core::ConstVecRef x) const override;
+  void add_wrench(core::ConstVecRef x, const core::Vec3& at, const core::Vec3& force,
+                  const core::Vec3& torque, core::VecRef u_hat) const override;
+  bool can_rotate() const override { return true; }
+  const RigidBodyParams& params() const { return params_; }
+
+ private:
+  RigidBodyParams params_;
+  core::Mat3 inertia_inverse_;
+};
+
+}  // namespace stiction::components

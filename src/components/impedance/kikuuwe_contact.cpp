@@ -1,0 +1,77 @@
+#include "components/impedance/kikuuwe_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace stiction::components {
+
+using core::ConstVecRef;
+using core::Vec3;
+using core::VecRef;
+
+KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& params)
+    : Impedance(std::move(name)), params_(params) {
+  if (!(params_.normal.norm() > 0.0)) throw std::invalid_argument("contact: zero normal");
+  if (!(params_.stiffness > 0.0) || !(params_.damping >= 0.0) || !(params_.mu >= 0.0)) {
+    throw std::invalid_argument("contact: need K > 0, B >= 0, mu >= 0");
+  }
+  n_ = params_.normal.normalized();
+  // Tangent basis: world x projected on the plane (world y if the normal is close to x).
+  const Vec3 seed = std::abs(n_.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  t1_ = (seed - seed.dot(n_) * n_).normalized();
+  t2_ = n_.cross(t1_);
+  kt_ = params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness;
+  bt_ = params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
+}
+
+void KikuuweContact::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, double tau,
+                              VecRef u, VecRef y_dot) const {
+  const Vec3 p_c = x_hat.segment<3>(0);
+  const Vec3 v_c = x_hat.segment<3>(3);
+  // (23a) with the clamp of DESIGN section 1: no adhesion, so mu N is never negative.
+  const double depth = params_.offset - n_.dot(p_c);
+  const double normal_force =
+      depth > 0.0 ? std::max(0.0, params_.stiffness * depth - params_.damping * n_.dot(v_c))
+                  : 0.0;
+  // (23b)-(23d): eq. (19) in the tangent plane with F = mu N.
+  const Eigen::Vector2d v_t(t1_.dot(v_c), t2_.dot(v_c));
+  const Eigen::Vector2d e = y.head<2>();
+  const double BtK = bt_ + tau * kt_;
+  Eigen::Vector2d f = BtK * v_t + kt_ * e;
+  const double limit = params_.mu * normal_force;
+  const double norm = f.norm();
+  if (norm <= limit) {
+    y_dot.head<2>() = v_t;  // exactly v while stuck (see kikuuwe_friction.cpp)
+  } else {
+    f *= norm > 0.0 ? limit / norm : 0.0;
+    y_dot.head<2>() = (f - kt_ * e) / BtK;
+  }
+  // Force on the body: normal push minus friction; u is its negative.
+  const Vec3 on_body = normal_force * n_ - (f.x() * t1_ + f.y() * t2_);
+  u.head<3>() = -on_body;
+}
+
+Vec3 KikuuweContact::slip_velocity(ConstVecRef x_hat) const {
+  const Vec3 v_c = x_hat.segment<3>(3);
+  return v_c - n_.dot(v_c) * n_;
+}
+
+std::vector<core::SignalInfo> KikuuweContact::signals() const {
+  return {{"f", core::xyz_axes()},
+          {"slip", core::xyz_axes()},
+          {"e", core::index_axes(2)},
+          {"n_force", {}}};
+}
+
+void KikuuweContact::write_signals(ConstVecRef x_hat, ConstVecRef y, ConstVecRef u,
+                                   VecRef out) const {
+  const Vec3 v_c = x_hat.segment<3>(3);
+  const Vec3 on_body = -u.head<3>();
+  out.segment<3>(0) = on_body;
+  out.segment<3>(3) = v_c - n_.dot(v_c) * n_;
+  out.segment<2>(6) = y.head<2>();
+  out[8] = n_.dot(on_body);
+}
+
+}  // namespace stiction::components

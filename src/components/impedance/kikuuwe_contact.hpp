@@ -1,0 +1,55 @@
+// Kikuuwe contact with normal force against a flat surface {x : n . x = offset}
+// (paper eqs. 23-24, DESIGN section 1). Input x_hat = [p_c (3), v_c (3)], the world
+// position and velocity of the body's contact point. With penetration d = offset - n.p_c
+// and normal speed v_n = n.v_c, the normal force on the body is N = max(0, K d - B v_n);
+// the tangential friction is eq. (19) in the surface plane with F = mu N and a 2-D state e
+// (coordinates along the tangent basis t1, t2). With N = 0 the force is zero and e relaxes
+// toward zero through eps = -K e / (B + tau K).
+// Output u = -(force on the body) (the moving side's force on the element).
+// Signals: f (force on the body, world), slip (tangential contact-point velocity, world),
+// e (axes 0 1 along t1, t2), and the normal force n_force.
+#pragma once
+
+#include "core/impedance.hpp"
+
+namespace stiction::components {
+
+struct KikuuweContactParams {
+  core::Vec3 normal{0.0, 0.0, 1.0};
+  double offset = 0.0;        // surface height along the normal (m)
+  double stiffness = 1e7;     // K: normal and tangential (N/m)
+  double damping = 10.0;      // B (N s/m)
+  double mu = 0.1;
+  // Tangential stiffness/damping of the friction element; default: equal to the normal ones
+  // as in the paper.
+  double tangential_stiffness = -1.0;
+  double tangential_damping = -1.0;
+};
+
+class KikuuweContact final : public core::Impedance {
+ public:
+  KikuuweContact(std::string name, const KikuuweContactParams& params);
+  std::string_view type() const override { return "kikuuwe_contact"; }
+  int input_size() const override { return 6; }
+  int output_size() const override { return 3; }
+  int state_size() const override { return 2; }
+  std::vector<std::string> state_labels() const override { return {"e.0", "e.1"}; }
+  void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
+                core::VecRef y_dot) const override;
+  std::vector<core::SignalInfo> signals() const override;
+  void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
+                     core::VecRef out) const override;
+  double stiffness() const override { return params_.stiffness; }
+  bool has_slip() const override { return true; }
+  core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
+  const KikuuweContactParams& params() const { return params_; }
+  const core::Vec3& tangent1() const { return t1_; }
+  const core::Vec3& tangent2() const { return t2_; }
+
+ private:
+  KikuuweContactParams params_;
+  core::Vec3 n_, t1_, t2_;
+  double kt_, bt_;
+};
+
+}  // namespace stiction::components

@@ -1,0 +1,63 @@
+#include "components/impedance/kikuuwe_friction.hpp"
+
+#include <stdexcept>
+
+namespace stiction::components {
+
+using core::ConstVecRef;
+using core::VecRef;
+
+void saturate(double limit, VecRef x) {
+  const double norm = x.norm();
+  if (norm > limit) x *= limit / norm;
+}
+
+KikuuweFriction::KikuuweFriction(std::string name, const KikuuweFrictionParams& params)
+    : Impedance(std::move(name)), params_(params) {
+  if (params_.dimension < 1) throw std::invalid_argument("kikuuwe friction: dimension < 1");
+  if (!(params_.stiffness > 0.0) || !(params_.damping >= 0.0) || !(params_.force_limit >= 0.0)) {
+    throw std::invalid_argument("kikuuwe friction: need K > 0, B >= 0, F >= 0");
+  }
+}
+
+std::vector<std::string> KikuuweFriction::state_labels() const {
+  if (params_.dimension == 1) return {"e"};
+  std::vector<std::string> labels;
+  for (const auto& a : core::index_axes(params_.dimension)) labels.push_back("e." + a);
+  return labels;
+}
+
+void KikuuweFriction::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, double tau,
+                               VecRef u, VecRef y_dot) const {
+  const int n = params_.dimension;
+  const double K = params_.stiffness;
+  const double BtK = params_.damping + tau * K;
+  const auto v = x_hat.segment(n, n);
+  // (19b): f = gsat(F, (B + tau K) v + K e).
+  u = BtK * v + K * y;
+  const double norm = u.norm();
+  if (norm <= params_.force_limit) {
+    // Not saturated: (19c) reduces to eps = v. Written as such so that it holds to the last
+    // bit; (f - K e) / (B + tau K) would differ from v by rounding and let a stuck joint creep.
+    y_dot = v;
+  } else {
+    u *= params_.force_limit / norm;
+    y_dot = (u - K * y) / BtK;
+  }
+}
+
+std::vector<core::SignalInfo> KikuuweFriction::signals() const {
+  if (params_.dimension == 1) return {{"tau", {}}, {"e", {}}};
+  const auto axes = params_.dimension == 3 ? core::xyz_axes() : core::index_axes(params_.dimension);
+  return {{"f", axes}, {"e", axes}};
+}
+
+void KikuuweFriction::write_signals(ConstVecRef /*x_hat*/, ConstVecRef y, ConstVecRef u,
+                                    VecRef out) const {
+  const int n = params_.dimension;
+  // Friction torque/force acting on the driven side: -u (DESIGN section 1).
+  out.head(n) = -u;
+  out.segment(n, n) = y;
+}
+
+}  // namespace stiction::components

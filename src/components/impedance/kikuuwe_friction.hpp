@@ -1,0 +1,44 @@
+// Kikuuwe friction, paper eq. (19), in n dimensions (n = 1 for a joint):
+//   f   = gsat(F, (B + tau K) v + K e)
+//   eps = (f - K e) / (B + tau K)          (the state derivative: e_dot = eps)
+// While not saturated eps == v exactly, so the anchor (position - e) does not drift.
+// Input x_hat = [position (n), velocity (n)] of the moving side; only the velocity is used.
+// Output u = f, the force the moving side exerts on the element: friction on the body is
+// -f (applied by the map). Signals: tau (n = 1) or f (n > 1), and e.
+#pragma once
+
+#include "core/impedance.hpp"
+
+namespace stiction::components {
+
+struct KikuuweFrictionParams {
+  double stiffness = 1e4;   // K
+  double damping = 1.0;     // B
+  double force_limit = 1.0; // F, the Coulomb level
+  int dimension = 1;
+};
+
+// gsat(X, x) of eq. (15): x if |x| <= X, else X x / |x|. Writes the result into x.
+void saturate(double limit, core::VecRef x);
+
+class KikuuweFriction final : public core::Impedance {
+ public:
+  KikuuweFriction(std::string name, const KikuuweFrictionParams& params);
+  std::string_view type() const override { return "kikuuwe_friction"; }
+  int input_size() const override { return 2 * params_.dimension; }
+  int output_size() const override { return params_.dimension; }
+  int state_size() const override { return params_.dimension; }
+  std::vector<std::string> state_labels() const override;
+  void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
+                core::VecRef y_dot) const override;
+  std::vector<core::SignalInfo> signals() const override;
+  void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
+                     core::VecRef out) const override;
+  double stiffness() const override { return params_.stiffness; }
+  const KikuuweFrictionParams& params() const { return params_; }
+
+ private:
+  KikuuweFrictionParams params_;
+};
+
+}  // namespace stiction::components

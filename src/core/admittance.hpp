@@ -1,0 +1,47 @@
+// Admittance component (paper eq. 6): force in, motion out, x_dot = A(x, u_hat).
+// x is the component's slice of the system state, u_hat the sum of the generalized forces
+// that the wiring (Phi) applied to it during this evaluation.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/signal.hpp"
+#include "core/types.hpp"
+
+namespace stiction::core {
+
+class Admittance {
+ public:
+  explicit Admittance(std::string name) : name_(std::move(name)) {}
+  virtual ~Admittance() = default;
+  Admittance(const Admittance&) = delete;
+  Admittance& operator=(const Admittance&) = delete;
+
+  const std::string& name() const { return name_; }
+  virtual std::string_view type() const = 0;
+
+  virtual int state_size() const = 0;
+  virtual int input_size() const = 0;
+  // One label per state slot ("p.x", "q.w", "theta.1", ...), for `stiction check`.
+  virtual std::vector<std::string> state_labels() const = 0;
+
+  virtual void initial_state(VecRef x) const = 0;
+  virtual void derivative(ConstVecRef x, ConstVecRef u_hat, VecRef x_dot) const = 0;
+  // Called once after every full step: bring the state back to its manifold (unit
+  // quaternions). Never inside a derivative, so RK stages see plain vector arithmetic.
+  virtual void project(VecRef /*x*/) const {}
+
+  virtual std::vector<SignalInfo> signals() const = 0;
+  virtual void write_signals(ConstVecRef x, VecRef out) const = 0;
+
+  // Kinetic plus potential energy of the component alone (gravity included), for the
+  // stability monitor; NaN when the component does not define one.
+  virtual double energy(ConstVecRef /*x*/) const;
+
+ private:
+  std::string name_;
+};
+
+}  // namespace stiction::core

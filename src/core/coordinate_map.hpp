@@ -1,0 +1,40 @@
+// One impedance's share of the paper's coordinate maps (eq. 13): Psi gathers the impedance
+// input x_hat from admittance states, Phi scatters its output u into admittance inputs.
+// A map knows the admittances it touches; the network tells it where their slices are.
+#pragma once
+
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace stiction::core {
+
+class Admittance;
+
+// Where one admittance's slices live in the system vectors.
+struct Slot {
+  int state_offset = 0;
+  int state_size = 0;
+  int input_offset = 0;
+  int input_size = 0;
+};
+
+class CoordinateMap {
+ public:
+  virtual ~CoordinateMap() = default;
+
+  virtual int motion_size() const = 0;  // size of x_hat
+  virtual int force_size() const = 0;   // size of u
+  // The admittances this map reads and drives, in a fixed order; the network calls bind()
+  // with their slots in the same order once the layout is known.
+  virtual std::vector<const Admittance*> admittances() const = 0;
+  virtual void bind(const std::vector<Slot>& slots) = 0;
+
+  // Psi: x (whole system state) -> x_hat.
+  virtual void motion(ConstVecRef x, VecRef x_hat) const = 0;
+  // Phi: accumulate the effect of u into u_hat (whole input vector); x is the state the
+  // motion was taken at (lever arms, frames).
+  virtual void apply(ConstVecRef x, ConstVecRef u, VecRef u_hat) const = 0;
+};
+
+}  // namespace stiction::core

@@ -1,0 +1,194 @@
+#include "core/network.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace stiction::core {
+
+double Admittance::energy(ConstVecRef /*x*/) const {
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void Network::add_admittance(std::unique_ptr<Admittance> admittance) {
+  if (finalized_) throw std::logic_error("Network: add after finalize");
+  admittances_.push_back(std::move(admittance));
+}
+
+void Network::add_impedance(std::unique_ptr<Impedance> impedance,
+                            std::unique_ptr<CoordinateMap> map) {
+  if (finalized_) throw std::logic_error("Network: add after finalize");
+  if (impedance->input_size() != map->motion_size() ||
+      impedance->output_size() != map->force_size()) {
+    throw std::logic_error("Network: impedance '" + impedance->name() +
+                           "' does not fit its coordinate map");
+  }
+  impedances_.push_back(std::move(impedance));
+  maps_.push_back(std::move(map));
+}
+
+void Network::finalize() {
+  if (finalized_) return;
+  int state = 0;
+  int input = 0;
+  for (const auto& a : admittances_) {
+    admittance_slots_.push_back({state, a->state_size(), input, a->input_size()});
+    state += a->state_size();
+    input += a->input_size();
+  }
+  int motion = 0;
+  int output = 0;
+  for (const auto& i : impedances_) {
+    impedance_slots_.push_back({state, i->state_size(), motion, i->input_size()});
+    output_offsets_.push_back(output);
+    state += i->state_size();
+    motion += i->input_size();
+    output += i->output_size();
+  }
+  state_dim_ = state;
+  for (auto& m : maps_) {
+    std::vector<Slot> slots;
+    for (const Admittance* wanted : m->admittances()) {
+      bool found = false;
+      for (std::size_t j = 0; j < admittances_.size(); ++j) {
+        if (admittances_[j].get() == wanted) {
+          slots.push_back(admittance_slots_[j]);
+          found = true;
+        }
+      }
+      if (!found) throw std::logic_error("Network: a map refers to an unknown admittance");
+    }
+    m->bind(slots);
+  }
+  auto total_size = [](const std::vector<SignalInfo>& signals) {
+    int n = 0;
+    for (const auto& sig : signals) n += sig.size();
+    return n;
+  };
+  for (const auto& a : admittances_) admittance_signal_sizes_.push_back(total_size(a->signals()));
+  for (const auto& i : impedances_) impedance_signal_sizes_.push_back(total_size(i->signals()));
+  signal_count_ = static_cast<int>(signal_columns().size());
+  x_hat_ = Vec::Zero(motion);
+  u_ = Vec::Zero(output);
+  u_hat_ = Vec::Zero(input);
+  scratch_dot_ = Vec::Zero(state_dim_);
+  finalized_ = true;
+}
+
+Vec Network::initial_state() const {
+  Vec x = Vec::Zero(state_dim_);
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const Slot& s = admittance_slots_[j];
+    admittances_[j]->initial_state(x.segment(s.state_offset, s.state_size));
+  }
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const Slot& s = impedance_slots_[i];
+    impedances_[i]->initial_state(x.segment(s.state_offset, s.state_size));
+  }
+  return x;
+}
+
+std::vector<LayoutEntry> Network::layout() const {
+  std::vector<LayoutEntry> entries;
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const auto& a = *admittances_[j];
+    entries.push_back({a.name(), std::string(a.type()), admittance_slots_[j].state_offset,
+                       a.state_size(), a.state_labels()});
+  }
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const auto& m = *impedances_[i];
+    entries.push_back({m.name(), std::string(m.type()), impedance_slots_[i].state_offset,
+                       m.state_size(), m.state_labels()});
+  }
+  return entries;
+}
+
+void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot) {
+  // (13d) Psi, (22) impedances, (13f) Phi.
+  u_hat_.setZero();
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const Slot& s = impedance_slots_[i];
+    auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+    auto u = u_.segment(output_offsets_[i], impedances_[i]->output_size());
+    maps_[i]->motion(x, x_hat);
+    impedances_[i]->evaluate(t, x_hat, x.segment(s.state_offset, s.state_size), tau, u,
+                             x_dot.segment(s.state_offset, s.state_size));
+    maps_[i]->apply(x, u, u_hat_);
+  }
+}
+
+void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
+  evaluate_impedances(t, x, tau, x_dot);
+  // (13g) admittances.
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const Slot& s = admittance_slots_[j];
+    admittances_[j]->derivative(x.segment(s.state_offset, s.state_size),
+                                u_hat_.segment(s.input_offset, s.input_size),
+                                x_dot.segment(s.state_offset, s.state_size));
+  }
+}
+
+void Network::project(VecRef x) const {
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const Slot& s = admittance_slots_[j];
+    admittances_[j]->project(x.segment(s.state_offset, s.state_size));
+  }
+}
+
+std::vector<std::string> Network::signal_columns() const {
+  std::vector<std::string> names;
+  for (const auto& a : admittances_) {
+    auto c = column_names(a->name(), a->signals());
+    names.insert(names.end(), c.begin(), c.end());
+  }
+  for (const auto& i : impedances_) {
+    auto c = column_names(i->name(), i->signals());
+    names.insert(names.end(), c.begin(), c.end());
+  }
+  return names;
+}
+
+void Network::write_signals(double t, ConstVecRef x, double tau, VecRef row) {
+  evaluate_impedances(t, x, tau, scratch_dot_);
+  int col = 0;
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const Slot& s = admittance_slots_[j];
+    const int n = admittance_signal_sizes_[j];
+    admittances_[j]->write_signals(x.segment(s.state_offset, s.state_size), row.segment(col, n));
+    col += n;
+  }
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const Slot& s = impedance_slots_[i];
+    const int n = impedance_signal_sizes_[i];
+    impedances_[i]->write_signals(x_hat_.segment(s.input_offset, s.input_size),
+                                  x.segment(s.state_offset, s.state_size),
+                                  u_.segment(output_offsets_[i], impedances_[i]->output_size()),
+                                  row.segment(col, n));
+    col += n;
+  }
+}
+
+Vec3 Network::slip_velocity(int impedance, ConstVecRef x) {
+  const Slot& s = impedance_slots_[impedance];
+  auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+  maps_[impedance]->motion(x, x_hat);
+  return impedances_[impedance]->slip_velocity(x_hat);
+}
+
+double Network::energy(ConstVecRef x) const {
+  double total = 0.0;
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const Slot& s = admittance_slots_[j];
+    total += admittances_[j]->energy(x.segment(s.state_offset, s.state_size));
+  }
+  return total;
+}
+
+const Admittance* Network::find_admittance(const std::string& name) const {
+  for (const auto& a : admittances_) {
+    if (a->name() == name) return a.get();
+  }
+  return nullptr;
+}
+
+}  // namespace stiction::core

@@ -1,0 +1,79 @@
+// The paper's network of components (eq. 13, Fig. 2): admittances, impedances with their
+// coordinate maps, and one contiguous state vector [x_1 .. x_NA, y_1 .. y_NI]. The network
+// evaluates the whole system derivative F(x, t; tau) for the integrators; every loop is
+// order-insensitive, and all scratch is allocated once in finalize().
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/admittance.hpp"
+#include "core/coordinate_map.hpp"
+#include "core/impedance.hpp"
+
+namespace stiction::core {
+
+struct LayoutEntry {
+  std::string component;
+  std::string type;
+  int offset = 0;
+  int size = 0;
+  std::vector<std::string> labels;
+};
+
+class Network {
+ public:
+  void add_admittance(std::unique_ptr<Admittance> admittance);
+  void add_impedance(std::unique_ptr<Impedance> impedance, std::unique_ptr<CoordinateMap> map);
+  // Assigns slices and allocates scratch; call once after the last add.
+  void finalize();
+
+  int state_dim() const { return state_dim_; }
+  Vec initial_state() const;
+  std::vector<LayoutEntry> layout() const;
+
+  // x_dot = F(x, t; tau): (13b)-(13g) with (22).
+  void derivative(double t, ConstVecRef x, double tau, VecRef x_dot);
+  void project(VecRef x) const;
+
+  std::vector<std::string> signal_columns() const;
+  int signal_count() const { return signal_count_; }
+  // Evaluates the network at (t, x; tau) and writes one value per signal column.
+  void write_signals(double t, ConstVecRef x, double tau, VecRef row);
+
+  // Slip velocity of impedance i (which must have has_slip()) at state x.
+  Vec3 slip_velocity(int impedance, ConstVecRef x);
+
+  // Sum of the admittances' energies (NaN if any is undefined).
+  double energy(ConstVecRef x) const;
+
+  const Admittance* find_admittance(const std::string& name) const;
+  const std::vector<std::unique_ptr<Admittance>>& admittances() const { return admittances_; }
+  const std::vector<std::unique_ptr<Impedance>>& impedances() const { return impedances_; }
+  const CoordinateMap& map_of(int impedance) const { return *maps_[impedance]; }
+  // Offset and size of an impedance's state in the system vector.
+  Slot impedance_slot(int impedance) const { return impedance_slots_[impedance]; }
+  Slot admittance_slot(int admittance) const { return admittance_slots_[admittance]; }
+
+ private:
+  void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot);
+
+  std::vector<std::unique_ptr<Admittance>> admittances_;
+  std::vector<std::unique_ptr<Impedance>> impedances_;
+  std::vector<std::unique_ptr<CoordinateMap>> maps_;
+  std::vector<Slot> admittance_slots_;
+  std::vector<Slot> impedance_slots_;  // state slice; input_offset/size index x_hat, u
+  std::vector<int> output_offsets_;    // where each impedance's u lives in u_
+  std::vector<int> admittance_signal_sizes_;
+  std::vector<int> impedance_signal_sizes_;
+  int state_dim_ = 0;
+  int signal_count_ = 0;
+  bool finalized_ = false;
+  Vec x_hat_;  // all impedance inputs
+  Vec u_;      // all impedance outputs
+  Vec u_hat_;  // all admittance inputs
+  Vec scratch_dot_;
+};
+
+}  // namespace stiction::core

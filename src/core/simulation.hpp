@@ -1,0 +1,56 @@
+// Owns time: steps a network with one integrator, samples its signals at the output rate
+// (independent of dt: rows are interpolated between the two steps around each sample
+// time), and stops at the first sign of numerical instability.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "core/events.hpp"
+#include "core/integrator.hpp"
+#include "core/network.hpp"
+#include "core/trajectory.hpp"
+
+namespace stiction::core {
+
+struct RunOptions {
+  std::string integrator = "rk4";
+  double dt = 1e-4;
+  double duration = 1.0;
+  double output_rate = 1000.0;  // rows per second of simulated time
+  // Stop as unstable when the network energy exceeds its initial value by this factor
+  // (plus an absolute margin); energy can only fall or be fed by sources.
+  double energy_growth_limit = 1e6;
+  // Slip speed below which a contact or joint counts as stuck, per impedance name.
+  std::map<std::string, double> stick_thresholds;
+  double default_stick_threshold = 1e-3;  // m/s or rad/s
+};
+
+struct SlipHistory {
+  std::string component;
+  SlipMonitor monitor;
+};
+
+struct Instability {
+  double time = 0.0;
+  std::string component;
+  std::string reason;
+};
+
+struct RunResult {
+  Trajectory trajectory;
+  long steps = 0;
+  double wall_seconds = 0.0;
+  std::optional<Instability> instability;
+  std::vector<SlipHistory> slip_events;  // one per impedance with a slip speed
+  Vec final_state;
+};
+
+using ProgressCallback = std::function<void(double fraction_done)>;
+
+RunResult simulate(Network& network, const RunOptions& options,
+                   const ProgressCallback& progress = {});
+
+}  // namespace stiction::core
