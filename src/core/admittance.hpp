@@ -27,6 +27,11 @@ class Admittance {
   // One label per state slot ("p.x", "q.w", "theta.1", ...), for `stiction check`.
   virtual std::vector<std::string> state_labels() const = 0;
 
+  // Which state slots are velocities (their derivative is an acceleration), for partitioned
+  // integrators such as symplectic Euler. The default reads the labels: "v.*", "w.*" and
+  // "omega.*" are velocities.
+  virtual std::vector<bool> velocity_slots() const;
+
   virtual void initial_state(VecRef x) const = 0;
   virtual void derivative(ConstVecRef x, ConstVecRef u_hat, VecRef x_dot) const = 0;
   // Called once after every full step: bring the state back to its manifold (unit

@@ -39,6 +39,15 @@ class Impedance {
   virtual void write_signals(ConstVecRef x_hat, ConstVecRef y, ConstVecRef u,
                              VecRef out) const = 0;
 
+  // Power this element feeds into the admittances at (x_hat, u), for elements that are
+  // energy sources (prescribed torques); passive elements return 0. The energy monitor
+  // allows the network energy to grow by what the sources put in, and no more.
+  virtual bool is_source() const { return false; }
+  // Potential energy held in the element's springs (contact, friction spring), so that
+  // the energy monitor sees the total; 0 for elements that store none.
+  virtual double stored_energy(ConstVecRef /*x_hat*/, ConstVecRef /*y*/) const { return 0.0; }
+  virtual double power_in(ConstVecRef /*x_hat*/, ConstVecRef /*u*/) const { return 0.0; }
+
   // Largest stiffness this element puts between its ports (N/m or Nm/rad), and the
   // event signals it offers, for stability advice and event detection.
   virtual double stiffness() const { return 0.0; }

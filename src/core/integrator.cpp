@@ -1,18 +1,19 @@
 #include "core/integrator.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace stiction::core {
 
 const Tableau& euler_tableau() {
-  static const Tableau t{"euler", 1, {0.0}, {1.0}, {0.0}, {1.0}, 1, 0.0};
+  static const Tableau t{"euler", 1, {0.0}, {1.0}, {0.0}, {1.0}, 1};
   return t;
 }
 
 const Tableau& heun_tableau() {
   // Explicit trapezoid (RK2): the second stage is taken a full step ahead.
-  static const Tableau t{"heun", 2, {0.0, 0.0, 1.0, 0.0}, {0.5, 0.5}, {0.0, 1.0}, {1.0, 1.0},
-                         2, 0.0};
+  static const Tableau t{"heun", 2, {0.0, 0.0, 1.0, 0.0}, {0.5, 0.5}, {0.0, 1.0}, {1.0, 1.0}, 2};
   return t;
 }
 
@@ -32,19 +33,45 @@ const Tableau& rk4_tableau() {
   return t;
 }
 
-std::vector<std::string> integrator_names() { return {"euler", "heun", "rk4"}; }
+std::vector<std::string> integrator_names() {
+  return {"euler", "symplectic_euler", "heun", "rk4", "rk4_adaptive"};
+}
+
+const Tableau* find_tableau(const std::string& name) {
+  if (name == "euler") return &euler_tableau();
+  if (name == "heun") return &heun_tableau();
+  if (name == "rk4") return &rk4_tableau();
+  return nullptr;
+}
 
 const Tableau& tableau_by_name(const std::string& name) {
-  if (name == "euler") return euler_tableau();
-  if (name == "heun") return heun_tableau();
-  if (name == "rk4") return rk4_tableau();
+  if (const Tableau* t = find_tableau(name)) return *t;
+  throw std::invalid_argument("integrator '" + name + "' is not an explicit Runge-Kutta tableau");
+}
+
+std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,
+                                      double tolerance) {
+  if (const Tableau* t = find_tableau(name)) {
+    return std::make_unique<RungeKuttaStepper>(*t, state_dim, dt);
+  }
+  if (name == "symplectic_euler") return std::make_unique<SymplecticEulerStepper>(state_dim, dt);
+  if (name == "rk4_adaptive") {
+    if (!(tolerance > 0.0)) throw std::invalid_argument("rk4_adaptive needs a tolerance > 0");
+    return std::make_unique<AdaptiveRk4Stepper>(state_dim, dt, tolerance);
+  }
   std::string known;
   for (const auto& n : integrator_names()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown integrator '" + name + "' (known: " + known + ")");
 }
 
-RungeKuttaStepper::RungeKuttaStepper(const Tableau& tableau, int state_dim)
-    : tableau_(tableau), xi_(tableau.stages, Vec::Zero(state_dim)), stage_x_(state_dim) {}
+RungeKuttaStepper::RungeKuttaStepper(const Tableau& tableau, int state_dim, double dt)
+    : tableau_(tableau), dt_(dt), xi_(tableau.stages, Vec::Zero(state_dim)), stage_x_(state_dim) {}
+
+double RungeKuttaStepper::advance(Network& network, double t, double limit, Vec& x) {
+  const double h = std::min(dt_, limit);
+  step(network, t, h, x);
+  return h;
+}
 
 void RungeKuttaStepper::step(Network& network, double t, double T, Vec& x) {
   const int s = tableau_.stages;
@@ -56,10 +83,69 @@ void RungeKuttaStepper::step(Network& network, double t, double T, Vec& x) {
     }
     network.derivative(t + tableau_.c[r] * T, stage_x_, T * tableau_.d[r], xi_[r]);
   }
+  evaluations_ += s;
   for (int r = 0; r < s; ++r) {
     if (tableau_.b[r] != 0.0) x.noalias() += (T * tableau_.b[r]) * xi_[r];
   }
   network.project(x);
+}
+
+SymplecticEulerStepper::SymplecticEulerStepper(int state_dim, double dt)
+    : dt_(dt), xi_(Vec::Zero(state_dim)), rates_(Vec::Zero(state_dim)), start_(state_dim) {}
+
+double SymplecticEulerStepper::advance(Network& network, double t, double limit, Vec& x) {
+  const double h = std::min(dt_, limit);
+  step(network, t, h, x);
+  return h;
+}
+
+void SymplecticEulerStepper::step(Network& network, double t, double T, Vec& x) {
+  network.derivative(t, x, T, xi_);
+  ++evaluations_;
+  start_ = x;
+  x.noalias() += T * xi_;  // velocities and impedance states: forward Euler
+  // Positions: the rates of the new velocities (p_dot = v(k+1), q_dot = Q(w(k+1), q(k))).
+  network.kinematics(x, rates_);
+  const auto& positions = network.position_slots();
+  for (int i = 0; i < x.size(); ++i) {
+    if (positions[i]) x[i] = start_[i] + T * rates_[i];
+  }
+  network.project(x);
+}
+
+AdaptiveRk4Stepper::AdaptiveRk4Stepper(int state_dim, double initial_dt, double tolerance)
+    : rk4_(rk4_tableau(), state_dim), h_(initial_dt), tolerance_(tolerance),
+      full_(state_dim), half_(state_dim) {}
+
+double AdaptiveRk4Stepper::advance(Network& network, double t, double limit, Vec& x) {
+  for (;;) {
+    const double h = std::min(h_, limit);
+    full_ = x;
+    rk4_.step(network, t, h, full_);
+    half_ = x;
+    rk4_.step(network, t, h / 2, half_);
+    rk4_.step(network, t + h / 2, h / 2, half_);
+    evaluations_ = rk4_.evaluations();
+    // Richardson: the error of the two half steps is about (half - full) / 15.
+    double error = 0.0;
+    for (int i = 0; i < x.size(); ++i) {
+      const double scale = tolerance_ * (1.0 + std::abs(half_[i]));
+      error = std::max(error, std::abs(half_[i] - full_[i]) / (15.0 * scale));
+    }
+    if (!std::isfinite(error)) error = 1e10;
+    const double factor = std::clamp(0.9 * std::pow(std::max(error, 1e-10), -0.2), 0.2, 4.0);
+    if (error <= 1.0) {
+      x = half_;
+      // A step cut short by the limit says little about the next one: keep h_ then.
+      if (h >= h_) h_ = h * factor;
+      return h;
+    }
+    ++rejected_;
+    h_ = h * factor;
+    if (h_ < 1e-14 * std::max(1.0, std::abs(t))) {
+      throw std::runtime_error("rk4_adaptive: step size underflow");
+    }
+  }
 }
 
 }  // namespace stiction::core

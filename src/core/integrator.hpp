@@ -1,11 +1,22 @@
-// Integrators as data (DESIGN section 6): one explicit Runge-Kutta stepper driven by a
-// tableau, generalized as in the paper (eq. 21): stage r evaluates the network at
-// x(k) + T * sum_j a_rj xi_j, at time kT + c_r T, and passes its own step size
-// tau_r = T * d_r to every impedance. d_r is the fraction of the step over which the
-// stage's state derivative is next applied: the paper's {T1..T4}/T = {1/2, 1/2, 1, 1} for
-// RK4, and 1 for forward Euler (one stage, tau = T, which reproduces eq. 14 exactly).
+// Integrators over the network's one state vector. Every one keeps the paper's protocol:
+// each evaluation of the network passes the step size tau over which its state
+// derivative will be applied, so the impedances (Kikuuwe friction) see the same
+// discrete-time model whatever the method.
+//
+// - Explicit Runge-Kutta methods are data (DESIGN section 6): a tableau drives one stepper.
+//   Stage r evaluates the network at x(k) + T sum_j a_rj xi_j, at time kT + c_r T, and
+//   passes tau_r = T d_r, where d_r is the fraction of the step over which the stage's
+//   derivative is next applied: the paper's {T1..T4}/T = {1/2, 1/2, 1, 1} for RK4 (eq. 21),
+//   1 for forward Euler (one stage, tau = T: exactly the discrete model, eq. 14), {1, 1} for
+//   Heun. The last stage's d is 1: its derivative is applied over the whole step.
+// - Symplectic (semi-implicit) Euler: one evaluation with tau = T updates velocities and
+//   impedance states as forward Euler does; positions then move with the new velocities.
+// - Adaptive RK4 (step doubling): one step of h and two of h/2, both with the paper's stage
+//   sizes for their own step; their difference estimates the error; the two half steps are
+//   kept. The step grows or shrinks to keep the error at the tolerance.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,29 +33,89 @@ struct Tableau {
   std::vector<double> d;  // stage step sizes tau_r / T handed to the impedances
   int order = 0;
   // Stability interval on the imaginary axis (|lambda T| below this is stable for an
-  // undamped oscillator); 0 when the method is unstable there (forward Euler).
+  // undamped oscillator); 0 when the method is unstable there (forward Euler, Heun).
   double imaginary_stability = 0.0;
 };
 
 const Tableau& euler_tableau();
 const Tableau& heun_tableau();
 const Tableau& rk4_tableau();
-// Names accepted by tableau_by_name / make_stepper, for messages.
-std::vector<std::string> integrator_names();
-// Throws std::invalid_argument naming the known integrators.
-const Tableau& tableau_by_name(const std::string& name);
 
-class RungeKuttaStepper {
+// Names accepted by make_stepper, for messages and `stiction study`.
+std::vector<std::string> integrator_names();
+
+class Stepper {
  public:
-  RungeKuttaStepper(const Tableau& tableau, int state_dim);
+  virtual ~Stepper() = default;
+  virtual const std::string& name() const = 0;
+  virtual int order() const = 0;
+  // Advances x from t by one step of at most `limit` (the fixed steppers take
+  // min(dt, limit)); returns the step taken. Projects x (quaternions) afterwards.
+  virtual double advance(Network& network, double t, double limit, Vec& x) = 0;
+  // Number of network evaluations so far (the cost in `stiction study`).
+  long evaluations() const { return evaluations_; }
+
+ protected:
+  long evaluations_ = 0;
+};
+
+class RungeKuttaStepper final : public Stepper {
+ public:
+  RungeKuttaStepper(const Tableau& tableau, int state_dim, double dt = 0.0);
+  const std::string& name() const override { return tableau_.name; }
+  int order() const override { return tableau_.order; }
   const Tableau& tableau() const { return tableau_; }
-  // Advances x from time t by T in place, then projects it (quaternions).
+  double advance(Network& network, double t, double limit, Vec& x) override;
+  // One step of exactly T from t (no projection skipped), for tests and benchmarks.
   void step(Network& network, double t, double T, Vec& x);
 
  private:
   Tableau tableau_;
+  double dt_;
   std::vector<Vec> xi_;  // stage derivatives, allocated once
   Vec stage_x_;
 };
+
+class SymplecticEulerStepper final : public Stepper {
+ public:
+  SymplecticEulerStepper(int state_dim, double dt);
+  const std::string& name() const override { return name_; }
+  int order() const override { return 1; }
+  double advance(Network& network, double t, double limit, Vec& x) override;
+  void step(Network& network, double t, double T, Vec& x);
+
+ private:
+  std::string name_ = "symplectic_euler";
+  double dt_;
+  Vec xi_, rates_, start_;
+};
+
+class AdaptiveRk4Stepper final : public Stepper {
+ public:
+  // tolerance: mixed absolute/relative bound on the local error of each state entry.
+  AdaptiveRk4Stepper(int state_dim, double initial_dt, double tolerance);
+  const std::string& name() const override { return name_; }
+  int order() const override { return 4; }
+  double advance(Network& network, double t, double limit, Vec& x) override;
+  double current_step() const { return h_; }
+  long rejected() const { return rejected_; }
+
+ private:
+  std::string name_ = "rk4_adaptive";
+  RungeKuttaStepper rk4_;
+  double h_;
+  double tolerance_;
+  long rejected_ = 0;
+  Vec full_, half_;
+};
+
+// euler | symplectic_euler | heun | rk4 use dt; rk4_adaptive uses dt as its first step and
+// needs tolerance > 0. Throws std::invalid_argument naming the known integrators.
+std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,
+                                      double tolerance = 0.0);
+// The tableau of an explicit RK integrator name, or nullptr (symplectic Euler, adaptive).
+const Tableau* find_tableau(const std::string& name);
+// Same, but throws std::invalid_argument for a name without a tableau.
+const Tableau& tableau_by_name(const std::string& name);
 
 }  // namespace stiction::core

@@ -10,6 +10,15 @@ double Admittance::energy(ConstVecRef /*x*/) const {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+std::vector<bool> Admittance::velocity_slots() const {
+  std::vector<bool> mask;
+  for (const auto& label : state_labels()) {
+    mask.push_back(label.rfind("v.", 0) == 0 || label.rfind("w.", 0) == 0 ||
+                   label.rfind("omega.", 0) == 0);
+  }
+  return mask;
+}
+
 void Network::add_admittance(std::unique_ptr<Admittance> admittance) {
   if (finalized_) throw std::logic_error("Network: add after finalize");
   admittances_.push_back(std::move(admittance));
@@ -46,6 +55,14 @@ void Network::finalize() {
     output += i->output_size();
   }
   state_dim_ = state;
+  position_slots_.assign(state_dim_, false);
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const auto mask = admittances_[j]->velocity_slots();
+    for (int k = 0; k < admittance_slots_[j].state_size; ++k) {
+      position_slots_[admittance_slots_[j].state_offset + k] = !mask.at(k);
+    }
+  }
+  zero_input_ = Vec::Zero(input);
   for (auto& m : maps_) {
     std::vector<Slot> slots;
     for (const Admittance* wanted : m->admittances()) {
@@ -128,6 +145,15 @@ void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
   }
 }
 
+void Network::kinematics(ConstVecRef x, VecRef x_dot) const {
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const Slot& s = admittance_slots_[j];
+    admittances_[j]->derivative(x.segment(s.state_offset, s.state_size),
+                                zero_input_.segment(s.input_offset, s.input_size),
+                                x_dot.segment(s.state_offset, s.state_size));
+  }
+}
+
 void Network::project(VecRef x) const {
   for (std::size_t j = 0; j < admittances_.size(); ++j) {
     const Slot& s = admittance_slots_[j];
@@ -146,6 +172,16 @@ std::vector<std::string> Network::signal_columns() const {
     names.insert(names.end(), c.begin(), c.end());
   }
   return names;
+}
+
+std::vector<bool> Network::wrapped_columns() const {
+  std::vector<bool> wrapped;
+  auto add = [&](const std::vector<SignalInfo>& signals) {
+    for (const auto& sig : signals) wrapped.insert(wrapped.end(), sig.size(), sig.unwrap);
+  };
+  for (const auto& a : admittances_) add(a->signals());
+  for (const auto& i : impedances_) add(i->signals());
+  return wrapped;
 }
 
 void Network::write_signals(double t, ConstVecRef x, double tau, VecRef row) {
@@ -175,11 +211,39 @@ Vec3 Network::slip_velocity(int impedance, ConstVecRef x) {
   return impedances_[impedance]->slip_velocity(x_hat);
 }
 
-double Network::energy(ConstVecRef x) const {
+bool Network::has_sources() const {
+  for (const auto& i : impedances_) {
+    if (i->is_source()) return true;
+  }
+  return false;
+}
+
+double Network::source_power(double t, ConstVecRef x) {
+  double power = 0.0;
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    if (!impedances_[i]->is_source()) continue;
+    const Slot& s = impedance_slots_[i];
+    auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+    auto u = u_.segment(output_offsets_[i], impedances_[i]->output_size());
+    auto y_dot = scratch_dot_.segment(s.state_offset, s.state_size);
+    maps_[i]->motion(x, x_hat);
+    impedances_[i]->evaluate(t, x_hat, x.segment(s.state_offset, s.state_size), 0.0, u, y_dot);
+    power += impedances_[i]->power_in(x_hat, u);
+  }
+  return power;
+}
+
+double Network::energy(ConstVecRef x) {
   double total = 0.0;
   for (std::size_t j = 0; j < admittances_.size(); ++j) {
     const Slot& s = admittance_slots_[j];
     total += admittances_[j]->energy(x.segment(s.state_offset, s.state_size));
+  }
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const Slot& s = impedance_slots_[i];
+    auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+    maps_[i]->motion(x, x_hat);
+    total += impedances_[i]->stored_energy(x_hat, x.segment(s.state_offset, s.state_size));
   }
   return total;
 }

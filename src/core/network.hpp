@@ -36,17 +36,30 @@ class Network {
   // x_dot = F(x, t; tau): (13b)-(13g) with (22).
   void derivative(double t, ConstVecRef x, double tau, VecRef x_dot);
   void project(VecRef x) const;
+  // Admittance derivatives with no forces applied: the position rates (p_dot = v,
+  // q_dot = Q(w, q), theta_dot = omega) of a state, for partitioned integrators.
+  void kinematics(ConstVecRef x, VecRef x_dot) const;
+  // True for the admittance slots that are positions (not velocities); impedance states
+  // are false.
+  const std::vector<bool>& position_slots() const { return position_slots_; }
 
   std::vector<std::string> signal_columns() const;
   int signal_count() const { return signal_count_; }
+  // For each signal column: whether it is an angle reported modulo 2 pi.
+  std::vector<bool> wrapped_columns() const;
   // Evaluates the network at (t, x; tau) and writes one value per signal column.
   void write_signals(double t, ConstVecRef x, double tau, VecRef row);
 
   // Slip velocity of impedance i (which must have has_slip()) at state x.
   Vec3 slip_velocity(int impedance, ConstVecRef x);
 
-  // Sum of the admittances' energies (NaN if any is undefined).
-  double energy(ConstVecRef x) const;
+  // Power fed in by source elements at (t, x).
+  double source_power(double t, ConstVecRef x);
+  bool has_sources() const;
+
+  // Energy of the admittances plus what the impedances' springs hold (NaN if an
+  // admittance does not define its energy).
+  double energy(ConstVecRef x);
 
   const Admittance* find_admittance(const std::string& name) const;
   const std::vector<std::unique_ptr<Admittance>>& admittances() const { return admittances_; }
@@ -74,6 +87,8 @@ class Network {
   Vec u_;      // all impedance outputs
   Vec u_hat_;  // all admittance inputs
   Vec scratch_dot_;
+  Vec zero_input_;
+  std::vector<bool> position_slots_;
 };
 
 }  // namespace stiction::core

@@ -3,16 +3,34 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace stiction::core {
 namespace {
 
 // The component owning the first non-finite state slot.
-std::string owner_of_non_finite(const Network& network, const Vec& x) {
+std::string owner_of_non_finite(Network& network, const Vec& x) {
   for (const auto& entry : network.layout()) {
     if (!x.segment(entry.offset, entry.size).allFinite()) return entry.component;
   }
   return "(unknown)";
+}
+
+// The admittance whose energy grew the most over the last step.
+std::string fastest_growing(Network& network, const Vec& before, const Vec& after) {
+  std::string name = "network";
+  double worst = -1.0;
+  for (std::size_t j = 0; j < network.admittances().size(); ++j) {
+    const Slot s = network.admittance_slot(static_cast<int>(j));
+    const auto& a = *network.admittances()[j];
+    const double growth = a.energy(after.segment(s.state_offset, s.state_size)) -
+                          a.energy(before.segment(s.state_offset, s.state_size));
+    if (growth > worst) {
+      worst = growth;
+      name = a.name();
+    }
+  }
+  return name;
 }
 
 }  // namespace
@@ -25,22 +43,42 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
 
   const double T = options.dt;
   const double end = options.duration;
+  const bool fixed_step = options.integrator != "rk4_adaptive";
   const long total_steps = static_cast<long>(std::ceil(end / T - 1e-9));
   const double sample_period = 1.0 / options.output_rate;
   const long total_samples = static_cast<long>(std::floor(end / sample_period + 1e-9)) + 1;
   result.trajectory.reserve_rows(static_cast<int>(total_samples));
 
-  RungeKuttaStepper stepper(tableau_by_name(options.integrator), network.state_dim());
+  auto stepper = make_stepper(options.integrator, network.state_dim(), T, options.tolerance);
   Vec x = network.initial_state();
   Vec x_prev = x;
   const int n = network.signal_count();
   Vec row_prev(n), row_now(n);
-  std::vector<double> row(n + 1);
+  std::vector<double> row(n + 1), last_row(n + 1);
 
+  // Angles reported modulo 2 pi are unwrapped: each value is moved by whole turns to the
+  // nearest of the previous one, both before blending two steps and between rows.
+  std::vector<int> wrapped;
+  {
+    const auto flags = network.wrapped_columns();
+    for (int i = 0; i < n; ++i) {
+      if (flags[i]) wrapped.push_back(i);
+    }
+  }
+  auto unwrap_toward = [](double value, double reference) {
+    constexpr double kTurn = 2.0 * 3.14159265358979323846;
+    return value + kTurn * std::round((reference - value) / kTurn);
+  };
+  bool emitted = false;
   auto emit = [&](double ts, const Vec& values) {
     row[0] = ts;
     for (int i = 0; i < n; ++i) row[i + 1] = values[i];
+    if (emitted) {
+      for (int c : wrapped) row[c + 1] = unwrap_toward(row[c + 1], last_row[c + 1]);
+    }
     result.trajectory.append(row.data());
+    last_row = row;
+    emitted = true;
   };
 
   std::vector<int> slipping;
@@ -56,7 +94,12 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   }
 
   const double initial_energy = network.energy(x);
-  const double energy_margin = (std::abs(initial_energy) + 1.0) * options.energy_growth_limit;
+  const bool has_sources = network.has_sources();
+  double work_in = 0.0;  // |work| done by sources so far
+  double power_checked = has_sources ? std::abs(network.source_power(0.0, x)) : 0.0;
+  double t_checked = 0.0;
+  constexpr long kEnergyCheckEvery = 8;
+
 
   const auto start = std::chrono::steady_clock::now();
   long sample = 0;
@@ -65,23 +108,43 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   ++sample;
   long progress_every = std::max(1L, total_steps / 100);
 
-  for (long k = 0; k < total_steps; ++k) {
-    const double t = k * T;
-    const double h = std::min(T, end - t);
+  double t = 0.0;
+  for (long k = 0; t < end; ++k) {
     x_prev = x;
-    stepper.step(network, t, h, x);
-    const double t_now = (k + 1 == total_steps) ? end : (k + 1) * T;
+    double h = 0.0;
+    try {
+      h = stepper->advance(network, t, end - t, x);
+    } catch (const std::runtime_error& error) {
+      result.instability = Instability{t, "integrator", error.what()};
+      break;
+    }
+    // Fixed steps: time from the step count, so a long run does not accumulate rounding.
+    const double t_now = fixed_step ? ((k + 1 >= total_steps) ? end : (k + 1) * T) : t + h;
     result.steps = k + 1;
+    result.evaluations = stepper->evaluations();
 
     if (!x.allFinite()) {
       result.instability = Instability{t_now, owner_of_non_finite(network, x), "state is not finite"};
       break;
     }
-    const double energy = network.energy(x);
-    if (std::isfinite(initial_energy) && std::isfinite(energy) &&
-        energy - initial_energy > energy_margin) {
-      result.instability = Instability{t_now, "network", "energy grew without bound"};
-      break;
+    // Energy every few steps: a numerical instability grows geometrically, so a short
+    // delay in noticing it costs nothing, while checking every step would.
+    if ((k + 1) % kEnergyCheckEvery == 0 || t_now >= end) {
+      if (has_sources) {
+        const double power = std::abs(network.source_power(t_now, x));
+        work_in += 0.5 * (power_checked + power) * (t_now - t_checked);
+        power_checked = power;
+        t_checked = t_now;
+      }
+      const double energy = network.energy(x);
+      const double margin =
+          work_in + options.energy_growth_limit * (std::abs(initial_energy) + work_in) + 1e-9;
+      if (std::isfinite(initial_energy) && std::isfinite(energy) &&
+          energy - initial_energy > margin) {
+        result.instability = Instability{t_now, fastest_growing(network, x_prev, x),
+                                         "energy grew beyond what the sources put in"};
+        break;
+      }
     }
 
     for (std::size_t m = 0; m < slipping.size(); ++m) {
@@ -103,13 +166,15 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
       } else {
         if (!have_prev) {
           network.write_signals(t, x_prev, T, row_prev);
+          for (int c : wrapped) row_now[c] = unwrap_toward(row_now[c], row_prev[c]);
           have_prev = true;
         }
         emit(ts, (1.0 - alpha) * row_prev + alpha * row_now);
       }
       ++sample;
     }
-    if (progress && (k + 1) % progress_every == 0) progress(double(k + 1) / total_steps);
+    if (progress && (k + 1) % progress_every == 0) progress(t_now / end);
+    t = t_now;
   }
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -17,12 +17,15 @@ namespace stiction::core {
 
 struct RunOptions {
   std::string integrator = "rk4";
-  double dt = 1e-4;
+  double dt = 1e-4;            // the step (rk4_adaptive: its first step)
+  double tolerance = 0.0;      // rk4_adaptive only
   double duration = 1.0;
   double output_rate = 1000.0;  // rows per second of simulated time
-  // Stop as unstable when the network energy exceeds its initial value by this factor
-  // (plus an absolute margin); energy can only fall or be fed by sources.
-  double energy_growth_limit = 1e6;
+  // Stop as unstable when the network energy (admittances plus springs) exceeds its initial
+  // value plus the work done by sources by more than this factor times (|initial energy|
+  // + that work): passive elements can only store or dissipate, so such growth is the
+  // integrator's doing.
+  double energy_growth_limit = 1.0;
   // Slip speed below which a contact or joint counts as stuck, per impedance name.
   std::map<std::string, double> stick_thresholds;
   double default_stick_threshold = 1e-3;  // m/s or rad/s
@@ -42,6 +45,7 @@ struct Instability {
 struct RunResult {
   Trajectory trajectory;
   long steps = 0;
+  long evaluations = 0;  // network evaluations (the integrator's cost)
   double wall_seconds = 0.0;
   std::optional<Instability> instability;
   std::vector<SlipHistory> slip_events;  // one per impedance with a slip speed

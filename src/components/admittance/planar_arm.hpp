@@ -8,19 +8,18 @@
 // no step allocates; one arm is evaluated by one thread at a time.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Cholesky>
+#include <vector>
 
 #include "core/body.hpp"
 
 namespace stiction::components {
 
 struct ArmLink {
-  double length = 0.2;      // joint to joint (m)
-  double mass = 0.2;        // kg
-  double com = 0.1;         // distance of the centre of mass from the link's joint (m)
-  double inertia = 0.0;     // about the centre of mass, about the joint axis (kg m^2)
+  double length = 0.2;   // joint to joint (m)
+  double mass = 0.2;     // kg
+  double com = 0.1;      // distance of the centre of mass from the link's joint (m)
+  double inertia = 0.0;  // about the centre of mass, about the joint axis (kg m^2)
 };
 
 // A uniform box link: com at the middle, I = m (length^2 + width^2) / 12.

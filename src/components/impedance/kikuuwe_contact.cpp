@@ -57,6 +57,11 @@ Vec3 KikuuweContact::slip_velocity(ConstVecRef x_hat) const {
   return v_c - n_.dot(v_c) * n_;
 }
 
+double KikuuweContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
+  const double depth = std::max(0.0, params_.offset - n_.dot(Vec3(x_hat.segment<3>(0))));
+  return 0.5 * params_.stiffness * depth * depth + 0.5 * kt_ * y.head<2>().squaredNorm();
+}
+
 std::vector<core::SignalInfo> KikuuweContact::signals() const {
   return {{"f", core::xyz_axes()},
           {"slip", core::xyz_axes()},

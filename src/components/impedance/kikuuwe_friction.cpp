@@ -46,6 +46,13 @@ void KikuuweFriction::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, d
   }
 }
 
+core::Vec3 KikuuweFriction::slip_velocity(ConstVecRef x_hat) const {
+  const int n = params_.dimension;
+  core::Vec3 v = core::Vec3::Zero();
+  v.head(n) = x_hat.segment(n, n);
+  return v;
+}
+
 std::vector<core::SignalInfo> KikuuweFriction::signals() const {
   if (params_.dimension == 1) return {{"tau", {}}, {"e", {}}};
   const auto axes = params_.dimension == 3 ? core::xyz_axes() : core::index_axes(params_.dimension);

@@ -35,6 +35,11 @@ class KikuuweFriction final : public core::Impedance {
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
   double stiffness() const override { return params_.stiffness; }
+  bool has_slip() const override { return params_.dimension <= 3; }
+  double stored_energy(core::ConstVecRef /*x_hat*/, core::ConstVecRef y) const override {
+    return 0.5 * params_.stiffness * y.squaredNorm();
+  }
+  core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
   const KikuuweFrictionParams& params() const { return params_; }
 
  private:

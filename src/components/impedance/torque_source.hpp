@@ -21,6 +21,11 @@ class TorqueSource final : public core::Impedance {
   void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
                 core::VecRef y_dot) const override;
   std::vector<core::SignalInfo> signals() const override;
+  bool is_source() const override { return true; }
+  // The driven side receives -u while moving at the velocity half of x_hat.
+  double power_in(core::ConstVecRef x_hat, core::ConstVecRef u) const override {
+    return -u.dot(x_hat.tail(u.size()));
+  }
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
 

@@ -1,0 +1,73 @@
+// Render + read-back speed at 1280x720 (the figure of merit), with the speed levers
+// one at a time, and the end-to-end sphere_roll demo video (2 s at 60 fps = 121 frames,
+// rendering overlapped with H.264 encoding on a worker thread).
+//   ./build/bench/render/bench_render --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "render/render_outputs.hpp"
+#include "render_fixtures.hpp"
+
+using namespace stiction;
+using namespace stiction::render;
+
+namespace {
+
+void render_frames(benchmark::State& state, int msaa, int shadow_map_size, int taps, bool overlay) {
+  const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
+  const core::Trajectory tr = testing::sphere_roll_trajectory();
+  RenderSettings settings = read_render_settings(s);
+  settings.msaa = msaa;
+  settings.shadow_map_size = shadow_map_size;
+  settings.shadow_taps = taps;
+  settings.overlay.enabled = overlay;
+  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings);
+  image::Image frame;
+  renderer.render(0.0, frame);  // shader JIT happens on the first frame
+  double t = 0.0;
+  for (auto _ : state) {
+    renderer.render(t, frame);
+    benchmark::DoNotOptimize(frame.pixels.data());
+    t += 1.0 / 60.0;
+    if (t > 2.0) t = 0.0;
+  }
+  state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()),
+                                             benchmark::Counter::kIsRate);
+}
+
+void BM_Render720p_Default(benchmark::State& s) { render_frames(s, 4, 2048, 4, true); }
+void BM_Render720p_OneShadowTap(benchmark::State& s) { render_frames(s, 4, 2048, 1, true); }
+void BM_Render720p_NoMsaa(benchmark::State& s) { render_frames(s, 1, 2048, 4, true); }
+void BM_Render720p_Shadow1024(benchmark::State& s) { render_frames(s, 4, 1024, 4, true); }
+void BM_Render720p_NoShadows(benchmark::State& s) { render_frames(s, 4, 0, 1, true); }
+void BM_Render720p_Fastest(benchmark::State& s) { render_frames(s, 1, 0, 1, false); }
+
+void BM_SphereRollVideo(benchmark::State& state) {
+  const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
+  const core::Trajectory tr = testing::sphere_roll_trajectory(2.0);
+  const RenderSettings settings = read_render_settings(s);
+  const auto dir = std::filesystem::temp_directory_path() / "stiction_bench_render";
+  RenderRequest request;
+  request.out_dir = dir;
+  int frames = 0;
+  for (auto _ : state) {
+    frames = render_outputs(s, tr, settings, request).frames;
+  }
+  state.counters["frames"] = frames;
+  state.counters["fps"] = benchmark::Counter(static_cast<double>(frames) * state.iterations(),
+                                             benchmark::Counter::kIsRate);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+
+BENCHMARK(BM_Render720p_Default)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_Render720p_OneShadowTap)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_Render720p_NoMsaa)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_Render720p_Shadow1024)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_Render720p_NoShadows)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_Render720p_Fastest)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_SphereRollVideo)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(2);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,6 @@
+#version 330 core
+// Shadow pass: depth from the light only.
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_model;
+uniform mat4 u_light_view_proj;
+void main() { gl_Position = u_light_view_proj * u_model * vec4(a_position, 1.0); }

@@ -1,0 +1,149 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "app/commands.hpp"
+#include "components/impedance/kikuuwe_contact.hpp"
+#include "components/impedance/kikuuwe_friction.hpp"
+#include "components/impedance/lugre.hpp"
+#include "components/impedance/spring_damper.hpp"
+#include "core/integrator.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::app {
+namespace {
+
+// Mobility (inverse effective mass or inertia) that impedance i sees at the initial state:
+// push with a unit force through its map, let the admittances accelerate for a unit time
+// and read the velocity part of x_hat back. The largest entry gives the stiffest mode, the
+// one that limits the step. Works for every map whose x_hat is [position (n), velocity (n)]
+// with n = force size; NaN otherwise.
+double largest_mobility(core::Network& network, int i) {
+  const core::CoordinateMap& map = network.map_of(i);
+  const int n = map.force_size();
+  if (map.motion_size() != 2 * n) return std::nan("");
+  const core::Vec x0 = network.initial_state();
+  int input_dim = 0;
+  for (std::size_t a = 0; a < network.admittances().size(); ++a) {
+    const core::Slot s = network.admittance_slot(static_cast<int>(a));
+    input_dim = std::max(input_dim, s.input_offset + s.input_size);
+  }
+  core::Vec base_hat(map.motion_size()), pushed_hat(map.motion_size());
+  map.motion(x0, base_hat);
+  double largest = 0.0;
+  for (int k = 0; k < n; ++k) {
+    core::Vec u = core::Vec::Zero(n);
+    u[k] = 1.0;
+    core::Vec u_hat = core::Vec::Zero(input_dim);
+    map.apply(x0, u, u_hat);
+    core::Vec x1 = x0;
+    for (std::size_t a = 0; a < network.admittances().size(); ++a) {
+      const core::Admittance& adm = *network.admittances()[a];
+      const core::Slot s = network.admittance_slot(static_cast<int>(a));
+      core::Vec with(s.state_size), without(s.state_size);
+      adm.derivative(x0.segment(s.state_offset, s.state_size),
+                     u_hat.segment(s.input_offset, s.input_size), with);
+      adm.derivative(x0.segment(s.state_offset, s.state_size), core::Vec::Zero(s.input_size),
+                     without);
+      x1.segment(s.state_offset, s.state_size) += with - without;
+    }
+    map.motion(x1, pushed_hat);
+    // The moving side receives -u: a positive mobility shows as a negative response.
+    largest = std::max(largest, -(pushed_hat[n + k] - base_hat[n + k]));
+  }
+  return largest;
+}
+
+// Damping the element puts beside its stiffness, when its type says so; NaN if unknown.
+double damping_of(const core::Impedance& imp) {
+  if (auto* c = dynamic_cast<const components::KikuuweContact*>(&imp)) return c->params().damping;
+  if (auto* f = dynamic_cast<const components::KikuuweFriction*>(&imp)) return f->params().damping;
+  if (auto* l = dynamic_cast<const components::LuGre*>(&imp)) return l->params().damping;
+  if (auto* s = dynamic_cast<const components::SpringDamper*>(&imp)) return s->params().damping;
+  return std::nan("");
+}
+
+std::string labels_of(const core::LayoutEntry& entry) {
+  std::string out;
+  for (const auto& l : entry.labels) out += (out.empty() ? "" : " ") + l;
+  return out;
+}
+
+}  // namespace
+
+int check_command(const std::string& scene_name) {
+  scene::Scene scene = scene::load_scene(scene_name);
+  core::Network& network = *scene.network;
+  const core::RunOptions& run = scene.run;
+  std::printf("%s: ok (%s)\n", scene.name.c_str(), scene.path.c_str());
+  if (!scene.description.empty()) std::printf("  %s\n", scene.description.c_str());
+  std::printf("simulation: %s, dt = %g s, duration = %g s, %g rows/s\n", run.integrator.c_str(),
+              run.dt, run.duration, run.output_rate);
+
+  std::printf("\nstate layout (%d numbers):\n", network.state_dim());
+  for (const core::LayoutEntry& e : network.layout()) {
+    if (e.size == 0) {
+      std::printf("  %-9s %s (%s): no state\n", "-", e.component.c_str(), e.type.c_str());
+      continue;
+    }
+    std::string range = "[";  // appended piecewise: GCC 12 -Wrestrict false positive
+    range += std::to_string(e.offset) + ".." + std::to_string(e.offset + e.size - 1) + "]";
+    std::printf("  %-9s %s (%s): %s\n", range.c_str(), e.component.c_str(), e.type.c_str(),
+                labels_of(e).c_str());
+  }
+
+  const core::Tableau& tableau = core::tableau_by_name(run.integrator);
+  std::printf("\ndt advice for %s (stiff modes, linearized at the initial state):\n", run.integrator.c_str());
+  bool any = false;
+  for (std::size_t i = 0; i < network.impedances().size(); ++i) {
+    const core::Impedance& imp = *network.impedances()[i];
+    const double K = imp.stiffness();
+    if (!(K > 0.0)) continue;
+    any = true;
+    const double mobility = largest_mobility(network, static_cast<int>(i));
+    if (!(mobility > 0.0)) {
+      std::printf("  %s (%s): K = %g; no effective mass could be computed for its wiring\n",
+                  imp.name().c_str(), std::string(imp.type()).c_str(), K);
+      continue;
+    }
+    const double m_eff = 1.0 / mobility;
+    const double omega = std::sqrt(K * mobility);
+    std::printf("  %s (%s): K = %g against an effective mass/inertia %g: omega = %.5g rad/s\n",
+                imp.name().c_str(), std::string(imp.type()).c_str(), K, m_eff, omega);
+    const double B = damping_of(imp);
+    const double zeta = std::isfinite(B) ? B * mobility / (2.0 * omega) : std::nan("");
+    if (tableau.imaginary_stability > 0.0) {
+      const double limit = tableau.imaginary_stability / omega;
+      std::printf("    %s is stable for dt < %.3g / omega = %.3g s (scene dt %g: %s)\n",
+                  run.integrator.c_str(), tableau.imaginary_stability, limit, run.dt,
+                  run.dt < limit ? "ok" : "TOO LARGE");
+    } else {
+      std::printf("    %s is unstable for an undamped oscillator at any dt: damping is required", run.integrator.c_str());
+      if (std::isfinite(zeta) && zeta > 0.0) {
+        const double limit = 2.0 * zeta / omega;
+        std::printf("; with damping ratio %.3g it needs dt < 2 zeta / omega = %.3g s (scene dt %g: %s)",
+                    zeta, limit, run.dt, run.dt < limit ? "ok" : "TOO LARGE");
+      }
+      std::printf("\n");
+      if (dynamic_cast<const components::KikuuweFriction*>(&imp) != nullptr && run.integrator == "euler") {
+        std::printf("    (while stuck, eq. 19 integrates its spring semi-implicitly under euler: "
+                    "stable for dt < 2 / omega = %.3g s)\n", 2.0 / omega);
+      }
+    }
+  }
+  if (!any) std::printf("  no stiff elements\n");
+  return kExitOk;
+}
+
+int scenes_command() {
+  const auto scenes = scene::bundled_scenes();
+  std::size_t width = 0;
+  for (const auto& [name, description] : scenes) width = std::max(width, name.size());
+  for (const auto& [name, description] : scenes) {
+    std::printf("%-*s  %s\n", static_cast<int>(width), name.c_str(), description.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace stiction::app

@@ -1,0 +1,88 @@
+// `stiction`: the command line of DESIGN section 3. Typed exceptions from the libraries
+// become exit codes here and only here: 2 bad input, 3 instability (returned by run),
+// 1 anything else.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.hpp"
+#include "core/integrator.hpp"
+#include "io/atomic_file.hpp"
+#include "scene/toml_reader.hpp"
+
+namespace {
+
+using namespace stiction;
+
+int dispatch(int argc, char** argv) {
+  CLI::App cli{"stiction: simulator of mechanical systems with Coulomb friction "
+               "(Kikuuwe & Yamamoto's modular RK4 architecture)",
+               "stiction"};
+  cli.set_version_flag("--version", std::string("stiction ") + STICTION_VERSION);
+  cli.require_subcommand(1);
+
+  app::RunArguments run_args;
+  double dt = 0.0, duration = 0.0;
+  std::string integrator;
+  CLI::App* run = cli.add_subcommand("run", "simulate a scene; write trajectory.csv and summary.json");
+  run->add_option("SCENE", run_args.scene, "bundled scene name or path to a .toml file")->required();
+  run->add_option("--out", run_args.out, "output directory (default out/<scene name>/)");
+  CLI::Option* integrator_opt =
+      run->add_option("--integrator", integrator, "integrator, overrides simulation.integrator")
+          ->check(CLI::IsMember(core::integrator_names()));
+  CLI::Option* dt_opt =
+      run->add_option("--dt", dt, "step size in s, overrides simulation.dt")->check(CLI::PositiveNumber);
+  CLI::Option* duration_opt = run->add_option("--duration", duration,
+                                              "simulated time in s, overrides simulation.duration")
+                                  ->check(CLI::PositiveNumber);
+  run->add_option("--set", run_args.overrides,
+                  "KEY=VALUE: set a dotted key of the scene to a TOML value (repeatable)")
+      ->allow_extra_args(false);
+  run->add_flag("--no-video", run_args.no_video, "do not render a video");
+  run->add_flag("--no-plots", run_args.no_plots, "do not draw plots");
+  run->add_flag("--frames", run_args.frames, "also write frames/NNNNNN.png");
+  run->add_flag("--quiet", run_args.quiet, "print nothing but errors");
+
+  std::string check_scene;
+  CLI::App* check = cli.add_subcommand("check", "validate a scene, print its state layout and dt advice");
+  check->add_option("SCENE", check_scene, "bundled scene name or path to a .toml file")->required();
+
+  CLI::App* scenes = cli.add_subcommand("scenes", "list the bundled scenes");
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version are "errors" with code 0; every other parse error is bad input.
+    const int code = cli.exit(e);
+    return code == 0 ? app::kExitOk : app::kExitBadInput;
+  }
+
+  if (*run) {
+    if (integrator_opt->count() > 0) run_args.integrator = integrator;
+    if (dt_opt->count() > 0) run_args.dt = dt;
+    if (duration_opt->count() > 0) run_args.duration = duration;
+    return app::run_command(run_args);
+  }
+  if (*check) return app::check_command(check_scene);
+  if (*scenes) return app::scenes_command();
+  return app::kExitBadInput;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return dispatch(argc, argv);
+  } catch (const scene::InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return app::kExitBadInput;
+  } catch (const io::IoError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return app::kExitFailure;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return app::kExitFailure;
+  }
+}

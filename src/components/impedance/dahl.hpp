@@ -1,0 +1,53 @@
+// Dahl friction, paper eq. (11), one dimension (a joint or a slider):
+//   u = K e,   e_dot = v - |v| K e / F
+// e is the elastic (pre-sliding) displacement; while sliding at constant v, e relaxes to
+// sgn(v) F / K, so u tends to F sgn(v). Input x_hat = [position, velocity] of the moving
+// side; only the velocity is used. Unlike eq. (19) the rate does not depend on the stage
+// size tau: Dahl is an ordinary ODE. It creeps under sub-Coulomb forces that change sign of
+// v (no true static friction).
+// Sign convention (DESIGN section 1): u is the force the moving side exerts on the element,
+// so the body receives -u (opposite to its velocity while sliding).
+// Signals: tau = -u (the torque/force on the driven side), e.
+#pragma once
+
+#include "core/impedance.hpp"
+
+namespace stiction::components {
+
+struct DahlParams {
+  double stiffness = 1e4;    // K (N/m or Nm/rad)
+  double force_limit = 1.0;  // F > 0, the kinetic (Coulomb) level
+  double initial_e = 0.0;
+};
+
+class Dahl final : public core::Impedance {
+ public:
+  Dahl(std::string name, const DahlParams& params);
+  std::string_view type() const override { return "dahl"; }
+  int input_size() const override { return 2; }
+  int output_size() const override { return 1; }
+  int state_size() const override { return 1; }
+  std::vector<std::string> state_labels() const override { return {"e"}; }
+  void initial_state(core::VecRef y) const override { y[0] = params_.initial_e; }
+  void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
+                core::VecRef y_dot) const override;
+  std::vector<core::SignalInfo> signals() const override;
+  void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
+                     core::VecRef out) const override;
+  double stiffness() const override { return params_.stiffness; }
+  // The bristle spring 0.5 K e^2, for the energy monitor.
+  double stored_energy(core::ConstVecRef /*x_hat*/, core::ConstVecRef y) const override {
+    return 0.5 * params_.stiffness * y[0] * y[0];
+  }
+  // Stick/slip events on the sliding velocity (x entry, as for joints).
+  bool has_slip() const override { return true; }
+  core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override {
+    return core::Vec3(x_hat[1], 0.0, 0.0);
+  }
+  const DahlParams& params() const { return params_; }
+
+ private:
+  DahlParams params_;
+};
+
+}  // namespace stiction::components

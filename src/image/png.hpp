@@ -1,0 +1,22 @@
+// PNG files through libpng. Writes are atomic: the data goes to "NAME.tmp.ID" first and is
+// renamed over NAME only once complete, so a reader never sees a half-written file.
+#pragma once
+
+#include <filesystem>
+
+#include "image/image.hpp"
+
+namespace stiction::image {
+
+enum class PngSpeed {
+  fast,   // zlib level 1, SUB filter: ~4x faster, for video frames
+  small,  // zlib level 6, adaptive filters: smaller files, for goldens and figures
+};
+
+// Throws ImageError (with the path and the reason) on any failure.
+void write_png(const std::filesystem::path& path, const Image& image,
+               PngSpeed speed = PngSpeed::fast);
+// Reads any PNG (grey, palette, 16-bit, with or without alpha) as RGBA8.
+Image read_png(const std::filesystem::path& path);
+
+}  // namespace stiction::image

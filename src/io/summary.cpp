@@ -1,0 +1,59 @@
+#include "io/summary.hpp"
+
+#include "core/events.hpp"
+#include "io/atomic_file.hpp"
+
+namespace stiction::io {
+
+nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histories) {
+  nlohmann::ordered_json events = nlohmann::ordered_json::object();
+  for (const core::SlipHistory& h : histories) {
+    nlohmann::ordered_json entry;
+    entry["threshold"] = h.monitor.threshold();
+    const double stick = h.monitor.stick_time();
+    entry["stick_time"] = stick >= 0.0 ? nlohmann::ordered_json(stick) : nlohmann::ordered_json(nullptr);
+    entry["events"] = nlohmann::ordered_json::array();
+    for (const core::SlipEvent& e : h.monitor.events()) {
+      entry["events"].push_back({{"kind", e.kind}, {"time", e.time}});
+    }
+    events[h.component] = std::move(entry);
+  }
+  return events;
+}
+
+nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunResult& result) {
+  nlohmann::ordered_json s;
+  s["scene"] = run.scene;
+  s["integrator"] = run.integrator;
+  s["dt"] = run.dt;
+  s["duration"] = run.duration;
+  s["output_rate"] = run.output_rate;
+  s["steps"] = result.steps;
+  s["state_dim"] = run.state_dim;
+  s["wall_seconds"] = result.wall_seconds;
+  s["status"] = result.instability ? "unstable" : "ok";
+  nlohmann::ordered_json final_row = nlohmann::ordered_json::object();
+  const core::Trajectory& tr = result.trajectory;
+  if (tr.row_count() > 0) {
+    const int last = tr.row_count() - 1;
+    // NaN and infinity have no JSON form; nlohmann writes them as null.
+    for (int c = 0; c < tr.column_count(); ++c) final_row[tr.columns()[c]] = tr.at(last, c);
+  }
+  s["final"] = std::move(final_row);
+  s["events"] = slip_events(result.slip_events);
+  if (result.instability) {
+    nlohmann::ordered_json inst;
+    inst["time"] = result.instability->time;
+    inst["component"] = result.instability->component;
+    inst["reason"] = result.instability->reason;
+    if (run.suggested_dt) inst["suggested_dt"] = *run.suggested_dt;
+    s["instability"] = std::move(inst);
+  }
+  return s;
+}
+
+void write_summary(const nlohmann::ordered_json& summary, const std::filesystem::path& path) {
+  write_file_atomically(path, summary.dump(2) + "\n");
+}
+
+}  // namespace stiction::io

@@ -1,0 +1,35 @@
+// summary.json (DESIGN section 4): what was run, how it ended, the last row by column name
+// and the stick/slip events of every contact.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/simulation.hpp"
+
+namespace stiction::io {
+
+struct RunDescription {
+  std::string scene;
+  std::string integrator;
+  double dt = 0.0;
+  double duration = 0.0;
+  double output_rate = 0.0;
+  int state_dim = 0;
+  std::optional<double> suggested_dt;              // reported with an instability
+};
+
+// {"<contact>": {"threshold": ..., "stick_time": first stick or null,
+//                "events": [{"kind": "stick"|"slip", "time": ...}, ...]}}
+nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histories);
+
+nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunResult& result);
+
+// Written atomically, indented; IoError on failure.
+void write_summary(const nlohmann::ordered_json& summary, const std::filesystem::path& path);
+
+}  // namespace stiction::io

@@ -1,0 +1,85 @@
+// Figures for print: one or more panels stacked vertically and sharing a horizontal (time)
+// axis, each with its own vertical axis (linear or log), light grid, 1-2-5 ticks with labels,
+// an axis label with units and a legend; a title on top; vertical lines marking events.
+//
+//   plot::Figure figure;
+//   figure.title = "Simulation I: sphere rolling with slip";
+//   plot::Panel& v = figure.panels.emplace_back();
+//   v.label = "Horizontal velocity"; v.unit = "m/s";
+//   v.series.push_back({"centre", t, vx});
+//   v.series.push_back({"contact point", t, slip});
+//   figure.events.push_back({0.583, "stick, t = 0.583 s"});
+//   image::Image png = plot::render(figure, font);
+//
+// Series are told apart by colour (the Okabe-Ito colour-blind-safe palette) AND by dash
+// pattern (solid, dashed, dotted, dash-dot, ...), so a figure printed in grey stays legible.
+// All lengths (fonts, line widths, margins) are designed for 1600x1000 pixels and scale with
+// min(width/1600, height/1000).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "image/image.hpp"
+#include "plot/canvas.hpp"
+#include "text/font.hpp"
+
+namespace stiction::plot {
+
+struct LineStyle {
+  image::Rgba colour{0, 0, 0, 255};
+  std::vector<double> dash;  // in multiples of the figure scale (pixels at 1600x1000)
+  double width = 3.0;        // likewise
+};
+
+// The style of the index-th series of a panel: colour and dash pattern both cycle, with
+// different periods (7 colours, 5 patterns), so neighbours differ in both.
+LineStyle series_style(int index);
+
+struct Series {
+  std::string label;  // legend text; an empty label keeps the series out of the legend
+  std::vector<double> x;
+  std::vector<double> y;           // non-finite values (and non-positive ones on a log axis) break
+                                   // the line
+  std::optional<LineStyle> style;  // default: series_style(index in the panel)
+};
+
+// A horizontal line at a fixed value, e.g. a friction level: thin, grey, dashed, and listed in
+// the panel's legend under its label.
+struct ReferenceLine {
+  double y = 0.0;
+  std::string label;
+};
+
+struct Panel {
+  std::string label;  // vertical axis label, e.g. "Horizontal velocity"
+  std::string unit;   // e.g. "m/s"; printed as "label [unit]"
+  bool log = false;
+  std::vector<Series> series;
+  std::optional<double> y_min, y_max;     // fixed range instead of the data's
+  std::vector<ReferenceLine> references;  // always inside the vertical range
+};
+
+struct EventMarker {
+  double x = 0.0;
+  std::string label;  // printed above the top panel
+};
+
+struct Figure {
+  std::string title;
+  std::string x_label = "Time t";
+  std::string x_unit = "s";
+  std::vector<Panel> panels;
+  std::vector<EventMarker> events;
+  std::optional<double> x_min, x_max;  // default: the range of the data
+  int width = 1600;
+  int height = 1000;
+};
+
+// Draws the figure on a white, opaque image of figure.width x figure.height. A figure without
+// panels, or panels without data, still gives axes (range [0, 1]) and never NaN positions.
+// Throws std::invalid_argument for a size below 200x150 or above 16384 pixels.
+image::Image render(const Figure& figure, text::Font& font);
+
+}  // namespace stiction::plot

@@ -1,0 +1,444 @@
+#include "plot/plot_spec.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+#include "image/png.hpp"
+#include "scene/toml_reader.hpp"
+#include "text/font.hpp"
+
+namespace stiction::plot {
+namespace {
+
+using scene::InputError;
+
+std::string join(const std::vector<std::string>& items, std::size_t limit = 60) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size() && i < limit; ++i) out += (i ? ", " : "") + items[i];
+  if (items.size() > limit) out += ", ... (" + std::to_string(items.size()) + " in all)";
+  return out;
+}
+
+std::vector<std::string> signal_columns(const std::vector<std::string>& columns) {
+  std::vector<std::string> out;
+  for (const std::string& c : columns) {
+    if (c != "t") out.push_back(c);
+  }
+  return out;
+}
+
+std::string unknown_signal_message(const std::string& where, const std::string& signal,
+                                   const std::vector<std::string>& columns) {
+  return where + ": unknown signal '" + signal + "'; the run has: " + join(signal_columns(columns));
+}
+
+InputError error_at(const toml::node& node, const std::string& file, const std::string& message) {
+  if (node.source().path) return InputError::at(node.source(), message);
+  std::ostringstream out;
+  out << (file.empty() ? std::string("-") : file) << ':' << node.source().begin.line << ':'
+      << node.source().begin.column << ": error: " << message;
+  return InputError(out.str());
+}
+
+bool has_column(const std::vector<std::string>& columns, const std::string& name) {
+  return std::find(columns.begin(), columns.end(), name) != columns.end();
+}
+
+PanelSpec read_panel(scene::TableReader& table, const std::string& file,
+                     const std::vector<std::string>& columns) {
+  PanelSpec panel;
+  const toml::node* signals = table.node("signals");
+  if (!signals) table.fail("signals", "missing (an array of signal names is required)");
+  panel.signals = table.strings("signals");
+  if (panel.signals.empty()) table.fail("signals", "must name at least one signal");
+  const toml::array& array = *signals->as_array();
+  for (std::size_t i = 0; i < panel.signals.size(); ++i) {
+    if (!has_column(columns, panel.signals[i])) {
+      throw error_at(array[i], file,
+                     unknown_signal_message(table.path() + ".signals", panel.signals[i], columns));
+    }
+  }
+  panel.legend = table.strings("legend");
+  if (!panel.legend.empty() && panel.legend.size() != panel.signals.size()) {
+    table.fail("legend", "needs one entry per signal (" + std::to_string(panel.signals.size()) +
+                             "), got " + std::to_string(panel.legend.size()));
+  }
+  panel.label = table.string("label", "");
+  panel.unit = table.string("unit", "");
+  panel.log = table.boolean("log", false);
+  if (table.has("relative_to")) panel.relative_to = table.non_negative("relative_to", 0.0);
+  for (scene::TableReader& reference : table.array_of_tables("references")) {
+    panel.references.push_back({reference.required_number("value"), reference.string("label", "")});
+    reference.finish();
+  }
+  table.finish();
+  return panel;
+}
+
+PlotSpec read_plot(scene::TableReader& table, std::size_t index, const std::string& file,
+                   const std::vector<std::string>& columns) {
+  PlotSpec spec;
+  spec.name = table.string("name", "plot" + std::to_string(index + 1));
+  if (spec.name.empty() ||
+      spec.name.find_first_not_of(
+          "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") !=
+          std::string::npos ||
+      spec.name.front() == '.') {
+    table.fail("name", "must be a file name of letters, digits, '_', '-' and '.'");
+  }
+  spec.title = table.string("title", "");
+  if (table.has("size")) {
+    const std::vector<double> size = table.numbers("size");
+    if (size.size() != 2 || size[0] != std::floor(size[0]) || size[1] != std::floor(size[1]) ||
+        size[0] < 200 || size[1] < 150 || size[0] > 16384 || size[1] > 16384) {
+      table.fail("size",
+                 "expected [width, height] in whole pixels, at least [200, 150] and at "
+                 "most [16384, 16384]");
+    }
+    spec.width = static_cast<int>(size[0]);
+    spec.height = static_cast<int>(size[1]);
+  }
+  if (table.has("time")) {
+    const std::vector<double> time = table.numbers("time");
+    if (time.size() != 2 || !(time[1] > time[0])) {
+      table.fail("time", "expected [start, end] in seconds with end > start");
+    }
+    spec.t_min = time[0];
+    spec.t_max = time[1];
+  }
+  if (const toml::node* events = table.node("events")) {
+    if (events->is_boolean()) {
+      spec.mark_events = events->as_boolean()->get();
+    } else if (events->is_array()) {
+      spec.only_events = table.strings("events");
+      spec.mark_events = !spec.only_events.empty();
+    } else {
+      table.fail("events", "expected true, false or a list of event names");
+    }
+  }
+  for (scene::TableReader& panel : table.array_of_tables("panels")) {
+    spec.panels.push_back(read_panel(panel, file, columns));
+  }
+  if (spec.panels.empty()) table.fail("panels", "missing (at least one [[plots.panels]] table)");
+  table.finish();
+  return spec;
+}
+
+std::string signal_label(const std::string& column) { return column; }
+
+// Values of one signal against time over the spec's time window; `relative_to` subtracts the
+// value at that time (linear interpolation) and drops the samples before it.
+void signal_series(const core::Trajectory& trajectory, int column, const PanelSpec& panel,
+                   std::vector<double>& x, std::vector<double>& y) {
+  const int rows = trajectory.row_count();
+  x.clear();
+  y.clear();
+  double reference = 0.0;
+  if (panel.relative_to) {
+    reference = std::numeric_limits<double>::quiet_NaN();
+    for (int r = 0; r < rows; ++r) {
+      const double t = trajectory.at(r, 0);
+      if (t >= *panel.relative_to) {
+        if (r == 0 || t == *panel.relative_to) {
+          reference = trajectory.at(r, column);
+        } else {
+          const double t0 = trajectory.at(r - 1, 0);
+          const double a = (*panel.relative_to - t0) / (t - t0);
+          reference = (1 - a) * trajectory.at(r - 1, column) + a * trajectory.at(r, column);
+        }
+        break;
+      }
+    }
+  }
+  for (int r = 0; r < rows; ++r) {
+    const double t = trajectory.at(r, 0);
+    if (panel.relative_to && t < *panel.relative_to) continue;
+    x.push_back(t);
+    y.push_back(trajectory.at(r, column) - reference);
+  }
+}
+
+std::vector<const PanelSpec*> panels_of(const PlotSpec& spec) {
+  std::vector<const PanelSpec*> out;
+  for (const PanelSpec& p : spec.panels) out.push_back(&p);
+  return out;
+}
+
+Figure figure_frame(const PlotSpec& spec) {
+  Figure figure;
+  figure.title = spec.title;
+  figure.width = spec.width;
+  figure.height = spec.height;
+  figure.x_min = spec.t_min;
+  figure.x_max = spec.t_max;
+  return figure;
+}
+
+Panel panel_frame(const PanelSpec& spec) {
+  Panel panel;
+  panel.references = spec.references;
+  panel.label = spec.label;
+  panel.unit = spec.unit;
+  panel.log = spec.log;
+  return panel;
+}
+
+// Restricts x (time) to the figure's window, keeping one sample beyond each end so the line
+// reaches the frame.
+void clip_to_window(const Figure& figure, Series& series) {
+  if (!figure.x_min && !figure.x_max) return;
+  const double lo = figure.x_min.value_or(-std::numeric_limits<double>::infinity());
+  const double hi = figure.x_max.value_or(std::numeric_limits<double>::infinity());
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < series.x.size(); ++i) {
+    const bool next_in = i + 1 < series.x.size() && series.x[i + 1] >= lo;
+    const bool prev_in = i > 0 && series.x[i - 1] <= hi;
+    if ((series.x[i] >= lo || next_in) && (series.x[i] <= hi || prev_in)) {
+      x.push_back(series.x[i]);
+      y.push_back(series.y[i]);
+    }
+  }
+  series.x = std::move(x);
+  series.y = std::move(y);
+}
+
+void write_figure(const Figure& figure, const std::filesystem::path& png) {
+  text::Font font = text::Font::open_default();
+  const image::Image img = render(figure, font);
+  if (png.has_parent_path()) std::filesystem::create_directories(png.parent_path());
+  image::write_png(png, img, image::PngSpeed::small);
+}
+
+}  // namespace
+
+void check_signals(const PlotSpec& spec, const std::vector<std::string>& columns) {
+  for (std::size_t p = 0; p < spec.panels.size(); ++p) {
+    for (const std::string& s : spec.panels[p].signals) {
+      if (!has_column(columns, s)) {
+        throw InputError(unknown_signal_message(
+            "plot '" + spec.name + "' panel " + std::to_string(p + 1), s, columns));
+      }
+    }
+  }
+}
+
+std::vector<PlotSpec> read_plot_specs(const toml::table& document, const std::string& file,
+                                      const std::vector<std::string>& columns) {
+  std::vector<PlotSpec> specs;
+  scene::TableReader root(document, "");
+  std::vector<scene::TableReader> plots = root.array_of_tables("plots");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < plots.size(); ++i) {
+    specs.push_back(read_plot(plots[i], i, file, columns));
+    if (!names.insert(specs.back().name).second) {
+      plots[i].fail("name", "a plot named '" + specs.back().name + "' exists already");
+    }
+  }
+  return specs;
+}
+
+namespace {
+
+PanelSpec panel_spec(std::vector<std::string> signals, std::vector<std::string> legend,
+                     std::string label, std::string unit) {
+  PanelSpec panel;
+  panel.signals = std::move(signals);
+  panel.legend = std::move(legend);
+  panel.label = std::move(label);
+  panel.unit = std::move(unit);
+  return panel;
+}
+
+}  // namespace
+
+PlotSpec paper_fig4_spec() {
+  PlotSpec spec;
+  spec.name = "fig4_sphere";
+  spec.title = "Simulation I: sphere rolling with slip (cf. paper Fig. 4)";
+  spec.panels.push_back(panel_spec({"sphere.v.x", "ground.slip.x"},
+                                   {"centre of the sphere", "contact point"}, "Horizontal velocity",
+                                   "m/s"));
+  spec.panels.push_back(
+      panel_spec({"sphere.p.z"}, {"centre of the sphere"}, "Height of the centre", "m"));
+  return spec;
+}
+
+PlotSpec paper_fig7_spec() {
+  PlotSpec spec;
+  spec.name = "fig7_two_link";
+  spec.title = "Simulation II: two-link arm with joint friction (cf. paper Fig. 7)";
+  spec.panels.push_back(panel_spec({"arm.theta.0", "arm.theta.1"}, {"joint 0", "joint 1"},
+                                   "Joint angle \u03B8", "rad"));
+  PanelSpec torque = panel_spec({"motor0.tau", "motor1.tau"}, {"joint 0", "joint 1"},
+                                "Applied motor torque", "N\u00B7m");
+  torque.references.push_back({0.5, "joint friction level F = 0.5 N\u00B7m"});
+  spec.panels.push_back(torque);
+  return spec;
+}
+
+PlotSpec drift_comparison_spec() {
+  PlotSpec spec;
+  spec.name = "compare_drift";
+  spec.mark_events = false;
+  // No title: make_comparison_figure names the runs ("two_link vs two_link_lugre").
+  spec.panels.push_back(
+      panel_spec({"arm.theta.0"}, {"\u03B8\u2080"}, "Joint angle \u03B8\u2080", "rad"));
+  spec.panels.push_back(
+      panel_spec({"arm.theta.1"}, {"\u03B8\u2081"}, "Joint angle \u03B8\u2081", "rad"));
+  PanelSpec drift = panel_spec({"arm.theta.0", "arm.theta.1"}, {"\u03B8\u2080", "\u03B8\u2081"},
+                               "Drift \u03B8(t) \u2212 \u03B8(5 s)", "rad");
+  drift.relative_to = 5.0;
+  spec.panels.push_back(drift);
+  return spec;
+}
+
+std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns) {
+  std::vector<PlotSpec> specs;
+  auto complete = [&](const PlotSpec& spec) {
+    for (const PanelSpec& p : spec.panels) {
+      for (const std::string& s : p.signals) {
+        if (!has_column(columns, s)) return false;
+      }
+    }
+    return true;
+  };
+  for (const PlotSpec& spec : {paper_fig4_spec(), paper_fig7_spec()}) {
+    if (complete(spec)) specs.push_back(spec);
+  }
+  if (!specs.empty()) return specs;
+  // A panel per signal group ("<component>.<signal>"), in column order.
+  PlotSpec spec;
+  spec.name = "signals";
+  std::vector<std::string> groups;
+  std::map<std::string, std::vector<std::string>> members;
+  for (const std::string& c : signal_columns(columns)) {
+    const std::size_t first = c.find('.');
+    const std::size_t second = first == std::string::npos ? first : c.find('.', first + 1);
+    const std::string group = second == std::string::npos ? c : c.substr(0, second);
+    if (!members.count(group)) groups.push_back(group);
+    members[group].push_back(c);
+  }
+  for (std::size_t g = 0; g < groups.size() && g < 6; ++g) {
+    PanelSpec panel;
+    panel.signals = members[groups[g]];
+    panel.label = groups[g];
+    spec.panels.push_back(panel);
+  }
+  if (!spec.panels.empty()) specs.push_back(spec);
+  return specs;
+}
+
+std::string event_label(const std::string& name, double time) {
+  std::string words;
+  for (char c : name) words += (c == '.' || c == '_') ? ' ' : c;
+  const std::string suffix = " time";
+  if (words.size() > suffix.size() &&
+      words.compare(words.size() - suffix.size(), suffix.size(), suffix) == 0) {
+    words.resize(words.size() - suffix.size());
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.3f", time);
+  return words + ": t = " + buffer + " s";
+}
+
+Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
+                   const std::map<std::string, double>& event_times) {
+  check_signals(spec, trajectory.columns());
+  Figure figure = figure_frame(spec);
+  for (const PanelSpec* ps : panels_of(spec)) {
+    Panel panel = panel_frame(*ps);
+    for (std::size_t i = 0; i < ps->signals.size(); ++i) {
+      Series series;
+      series.label = ps->legend.empty() ? signal_label(ps->signals[i]) : ps->legend[i];
+      signal_series(trajectory, *trajectory.find(ps->signals[i]), *ps, series.x, series.y);
+      clip_to_window(figure, series);
+      panel.series.push_back(std::move(series));
+    }
+    figure.panels.push_back(std::move(panel));
+  }
+  if (spec.mark_events) {
+    for (const auto& [name, time] : event_times) {
+      if (!spec.only_events.empty() && !has_column(spec.only_events, name)) continue;
+      if (!std::isfinite(time)) continue;
+      figure.events.push_back({time, event_label(name, time)});
+    }
+  }
+  return figure;
+}
+
+void write_plot(const PlotSpec& spec, const core::Trajectory& trajectory,
+                const std::map<std::string, double>& event_times,
+                const std::filesystem::path& png) {
+  write_figure(make_figure(spec, trajectory, event_times), png);
+}
+
+Figure make_comparison_figure(const PlotSpec& spec, const std::vector<Run>& runs) {
+  for (const Run& run : runs) {
+    if (!run.trajectory) throw std::invalid_argument("comparison run without a trajectory");
+    try {
+      check_signals(spec, run.trajectory->columns());
+    } catch (const InputError& e) {
+      throw InputError("run '" + run.name + "': " + e.what());
+    }
+  }
+  Figure figure = figure_frame(spec);
+  if (figure.title.empty()) {
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      figure.title += (r ? " vs " : "") + runs[r].name;
+    }
+  }
+  for (const PanelSpec* ps : panels_of(spec)) {
+    Panel panel = panel_frame(*ps);
+    const int n_runs = static_cast<int>(runs.size());
+    for (std::size_t i = 0; i < ps->signals.size(); ++i) {
+      for (int r = 0; r < n_runs; ++r) {
+        const Run& run = runs[r];
+        Series series;
+        const std::string what = ps->legend.empty() ? signal_label(ps->signals[i]) : ps->legend[i];
+        series.label = ps->signals.size() == 1 ? run.name : run.name + ": " + what;
+        signal_series(*run.trajectory, *run.trajectory->find(ps->signals[i]), *ps, series.x,
+                      series.y);
+        clip_to_window(figure, series);
+        // Colour by run (the same in every panel); the dash pattern tells the signals apart.
+        LineStyle style = series_style(r);
+        style.dash = series_style(static_cast<int>(i) * n_runs + r).dash;
+        style.width = series_style(static_cast<int>(i) * n_runs + r).width;
+        series.style = style;
+        panel.series.push_back(std::move(series));
+      }
+    }
+    figure.panels.push_back(std::move(panel));
+  }
+  return figure;
+}
+
+void write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
+                           const std::filesystem::path& png) {
+  write_figure(make_comparison_figure(spec, runs), png);
+}
+
+PlotSpec default_comparison_spec(const std::vector<Run>& runs) {
+  std::vector<std::string> common;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    if (!runs[r].trajectory) continue;
+    const std::vector<std::string>& columns = runs[r].trajectory->columns();
+    if (r == 0) {
+      common = columns;
+    } else {
+      std::erase_if(common, [&](const std::string& c) { return !has_column(columns, c); });
+    }
+  }
+  if (has_column(common, "arm.theta.0") && has_column(common, "arm.theta.1")) {
+    return drift_comparison_spec();
+  }
+  std::vector<PlotSpec> specs = default_plot_specs(common);
+  if (specs.empty()) throw InputError("the runs have no signal in common to compare");
+  PlotSpec spec = specs.front();
+  spec.name = "compare";
+  return spec;
+}
+
+}  // namespace stiction::plot

@@ -1,0 +1,94 @@
+#include "render/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace stiction::render {
+
+glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+
+glm::mat4 Camera::projection(float aspect) const {
+  return glm::perspective(glm::radians(fov_y_degrees), aspect, near_plane, far_plane);
+}
+
+Camera frame_bounds(const Bounds& bounds, glm::vec3 direction, float fov_y_degrees, float aspect,
+                    float margin) {
+  Camera camera;
+  camera.fov_y_degrees = fov_y_degrees;
+  const glm::vec3 f = glm::normalize(direction);
+  const glm::vec3 right = glm::normalize(glm::cross(f, camera.up));
+  const glm::vec3 up = glm::cross(right, f);
+  const float ty = std::tan(glm::radians(fov_y_degrees) * 0.5f) * (1.0f - margin);
+  const float tx = ty * aspect;
+  const glm::vec3 c = bounds.centre();
+  float distance = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x, (i & 2) ? bounds.max.y : bounds.min.y,
+                           (i & 4) ? bounds.max.z : bounds.min.z);
+    const glm::vec3 o = corner - c;
+    // The corner's depth is distance + o.f; it must see |x| and |y| within the half-angles.
+    distance = std::max(distance, std::abs(glm::dot(o, right)) / tx - glm::dot(o, f));
+    distance = std::max(distance, std::abs(glm::dot(o, up)) / ty - glm::dot(o, f));
+  }
+  distance = std::max(distance, 1e-3f);
+  camera.target = c;
+  camera.eye = c - f * distance;
+  const float r = std::max(bounds.radius(), 1e-3f);
+  camera.near_plane = std::max(1e-3f, 0.05f * (distance - r));
+  camera.far_plane = distance + 60.0f * r + 20.0f;
+  return camera;
+}
+
+CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& scene,
+                     const PoseTrack& poses, float aspect)
+    : poses_(poses) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (!settings.follow.empty() && scene.bodies[i].name == settings.follow &&
+        scene.bodies[i].kind != BodyVisual::Kind::arm) {
+      follow_ = static_cast<int>(i);
+    }
+  }
+  // What to frame: the whole run, or the followed body's neighbourhood at the start.
+  Bounds bounds;
+  if (follow_ >= 0) {
+    follow_origin_ = to_glm(poses.position(follow_, poses.start_time()));
+    const Bounds b = body_bounds(scene, poses, poses.start_time());
+    const glm::vec3 c = b.centre();
+    const float h = std::max(0.5f * std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z}), 0.02f);
+    bounds.add(c - glm::vec3(3.5f * h, 2.0f * h, h));
+    bounds.add(c + glm::vec3(3.5f * h, 2.0f * h, h));
+  } else {
+    bounds = run_bounds(scene, poses);
+  }
+  if (bounds.empty()) bounds.add(glm::vec3(0.0f));
+  // A three-quarter view from the front (-y), slightly from +x, looking down ~28 degrees.
+  const glm::vec3 direction = glm::normalize(glm::vec3(-0.30f, 1.0f, -0.55f));
+  base_ = frame_bounds(bounds, direction, static_cast<float>(settings.fov_degrees), aspect);
+  if (settings.target) base_.target = to_glm(*settings.target);
+  if (settings.position) base_.eye = to_glm(*settings.position);
+  if (settings.position || settings.target) {
+    const float d = glm::length(base_.eye - base_.target);
+    const float r = std::max(bounds.radius(), 1e-3f);
+    base_.near_plane = std::max(1e-3f, 0.02f * d);
+    base_.far_plane = d + 60.0f * r + 20.0f;
+    // A view straight down would make lookAt degenerate: pick another up vector.
+    if (glm::length(glm::cross(glm::normalize(base_.target - base_.eye), base_.up)) < 1e-3f) {
+      base_.up = glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+  }
+}
+
+Camera CameraRig::at(double t) const {
+  Camera c = base_;
+  if (follow_ >= 0) {
+    glm::vec3 shift = to_glm(poses_.position(follow_, t)) - follow_origin_;
+    shift.z = 0.0f;  // horizontal motion only: a bounce does not shake the picture
+    c.eye += shift;
+    c.target += shift;
+  }
+  return c;
+}
+
+}  // namespace stiction::render

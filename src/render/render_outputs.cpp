@@ -1,0 +1,235 @@
+#include "render/render_outputs.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "image/png.hpp"
+#include "render/camera.hpp"
+#include "render/gl_context.hpp"
+#include "render/overlay.hpp"
+#include "render/renderer.hpp"
+#include "render/video_encoder.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Encodes and writes frames on its own thread. push() blocks while `capacity` frames wait,
+// so memory stays bounded and the renderer is paced by the encoder when it is slower.
+class FrameWorker {
+ public:
+  FrameWorker(VideoEncoder* encoder, std::optional<fs::path> frames_dir)
+      : encoder_(encoder), frames_dir_(std::move(frames_dir)), thread_([this] { run(); }) {}
+  ~FrameWorker() { stop(); }
+
+  void push(int index, image::Image&& frame) {
+    std::unique_lock lock(mutex_);
+    space_.wait(lock, [&] { return queue_.size() < kCapacity || error_; });
+    if (error_) std::rethrow_exception(error_);
+    queue_.push_back({index, std::move(frame)});
+    ready_.notify_one();
+  }
+  // Takes back an image buffer that the worker is done with (avoids reallocation).
+  bool recycle(image::Image& into) {
+    std::lock_guard lock(mutex_);
+    if (spare_.empty()) return false;
+    into = std::move(spare_.back());
+    spare_.pop_back();
+    return true;
+  }
+  // Waits for the queue to empty and the thread to end; rethrows the worker's error.
+  void stop() {
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+      ready_.notify_one();
+    }
+    if (thread_.joinable()) thread_.join();
+  }
+  void rethrow() {
+    std::lock_guard lock(mutex_);
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  static constexpr std::size_t kCapacity = 3;
+  struct Job {
+    int index;
+    image::Image frame;
+  };
+  void run() {
+    for (;;) {
+      Job job;
+      {
+        std::unique_lock lock(mutex_);
+        ready_.wait(lock, [&] { return !queue_.empty() || done_; });
+        if (queue_.empty()) return;
+        job = std::move(queue_.front());
+        queue_.pop_front();
+        space_.notify_one();
+      }
+      try {
+        if (encoder_) encoder_->encode(job.frame);
+        if (frames_dir_) {
+          char name[32];
+          std::snprintf(name, sizeof name, "%06d.png", job.index);
+          image::write_png(*frames_dir_ / name, job.frame, image::PngSpeed::fast);
+        }
+      } catch (...) {
+        std::lock_guard lock(mutex_);
+        error_ = std::current_exception();
+        queue_.clear();
+        space_.notify_all();
+        return;
+      }
+      std::lock_guard lock(mutex_);
+      if (spare_.size() < kCapacity) spare_.push_back(std::move(job.frame));
+    }
+  }
+
+  VideoEncoder* encoder_;
+  std::optional<fs::path> frames_dir_;
+  std::mutex mutex_;
+  std::condition_variable ready_, space_;
+  std::deque<Job> queue_;
+  std::vector<image::Image> spare_;
+  std::exception_ptr error_;
+  bool done_ = false;
+  std::thread thread_;  // last: starts after everything above is built
+};
+
+}  // namespace
+
+FrameClock frame_clock(double start, double end, double fps, double slow_motion) {
+  FrameClock clock;
+  clock.start = start;
+  clock.step = 1.0 / (fps * slow_motion);
+  clock.count = static_cast<int>(std::floor((end - start) / clock.step + 1e-6)) + 1;
+  return clock;
+}
+
+FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
+                             const RenderSettings& settings)
+    : scene_(std::move(scene)), settings_(settings), poses_(trajectory, scene_) {
+  context_ = create_offscreen_context();
+  RendererOptions options;
+  options.width = settings.width;
+  options.height = settings.height;
+  options.msaa = settings.msaa;
+  options.shadow_map_size = settings.shadow_map_size;
+  options.shadow_taps = settings.shadow_taps;
+  renderer_ = std::make_unique<Renderer>(options);
+  camera_ = std::make_unique<CameraRig>(settings.camera, scene_, poses_,
+                                        float(settings.width) / float(settings.height));
+  if (settings.overlay.enabled) overlay_ = std::make_unique<Overlay>(settings.overlay, settings.height);
+  shadow_bounds_ = run_bounds(scene_, poses_);
+  if (settings.camera.follow.empty()) {
+    // Include the ground the camera sees near the bodies.
+    const glm::vec3 c = shadow_bounds_.centre();
+    const float r = shadow_bounds_.radius();
+    shadow_bounds_.add(c - glm::vec3(0.3f * r, 0.3f * r, 0.0f));
+    shadow_bounds_.add(c + glm::vec3(0.3f * r, 0.3f * r, 0.0f));
+  }
+  for (const auto& b : scene_.bodies) {
+    if (b.kind == BodyVisual::Kind::sphere) trail_width_ = static_cast<float>(0.15 * b.radius);
+    if (b.kind == BodyVisual::Kind::block) trail_width_ = static_cast<float>(0.3 * b.size.x());
+  }
+}
+
+FrameRenderer::~FrameRenderer() {
+  // GL objects go before the context.
+  renderer_.reset();
+}
+
+void FrameRenderer::render(double t, image::Image& out) {
+  const std::vector<DrawItem> items = build_items(scene_, poses_, t);
+  std::vector<TrailVertex> trail;
+  if (settings_.overlay.trail) {
+    trail = build_trail(scene_, poses_, t, settings_.overlay.trail_seconds, trail_width_);
+  }
+  renderer_->draw(items, camera_->at(t), shadow_bounds_, trail);
+  renderer_->read_back(out);
+  if (overlay_) overlay_->draw(out, poses_, t);
+}
+
+image::Image FrameRenderer::render(double t) {
+  image::Image out;
+  render(t, out);
+  return out;
+}
+
+RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& trajectory,
+                            const RenderSettings& settings, const RenderRequest& request) {
+  const auto started = std::chrono::steady_clock::now();
+  RenderResult result;
+  if (!request.video && !request.frames) return result;
+
+  FrameRenderer renderer(describe_scene(*scene.network, scene.document), trajectory, settings);
+  const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
+                                       settings.fps, settings.slow_motion);
+  std::error_code ec;
+  fs::create_directories(request.out_dir, ec);
+  if (ec) throw VideoError("cannot create " + request.out_dir.string() + ": " + ec.message());
+  std::optional<fs::path> frames_dir;
+  if (request.frames) {
+    frames_dir = request.out_dir / "frames";
+    fs::create_directories(*frames_dir, ec);
+    if (ec) throw image::ImageError("cannot create " + frames_dir->string() + ": " + ec.message());
+  }
+  std::unique_ptr<VideoEncoder> encoder;
+  if (request.video) {
+    VideoOptions v;
+    v.width = settings.width;
+    v.height = settings.height;
+    v.fps = settings.fps;
+    v.crf = settings.crf;
+    v.preset = settings.preset;
+    encoder = std::make_unique<VideoEncoder>(request.out_dir / "video.mp4", v);
+  }
+
+  {
+    FrameWorker worker(encoder.get(), frames_dir);
+    image::Image frame;
+    for (int i = 0; i < clock.count; ++i) {
+      if (request.cancel && request.cancel->load()) {
+        result.interrupted = true;
+        break;
+      }
+      worker.recycle(frame);
+      renderer.render(clock.time(i), frame);
+      worker.push(i, std::move(frame));
+      frame = image::Image();
+      result.frames = i + 1;
+      if (request.progress) {
+        RenderProgress p;
+        p.frames_done = i + 1;
+        p.frame_count = clock.count;
+        p.elapsed_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        p.frames_per_second = p.elapsed_seconds > 0.0 ? p.frames_done / p.elapsed_seconds : 0.0;
+        p.eta_seconds = p.frames_per_second > 0.0 ? (clock.count - p.frames_done) / p.frames_per_second : 0.0;
+        request.progress(p);
+      }
+    }
+    worker.stop();
+    worker.rethrow();
+  }
+  if (encoder) {
+    result.video = encoder->finish(result.interrupted ? request.out_dir / "video.partial.mp4"
+                                                      : request.out_dir / "video.mp4");
+  }
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+}  // namespace stiction::render

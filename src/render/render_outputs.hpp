@@ -1,0 +1,101 @@
+// The renderer's entry points.
+//
+//   render::RenderSettings settings = render::read_render_settings(scene);  // before simulating
+//   render::RenderRequest request{.out_dir = dir, .video = true, .frames = with_frames,
+//                                 .progress = show_bar, .cancel = &interrupted};
+//   render::RenderResult r = render::render_outputs(scene, trajectory, settings, request);
+//
+// writes OUT/video.mp4 (H.264) and with `frames` OUT/frames/NNNNNN.png. Frame i shows the
+// simulated time t0 + i / (fps * slow_motion). Rendering runs on the calling thread,
+// encoding and PNG writing on a worker thread. When *cancel becomes true (Ctrl-C), what was
+// rendered so far is finalized as OUT/video.partial.mp4 and r.interrupted is set.
+// Errors: scene::InputError (bad settings: exit 2), GlError / VideoError / RenderError /
+// image::ImageError / text::FontError (exit 1).
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <memory>
+
+#include "core/trajectory.hpp"
+#include "image/image.hpp"
+#include "render/render_settings.hpp"
+#include "render/scene_view.hpp"
+
+namespace stiction::scene {
+struct Scene;
+}
+
+namespace stiction::render {
+
+struct RenderProgress {
+  int frames_done = 0;
+  int frame_count = 0;
+  double elapsed_seconds = 0.0;
+  double frames_per_second = 0.0;
+  double eta_seconds = 0.0;
+};
+
+struct RenderRequest {
+  std::filesystem::path out_dir;
+  bool video = true;    // OUT/video.mp4
+  bool frames = false;  // OUT/frames/NNNNNN.png
+  std::function<void(const RenderProgress&)> progress;  // called after each frame
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct RenderResult {
+  int frames = 0;
+  bool interrupted = false;
+  std::filesystem::path video;  // empty if no video was written
+  double wall_seconds = 0.0;
+};
+
+// Frame times of a run: count and time of frame i.
+struct FrameClock {
+  double start = 0.0;
+  double step = 1.0 / 60.0;  // simulated seconds per frame
+  int count = 1;
+  double time(int i) const { return start + step * i; }
+};
+FrameClock frame_clock(double start, double end, double fps, double slow_motion);
+
+class GlContext;
+class Renderer;
+class CameraRig;
+class Overlay;
+
+// Renders single frames of one run (also used by the tests and the benchmark). Creates its
+// own GL context; use it from one thread.
+class FrameRenderer {
+ public:
+  FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
+                const RenderSettings& settings);
+  ~FrameRenderer();
+  FrameRenderer(const FrameRenderer&) = delete;
+  FrameRenderer& operator=(const FrameRenderer&) = delete;
+
+  // The frame at simulated time t, overlay included.
+  void render(double t, image::Image& out);
+  image::Image render(double t);
+
+  const PoseTrack& poses() const { return poses_; }
+  const RenderSettings& settings() const { return settings_; }
+
+ private:
+  SceneDescription scene_;
+  RenderSettings settings_;
+  PoseTrack poses_;
+  std::unique_ptr<GlContext> context_;
+  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<CameraRig> camera_;
+  std::unique_ptr<Overlay> overlay_;
+  Bounds shadow_bounds_;
+  float trail_width_ = 0.01f;
+};
+
+RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& trajectory,
+                            const RenderSettings& settings, const RenderRequest& request);
+
+}  // namespace stiction::render

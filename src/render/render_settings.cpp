@@ -1,0 +1,128 @@
+#include "render/render_settings.hpp"
+
+#include <algorithm>
+
+#include "render/scene_view.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
+
+namespace stiction::render {
+namespace {
+
+using scene::TableReader;
+
+std::optional<TableReader> table(TableReader& root, std::string_view key) {
+  if (root.has(key) && !root.table().get(key)->is_table()) root.fail(key, "expected a table");
+  return root.subtable(key);
+}
+
+bool matches_signal(const std::string& signal, const std::vector<std::string>& columns) {
+  return std::any_of(columns.begin(), columns.end(), [&](const std::string& c) {
+    return c == signal || is_axis_of(c, signal);
+  });
+}
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+void read_render(TableReader& r, RenderSettings& s) {
+  if (r.has("size")) {
+    const std::vector<double> size = r.numbers("size");
+    if (size.size() != 2) r.fail("size", "expected [width, height]");
+    for (double v : size) {
+      if (v != static_cast<double>(static_cast<long>(v)) || v < 16 || v > 7680 ||
+          static_cast<long>(v) % 2 != 0) {
+        r.fail("size", "width and height must be even whole numbers of pixels in 16..7680 "
+                       "(H.264 with yuv420p needs even sizes)");
+      }
+    }
+    s.width = static_cast<int>(size[0]);
+    s.height = static_cast<int>(size[1]);
+  }
+  s.fps = r.positive("fps", s.fps);
+  if (s.fps > 240.0) r.fail("fps", "must be at most 240");
+  const long crf = r.integer("crf", s.crf);
+  if (crf < 0 || crf > 51) r.fail("crf", "must be in 0..51");
+  s.crf = static_cast<int>(crf);
+  s.codec = r.string("codec", s.codec);
+  if (s.codec != "h264") r.fail("codec", "unknown codec '" + s.codec + "' (supported: h264)");
+  s.preset = r.string("preset", s.preset);
+  static const std::vector<std::string> presets{"ultrafast", "superfast", "veryfast", "faster",
+                                                "fast",      "medium",    "slow",     "slower",
+                                                "veryslow"};
+  if (std::find(presets.begin(), presets.end(), s.preset) == presets.end()) {
+    r.fail("preset", "unknown preset '" + s.preset + "' (one of: " + join(presets) + ")");
+  }
+  s.slow_motion = r.positive("slow_motion", s.slow_motion);
+  const long msaa = r.integer("msaa", s.msaa);
+  if (msaa != 1 && msaa != 2 && msaa != 4) r.fail("msaa", "must be 1, 2 or 4");
+  s.msaa = static_cast<int>(msaa);
+  const long shadow = r.integer("shadow_map_size", s.shadow_map_size);
+  if (shadow != 0 && (shadow < 256 || shadow > 8192 || (shadow & (shadow - 1)) != 0)) {
+    r.fail("shadow_map_size", "must be 0 (no shadows) or a power of two in 256..8192");
+  }
+  s.shadow_map_size = static_cast<int>(shadow);
+  const long taps = r.integer("shadow_taps", s.shadow_taps);
+  if (taps != 1 && taps != 4) r.fail("shadow_taps", "must be 1 or 4");
+  s.shadow_taps = static_cast<int>(taps);
+  r.finish();
+}
+
+void read_camera(TableReader& r, CameraSettings& c, const std::vector<std::string>& bodies) {
+  if (r.has("position")) c.position = r.vec3("position", core::Vec3::Zero());
+  if (r.has("target")) c.target = r.vec3("target", core::Vec3::Zero());
+  c.fov_degrees = r.positive("fov", c.fov_degrees);
+  if (c.fov_degrees >= 170.0) r.fail("fov", "must be below 170 degrees");
+  c.follow = r.string("follow", "");
+  if (!c.follow.empty() && !bodies.empty() &&
+      std::find(bodies.begin(), bodies.end(), c.follow) == bodies.end()) {
+    r.fail("follow", "no body named '" + c.follow + "' (bodies: " + join(bodies) + ")");
+  }
+  if (c.position && c.target && (*c.position - *c.target).norm() < 1e-9) {
+    r.fail("target", "must differ from position");
+  }
+  r.finish();
+}
+
+void read_overlay(TableReader& r, OverlaySettings& o, const std::vector<std::string>& columns) {
+  o.enabled = r.boolean("enabled", o.enabled);
+  o.signal = r.string("signal", "");
+  if (!o.signal.empty() && !columns.empty() && !matches_signal(o.signal, columns)) {
+    std::vector<std::string> names;
+    for (const auto& c : columns) {
+      if (c != "t") names.push_back(c);
+    }
+    r.fail("signal", "no signal named '" + o.signal + "' (signals: " + join(names) + ")");
+  }
+  o.label = r.string("label", o.signal);
+  o.unit = r.string("unit", "");
+  o.trail = r.boolean("trail", o.trail);
+  o.trail_seconds = r.positive("trail_seconds", o.trail_seconds);
+  r.finish();
+}
+
+}  // namespace
+
+RenderSettings read_render_settings(const toml::table& document,
+                                    const std::vector<std::string>& body_names,
+                                    const std::vector<std::string>& signal_columns) {
+  RenderSettings s;
+  TableReader root(document, "");
+  if (auto r = table(root, "render")) read_render(*r, s);
+  if (auto r = table(root, "camera")) read_camera(*r, s.camera, body_names);
+  if (auto r = table(root, "overlay")) read_overlay(*r, s.overlay, signal_columns);
+  return s;
+}
+
+RenderSettings read_render_settings(const scene::Scene& scene) {
+  std::vector<std::string> bodies;
+  for (const auto& a : scene.network->admittances()) bodies.push_back(a->name());
+  std::vector<std::string> columns = scene.network->signal_columns();
+  columns.insert(columns.begin(), "t");
+  return read_render_settings(scene.document, bodies, columns);
+}
+
+}  // namespace stiction::render

@@ -1,0 +1,87 @@
+// The scene file's [render], [camera] and [overlay] tables (the scene loader leaves them to
+// the renderer). Every key is checked: an unknown key or a bad value is a
+// scene::InputError "FILE:LINE:COL: error: KEY: ..." (exit code 2).
+//
+//   [render]
+//   size = [1280, 720]      # pixels, both even (yuv420p) and in 16..7680
+//   fps = 60                # video frames per second of video time
+//   crf = 20                # H.264 quality, 0 (lossless) .. 51 (worst); 18-23 look good
+//   codec = "h264"          # only "h264" (libx264)
+//   preset = "veryfast"     # libx264 speed preset
+//   slow_motion = 1.0       # video seconds per simulated second (4 = four times slower)
+//   msaa = 4                # samples per pixel: 1, 2 or 4
+//   shadow_map_size = 2048  # 0 turns shadows off; else a power of two 256..8192
+//   shadow_taps = 4         # 1 or 4 filtered shadow-map lookups per pixel
+//
+//   [camera]
+//   position = [x, y, z]    # default: framed from the scene's bounds over the whole run
+//   target = [x, y, z]
+//   fov = 40                # vertical field of view, degrees
+//   follow = "sphere"       # keep this body's horizontal position in view
+//
+//   [overlay]
+//   enabled = true          # draw the time and the signal
+//   signal = "contact.slip" # a signal name; a vector signal shows its norm
+//   label = "slip speed"    # text shown before the value (default: the signal name)
+//   unit = "m/s"
+//   trail = true            # the path of the contact point over the last trail_seconds
+//   trail_seconds = 0.5
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "core/types.hpp"
+
+namespace stiction::scene {
+struct Scene;
+}
+
+namespace stiction::render {
+
+struct CameraSettings {
+  std::optional<core::Vec3> position;
+  std::optional<core::Vec3> target;
+  double fov_degrees = 40.0;
+  std::string follow;  // body name, empty: fixed camera
+};
+
+struct OverlaySettings {
+  bool enabled = true;
+  std::string signal;  // empty: time only
+  std::string label;
+  std::string unit;
+  bool trail = false;
+  double trail_seconds = 0.5;
+};
+
+struct RenderSettings {
+  int width = 1280;
+  int height = 720;
+  double fps = 60.0;
+  int crf = 20;
+  std::string codec = "h264";
+  std::string preset = "veryfast";
+  double slow_motion = 1.0;
+  int msaa = 4;
+  int shadow_map_size = 2048;
+  int shadow_taps = 4;
+  CameraSettings camera;
+  OverlaySettings overlay;
+};
+
+// Reads the three tables of `document` (each optional). `body_names` are the names a camera
+// may follow; `signal_columns` the trajectory columns an overlay signal must match (either
+// exactly or as "NAME.<axis>"). Empty lists skip those checks.
+RenderSettings read_render_settings(const toml::table& document,
+                                    const std::vector<std::string>& body_names = {},
+                                    const std::vector<std::string>& signal_columns = {});
+
+// Same, with the names taken from the scene's network. Call before simulating so that a bad
+// [render] table fails fast.
+RenderSettings read_render_settings(const scene::Scene& scene);
+
+}  // namespace stiction::render

@@ -1,0 +1,233 @@
+#include "render/renderer.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace stiction::render {
+namespace {
+
+// Towards the light: from the upper left and a little from the front, so shadows fall to the
+// right of the bodies where the default camera (from -y) sees them.
+const glm::vec3 kLightDirection = glm::normalize(glm::vec3(-0.6f, -0.25f, 1.0f));
+
+glm::vec3 linear(const image::Rgba& c) {
+  auto f = [](std::uint8_t v) { return std::pow(v / 255.0f, 2.2f); };
+  return {f(c.r), f(c.g), f(c.b)};
+}
+
+void check_framebuffer(const char* what) {
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", status);
+    throw GlError(std::string("incomplete framebuffer (") + what + "): status " + code);
+  }
+}
+
+}  // namespace
+
+Renderer::Renderer(const RendererOptions& options)
+    : options_(options),
+      scene_program_("scene.vert.glsl", "scene.frag.glsl"),
+      depth_program_("depth.vert.glsl", "depth.frag.glsl"),
+      trail_program_("trail.vert.glsl", "trail.frag.glsl"),
+      sphere_(make_sphere(48, 24)),
+      box_(make_box()),
+      cylinder_(make_cylinder(32)),
+      plane_(make_plane(16)),
+      trail_vao_(make_vertex_array()),
+      trail_buffer_(make_buffer()),
+      msaa_fbo_(make_framebuffer()),
+      resolve_fbo_(make_framebuffer()),
+      msaa_colour_(make_renderbuffer()),
+      msaa_depth_(make_renderbuffer()),
+      resolve_colour_(make_renderbuffer()) {
+  if (options.width <= 0 || options.height <= 0) throw GlError("frame size must be positive");
+  GLint max_samples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  if (options.msaa > max_samples) {
+    throw GlError("the GL driver allows at most " + std::to_string(max_samples) + "x MSAA, " +
+                  std::to_string(options.msaa) + "x was asked for");
+  }
+  const int samples = options.msaa > 1 ? options.msaa : 0;
+  glBindRenderbuffer(GL_RENDERBUFFER, msaa_colour_.get());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, options.width, options.height);
+  glBindRenderbuffer(GL_RENDERBUFFER, msaa_depth_.get());
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, options.width,
+                                   options.height);
+  glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_colour_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_.get());
+  check_framebuffer("colour");
+
+  glBindRenderbuffer(GL_RENDERBUFFER, resolve_colour_.get());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, options.width, options.height);
+  glBindFramebuffer(GL_FRAMEBUFFER, resolve_fbo_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                            resolve_colour_.get());
+  check_framebuffer("resolve");
+
+  if (options.shadow_map_size > 0) {
+    shadow_fbo_ = make_framebuffer();
+    shadow_map_ = make_texture();
+    glBindTexture(GL_TEXTURE_2D, shadow_map_.get());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, options.shadow_map_size,
+                 options.shadow_map_size, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_map_.get(), 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    check_framebuffer("shadow map");
+  } else {
+    // The shader still samples a shadow map: a 1x1 one at depth 1 (nothing in shadow).
+    shadow_map_ = make_texture();
+    glBindTexture(GL_TEXTURE_2D, shadow_map_.get());
+    const float one = 1.0f;
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, 1, 1, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  }
+
+  glBindVertexArray(trail_vao_.get());
+  glBindBuffer(GL_ARRAY_BUFFER, trail_buffer_.get());
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(TrailVertex),
+                        reinterpret_cast<const void*>(offsetof(TrailVertex, position)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(TrailVertex),
+                        reinterpret_cast<const void*>(offsetof(TrailVertex, colour)));
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check_gl("renderer set-up");
+}
+
+const Mesh& Renderer::mesh(Shape shape) const {
+  switch (shape) {
+    case Shape::sphere: return sphere_;
+    case Shape::box: return box_;
+    case Shape::cylinder: return cylinder_;
+    default: return plane_;
+  }
+}
+
+void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
+                    const Bounds& shadow_bounds, const std::vector<TrailVertex>& trail) {
+  // Light: an orthographic box around the shadow bounds, seen from the light's direction.
+  const glm::vec3 c = shadow_bounds.empty() ? glm::vec3(0.0f) : shadow_bounds.centre();
+  const float r = shadow_bounds.empty() ? 1.0f : std::max(shadow_bounds.radius() * 1.05f, 0.05f);
+  const glm::vec3 light_up = std::abs(kLightDirection.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
+  const glm::mat4 light_view = glm::lookAt(c + kLightDirection * (2.0f * r), c, light_up);
+  const glm::mat4 light_view_proj = glm::ortho(-r, r, -r, r, 0.0f, 4.0f * r) * light_view;
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+
+  if (options_.shadow_map_size > 0) {
+    glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.get());
+    glViewport(0, 0, options_.shadow_map_size, options_.shadow_map_size);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    depth_program_.use();
+    depth_program_.set("u_light_view_proj", light_view_proj);
+    for (const DrawItem& item : items) {
+      if (!item.casts_shadow) continue;
+      depth_program_.set("u_model", item.model);
+      mesh(item.shape).draw();
+    }
+  }
+
+  glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
+  glViewport(0, 0, options_.width, options_.height);
+  const image::Rgba bg = options_.background;
+  glClearColor(bg.r / 255.0f, bg.g / 255.0f, bg.b / 255.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const float aspect = float(options_.width) / float(options_.height);
+  const glm::mat4 view_proj = camera.projection(aspect) * camera.view();
+
+  scene_program_.use();
+  scene_program_.set("u_view_proj", view_proj);
+  scene_program_.set("u_light_view_proj", light_view_proj);
+  scene_program_.set("u_light_dir", kLightDirection);
+  scene_program_.set("u_eye", camera.eye);
+  scene_program_.set("u_background", linear(bg));
+  const float distance = glm::length(camera.eye - camera.target);
+  scene_program_.set("u_fog_start", distance * 1.5f);
+  scene_program_.set("u_fog_end", distance * 6.0f);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, shadow_map_.get());
+  scene_program_.set("u_shadow_map", 0);
+  const int map = std::max(options_.shadow_map_size, 1);
+  scene_program_.set("u_shadow_texel", glm::vec2(1.0f / float(map)));
+  scene_program_.set("u_shadow_taps", options_.shadow_map_size > 0 ? options_.shadow_taps : 1);
+  for (const DrawItem& item : items) {
+    const Material& m = item.material;
+    scene_program_.set("u_model", item.model);
+    scene_program_.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(item.model)));
+    scene_program_.set("u_material", static_cast<int>(m.kind));
+    scene_program_.set("u_colour", m.colour);
+    scene_program_.set("u_colour2", m.colour2);
+    scene_program_.set("u_shininess", m.shininess);
+    scene_program_.set("u_specular", m.specular);
+    scene_program_.set("u_checker_size", m.checker_size);
+    scene_program_.set("u_grid_spacing", m.grid_spacing);
+    scene_program_.set("u_local_scale", m.local_scale);
+    scene_program_.set("u_local_offset", m.local_offset);
+    mesh(item.shape).draw();
+  }
+
+  if (trail.size() >= 4) {
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -4.0f);
+    trail_program_.use();
+    trail_program_.set("u_view_proj", view_proj);
+    glBindVertexArray(trail_vao_.get());
+    glBindBuffer(GL_ARRAY_BUFFER, trail_buffer_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(trail.size() * sizeof(TrailVertex)),
+                 trail.data(), GL_STREAM_DRAW);
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, static_cast<GLsizei>(trail.size()));
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
+  glBindVertexArray(0);
+  check_gl("draw");
+}
+
+void Renderer::read_back(image::Image& out) {
+  const int w = options_.width, h = options_.height;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo_.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo_.get());
+  glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_.get());
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (out.width != w || out.height != h) out = image::Image(w, h);
+  rows_.resize(out.pixels.size());
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rows_.data());
+  check_gl("read-back");
+  // GL rows come bottom-up.
+  const std::size_t stride = out.stride();
+  for (int y = 0; y < h; ++y) {
+    std::memcpy(out.pixels.data() + static_cast<std::size_t>(y) * stride,
+                rows_.data() + static_cast<std::size_t>(h - 1 - y) * stride, stride);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+image::Image Renderer::read_back() {
+  image::Image out;
+  read_back(out);
+  return out;
+}
+
+}  // namespace stiction::render

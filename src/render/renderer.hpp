@@ -1,0 +1,58 @@
+// Draws a list of items into a multisampled framebuffer object with a directional light's
+// shadow map, resolves it and reads it back as an image::Image (top row first).
+// Needs a current GlContext (>= 3.3 core) for its whole life.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "image/image.hpp"
+#include "render/camera.hpp"
+#include "render/gl.hpp"
+#include "render/mesh.hpp"
+#include "render/scene_view.hpp"
+#include "render/shader.hpp"
+
+namespace stiction::render {
+
+struct RendererOptions {
+  int width = 1280;
+  int height = 720;
+  int msaa = 4;                // 1: no multisampling
+  int shadow_map_size = 2048;  // 0: no shadows
+  int shadow_taps = 4;         // 1 or 4
+  image::Rgba background{236, 239, 243, 255};
+};
+
+class Renderer {
+ public:
+  explicit Renderer(const RendererOptions& options);
+
+  // `shadow_bounds`: the region the shadow map covers (keep it fixed over a run, so shadows
+  // do not shimmer). `trail`: a triangle strip drawn unlit over the ground (may be empty).
+  void draw(const std::vector<DrawItem>& items, const Camera& camera, const Bounds& shadow_bounds,
+            const std::vector<TrailVertex>& trail = {});
+  // Resolves the multisampled image and reads it into `out` (resized as needed).
+  void read_back(image::Image& out);
+  image::Image read_back();
+
+  const RendererOptions& options() const { return options_; }
+
+ private:
+  const Mesh& mesh(Shape shape) const;
+
+  RendererOptions options_;
+  ShaderProgram scene_program_;
+  ShaderProgram depth_program_;
+  ShaderProgram trail_program_;
+  Mesh sphere_, box_, cylinder_, plane_;
+  GlVertexArray trail_vao_;
+  GlBuffer trail_buffer_;
+  // Multisampled colour + depth, the single-sampled resolve target, the shadow map.
+  GlFramebuffer msaa_fbo_, resolve_fbo_, shadow_fbo_;
+  GlRenderbuffer msaa_colour_, msaa_depth_, resolve_colour_;
+  GlTexture shadow_map_;
+  std::vector<std::uint8_t> rows_;  // read-back scratch (bottom row first)
+};
+
+}  // namespace stiction::render

@@ -1,0 +1,466 @@
+#include "render/scene_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "components/admittance/planar_arm.hpp"
+#include "components/admittance/point_mass.hpp"
+#include "components/admittance/rigid_body.hpp"
+#include "components/impedance/kikuuwe_contact.hpp"
+
+namespace stiction::render {
+namespace {
+
+const toml::table* body_table(const toml::table& document, const std::string& name) {
+  const toml::table* bodies = document["bodies"].as_table();
+  return bodies ? (*bodies)[name].as_table() : nullptr;
+}
+
+core::Vec3 vec3_of(const toml::node_view<const toml::node>& node, const core::Vec3& fallback) {
+  const toml::array* a = node.as_array();
+  if (!a || a->size() != 3) return fallback;
+  core::Vec3 v;
+  for (int i = 0; i < 3; ++i) v[i] = (*a)[static_cast<std::size_t>(i)].value<double>().value_or(fallback[i]);
+  return v;
+}
+
+// Tangent basis of a surface: t1 along x where possible (down the slope of a tilted plane).
+void tangents(const core::Vec3& n, core::Vec3& t1, core::Vec3& t2) {
+  core::Vec3 a = std::abs(n.x()) < 0.9 ? core::Vec3::UnitX() : core::Vec3::UnitY();
+  t1 = (a - a.dot(n) * n).normalized();
+  t2 = n.cross(t1);
+}
+
+glm::mat4 rotation_from_basis(const core::Vec3& x, const core::Vec3& y, const core::Vec3& z) {
+  glm::mat4 m(1.0f);
+  m[0] = glm::vec4(to_glm(x), 0.0f);
+  m[1] = glm::vec4(to_glm(y), 0.0f);
+  m[2] = glm::vec4(to_glm(z), 0.0f);
+  return m;
+}
+
+glm::mat4 to_glm(const core::Quat& q) {
+  return glm::mat4_cast(glm::quat(static_cast<float>(q.w()), static_cast<float>(q.x()),
+                                  static_cast<float>(q.y()), static_cast<float>(q.z())));
+}
+
+// A round value no larger than `size`: 0.01, 0.02, 0.05, 0.1, ...
+double nice_floor(double size) {
+  double best = 0.01;
+  for (double decade = 0.01; decade <= 100.0; decade *= 10.0) {
+    for (double m : {1.0, 2.0, 5.0}) {
+      if (m * decade <= size) best = m * decade;
+    }
+  }
+  return best;
+}
+
+struct ArmPose {
+  std::vector<core::Vec3> joints;  // n + 1 points: joints then the tip
+  std::vector<double> phi;         // absolute angle of each link
+};
+
+ArmPose arm_pose(const BodyVisual& arm, const PoseTrack& poses, int index, double t) {
+  ArmPose pose;
+  core::Vec3 p = arm.base;
+  double phi = 0.0;
+  pose.joints.push_back(p);
+  for (std::size_t i = 0; i < arm.lengths.size(); ++i) {
+    phi += poses.angle(index, static_cast<int>(i), t);
+    p += arm.lengths[i] * core::Vec3(std::cos(phi), std::sin(phi), 0.0);
+    pose.joints.push_back(p);
+    pose.phi.push_back(phi);
+  }
+  return pose;
+}
+
+const glm::vec3 kSphereColour{0.90f, 0.30f, 0.03f};
+const glm::vec3 kSphereColour2{0.86f, 0.86f, 0.82f};
+const glm::vec3 kBoxColour{0.10f, 0.28f, 0.62f};
+const glm::vec3 kJointColour{0.06f, 0.06f, 0.07f};
+const glm::vec3 kBlockColour{0.72f, 0.10f, 0.08f};
+const glm::vec3 kGroundLight{0.78f, 0.78f, 0.76f};
+const glm::vec3 kGroundDark{0.55f, 0.57f, 0.60f};
+
+// Characteristic size of the scene's bodies: sets the checker square.
+double body_scale(const SceneDescription& scene) {
+  double s = std::numeric_limits<double>::infinity();
+  for (const auto& b : scene.bodies) {
+    switch (b.kind) {
+      case BodyVisual::Kind::sphere: s = std::min(s, b.radius); break;
+      case BodyVisual::Kind::box:
+      case BodyVisual::Kind::block: s = std::min(s, b.size.maxCoeff()); break;
+      case BodyVisual::Kind::arm:
+        for (double l : b.lengths) s = std::min(s, 0.5 * l);
+        break;
+    }
+  }
+  return std::isfinite(s) ? s : 0.2;
+}
+
+}  // namespace
+
+glm::vec3 to_glm(const core::Vec3& v) {
+  return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+}
+
+bool is_axis_of(const std::string& column, const std::string& signal) {
+  if (column.size() <= signal.size() + 1 || column.compare(0, signal.size(), signal) != 0 ||
+      column[signal.size()] != '.') {
+    return false;
+  }
+  const std::string axis = column.substr(signal.size() + 1);
+  if (axis == "x" || axis == "y" || axis == "z" || axis == "w") return true;
+  return std::all_of(axis.begin(), axis.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+}
+
+SceneDescription describe_scene(const core::Network& network, const toml::table& document) {
+  SceneDescription scene;
+  for (const auto& a : network.admittances()) {
+    BodyVisual b;
+    b.name = a->name();
+    const toml::table* table = body_table(document, b.name);
+    if (const auto* arm = dynamic_cast<const components::PlanarArm*>(a.get())) {
+      b.kind = BodyVisual::Kind::arm;
+      b.base = arm->params().base;
+      const toml::array* links = table ? (*table)["links"].as_array() : nullptr;
+      for (std::size_t i = 0; i < arm->params().links.size(); ++i) {
+        const double length = arm->params().links[i].length;
+        double width = 0.0;
+        if (links && i < links->size()) {
+          if (const toml::table* link = (*links)[i].as_table()) {
+            width = (*link)["width"].value<double>().value_or(0.0);
+          }
+        }
+        b.lengths.push_back(length);
+        b.widths.push_back(width > 0.0 ? width : 0.1 * length);
+      }
+    } else if (dynamic_cast<const components::RigidBody*>(a.get())) {
+      const std::string shape = table ? (*table)["shape"].value_or(std::string()) : "";
+      if (shape == "box") {
+        b.kind = BodyVisual::Kind::box;
+        b.size = vec3_of((*table)["size"], b.size);
+      } else {
+        b.kind = BodyVisual::Kind::sphere;
+        b.radius = table ? (*table)["radius"].value<double>().value_or(0.1) : 0.1;
+      }
+    } else if (dynamic_cast<const components::PointMass*>(a.get())) {
+      b.kind = BodyVisual::Kind::block;
+    } else {
+      continue;  // an admittance with no pose of its own
+    }
+    scene.bodies.push_back(std::move(b));
+  }
+  for (const auto& imp : network.impedances()) {
+    const auto* contact = dynamic_cast<const components::KikuuweContact*>(imp.get());
+    if (!contact) continue;
+    SurfaceVisual s{contact->params().normal.normalized(), contact->params().offset};
+    const bool seen = std::any_of(scene.surfaces.begin(), scene.surfaces.end(), [&](const auto& o) {
+      return (o.normal - s.normal).norm() < 1e-9 && std::abs(o.offset - s.offset) < 1e-9;
+    });
+    if (!seen) scene.surfaces.push_back(s);
+    // The contact's body, from the document's wiring.
+    const toml::table* imps = document["impedances"].as_table();
+    const toml::table* t = imps ? (*imps)[imp->name()].as_table() : nullptr;
+    const std::string body = t ? (*t)["body"].value_or(std::string()) : "";
+    for (auto& b : scene.bodies) {
+      if (b.name != body) continue;
+      ContactVisual c{imp->name(), body, b.kind == BodyVisual::Kind::sphere ? b.radius : 0.0,
+                      s.normal};
+      if (t && (*t)["radius"].is_number()) c.radius = (*t)["radius"].value<double>().value_or(c.radius);
+      scene.contacts.push_back(c);
+      if (b.kind == BodyVisual::Kind::block) b.up = s.normal;
+    }
+  }
+  return scene;
+}
+
+PoseTrack::PoseTrack(const core::Trajectory& trajectory, const SceneDescription& scene)
+    : trajectory_(trajectory) {
+  const auto t_col = trajectory.find("t");
+  if (!t_col || trajectory.row_count() == 0) {
+    throw RenderError("the trajectory has no rows (nothing to render)");
+  }
+  t_ = trajectory.column(*t_col);
+  auto need = [&](const std::string& name) {
+    const auto c = trajectory.find(name);
+    if (!c) throw RenderError("the renderer needs the signal '" + name + "', absent from the run");
+    return *c;
+  };
+  for (const auto& b : scene.bodies) {
+    Columns c;
+    if (b.kind == BodyVisual::Kind::arm) {
+      for (std::size_t i = 0; i < b.lengths.size(); ++i) {
+        c.theta.push_back(need(b.name + ".theta." + std::to_string(i)));
+      }
+    } else {
+      for (const char* axis : {"x", "y", "z"}) c.p.push_back(need(b.name + ".p." + axis));
+      if (b.kind != BodyVisual::Kind::block) {
+        for (const char* axis : {"w", "x", "y", "z"}) c.q.push_back(need(b.name + ".q." + axis));
+      }
+    }
+    columns_.push_back(std::move(c));
+  }
+}
+
+std::pair<int, double> PoseTrack::locate(double t) const {
+  if (t <= t_.front() || t_.size() == 1) return {0, 0.0};
+  if (t >= t_.back()) return {static_cast<int>(t_.size()) - 2, 1.0};
+  const auto it = std::upper_bound(t_.begin(), t_.end(), t);
+  const int r = static_cast<int>(it - t_.begin()) - 1;
+  const double span = t_[r + 1] - t_[r];
+  return {r, span > 0.0 ? (t - t_[r]) / span : 0.0};
+}
+
+double PoseTrack::value(int column, double t) const {
+  const auto [r, w] = locate(t);
+  if (t_.size() == 1) return trajectory_.at(0, column);
+  return (1.0 - w) * trajectory_.at(r, column) + w * trajectory_.at(r + 1, column);
+}
+
+core::Vec3 PoseTrack::position(int body, double t) const {
+  const auto& p = columns_[body].p;
+  return {value(p[0], t), value(p[1], t), value(p[2], t)};
+}
+
+core::Quat PoseTrack::orientation(int body, double t) const {
+  const auto& q = columns_[body].q;
+  if (q.empty()) return core::Quat::Identity();
+  const auto [r, w] = locate(t);
+  auto at = [&](int row) {
+    return core::Quat(trajectory_.at(row, q[0]), trajectory_.at(row, q[1]),
+                      trajectory_.at(row, q[2]), trajectory_.at(row, q[3]));
+  };
+  if (t_.size() == 1) return at(0).normalized();
+  core::Quat a = at(r), b = at(r + 1);
+  if (a.dot(b) < 0.0) b.coeffs() = -b.coeffs();
+  core::Quat m;
+  m.coeffs() = (1.0 - w) * a.coeffs() + w * b.coeffs();
+  return m.normalized();
+}
+
+double PoseTrack::angle(int body, int joint, double t) const {
+  return value(columns_[body].theta[static_cast<std::size_t>(joint)], t);
+}
+
+double PoseTrack::signal(const std::string& name, double t) const {
+  if (const auto c = trajectory_.find(name)) return value(*c, t);
+  double sum = 0.0;
+  bool any = false;
+  for (int c = 0; c < trajectory_.column_count(); ++c) {
+    const std::string& column = trajectory_.columns()[c];
+    if (is_axis_of(column, name)) {
+      const double v = value(c, t);
+      sum += v * v;
+      any = true;
+    }
+  }
+  return any ? std::sqrt(sum) : std::numeric_limits<double>::quiet_NaN();
+}
+
+Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double t) {
+  Bounds bounds;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyVisual& b = scene.bodies[i];
+    const int index = static_cast<int>(i);
+    if (b.kind == BodyVisual::Kind::arm) {
+      const double w = *std::max_element(b.widths.begin(), b.widths.end());
+      for (const auto& p : arm_pose(b, poses, index, t).joints) {
+        bounds.add(to_glm(p) - glm::vec3(float(w)));
+        bounds.add(to_glm(p) + glm::vec3(float(w)));
+      }
+      continue;
+    }
+    const glm::vec3 p = to_glm(poses.position(index, t));
+    float r = 0.0f;
+    switch (b.kind) {
+      case BodyVisual::Kind::sphere: r = static_cast<float>(b.radius); break;
+      case BodyVisual::Kind::box: r = static_cast<float>(0.5 * b.size.norm()); break;
+      default: r = static_cast<float>(b.size.norm()); break;
+    }
+    bounds.add(p - glm::vec3(r));
+    bounds.add(p + glm::vec3(r));
+  }
+  return bounds;
+}
+
+Bounds run_bounds(const SceneDescription& scene, const PoseTrack& poses, int samples) {
+  Bounds bounds;
+  for (int i = 0; i < samples; ++i) {
+    const double t = poses.start_time() +
+                     (poses.end_time() - poses.start_time()) * i / std::max(1, samples - 1);
+    bounds.add(body_bounds(scene, poses, t));
+  }
+  return bounds;
+}
+
+std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t) {
+  std::vector<DrawItem> items;
+  const Bounds all = run_bounds(scene, poses, 16);
+  const double scale = body_scale(scene);
+  const float checker = static_cast<float>(nice_floor(scale));
+
+  // Surfaces: the contacts' planes, or a floor under the scene.
+  std::vector<SurfaceVisual> surfaces = scene.surfaces;
+  double floor_z = 0.0;
+  if (surfaces.empty()) {
+    double gap = 0.5 * scale;
+    for (const auto& b : scene.bodies) {
+      if (b.kind == BodyVisual::Kind::arm) gap = 3.0 * *std::max_element(b.widths.begin(), b.widths.end());
+    }
+    floor_z = (all.empty() ? 0.0 : all.min.z) - gap;
+    surfaces.push_back({core::Vec3::UnitZ(), floor_z});
+  }
+  const glm::vec3 centre = all.empty() ? glm::vec3(0.0f) : all.centre();
+  const float half = std::max(20.0f, 8.0f * (all.empty() ? 1.0f : all.radius()));
+  for (const auto& s : surfaces) {
+    core::Vec3 t1, t2;
+    tangents(s.normal, t1, t2);
+    const core::Vec3 origin = s.offset * s.normal;
+    const core::Vec3 c(centre.x, centre.y, centre.z);
+    // Centre the square on the scene, on a whole number of grid cells from the origin.
+    const double grid = 5.0 * checker;
+    const double a = std::round((c - origin).dot(t1) / grid) * grid;
+    const double b = std::round((c - origin).dot(t2) / grid) * grid;
+    const core::Vec3 at = origin + a * t1 + b * t2;
+    DrawItem item;
+    item.shape = Shape::plane;
+    item.model = glm::translate(glm::mat4(1.0f), to_glm(at)) * rotation_from_basis(t1, t2, s.normal) *
+                 glm::scale(glm::mat4(1.0f), glm::vec3(half, half, 1.0f));
+    item.material.kind = MaterialKind::checker;
+    item.material.colour = kGroundLight;
+    item.material.colour2 = kGroundDark;
+    item.material.checker_size = checker;
+    item.material.grid_spacing = static_cast<float>(grid);
+    item.material.local_scale = half;
+    item.material.local_offset = glm::vec2(static_cast<float>(a), static_cast<float>(b));
+    item.material.specular = 0.05f;
+    item.casts_shadow = false;
+    items.push_back(item);
+  }
+
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyVisual& b = scene.bodies[i];
+    const int index = static_cast<int>(i);
+    DrawItem item;
+    switch (b.kind) {
+      case BodyVisual::Kind::sphere: {
+        item.shape = Shape::sphere;
+        item.model = glm::translate(glm::mat4(1.0f), to_glm(poses.position(index, t))) *
+                     to_glm(poses.orientation(index, t)) *
+                     glm::scale(glm::mat4(1.0f), glm::vec3(static_cast<float>(b.radius)));
+        item.material.kind = MaterialKind::sphere_pattern;
+        item.material.colour = kSphereColour;
+        item.material.colour2 = kSphereColour2;
+        item.material.shininess = 48.0f;
+        item.material.specular = 0.35f;
+        items.push_back(item);
+        break;
+      }
+      case BodyVisual::Kind::box: {
+        item.shape = Shape::box;
+        item.model = glm::translate(glm::mat4(1.0f), to_glm(poses.position(index, t))) *
+                     to_glm(poses.orientation(index, t)) *
+                     glm::scale(glm::mat4(1.0f), 0.5f * to_glm(b.size));
+        item.material.colour = kBoxColour;
+        items.push_back(item);
+        break;
+      }
+      case BodyVisual::Kind::block: {
+        core::Vec3 t1, t2;
+        tangents(b.up, t1, t2);
+        const core::Vec3 centre_point = poses.position(index, t) + 0.5 * b.size.z() * b.up;
+        item.shape = Shape::box;
+        item.model = glm::translate(glm::mat4(1.0f), to_glm(centre_point)) *
+                     rotation_from_basis(t1, t2, b.up) *
+                     glm::scale(glm::mat4(1.0f), 0.5f * to_glm(b.size));
+        item.material.colour = kBlockColour;
+        items.push_back(item);
+        break;
+      }
+      case BodyVisual::Kind::arm: {
+        const ArmPose pose = arm_pose(b, poses, index, t);
+        const float w0 = static_cast<float>(b.widths.front());
+        // A post from the floor to the base joint.
+        if (scene.surfaces.empty()) {
+          const float z0 = static_cast<float>(floor_z), z1 = static_cast<float>(b.base.z());
+          DrawItem post;
+          post.shape = Shape::cylinder;
+          post.model = glm::translate(glm::mat4(1.0f), glm::vec3(to_glm(b.base).x, to_glm(b.base).y,
+                                                                 0.5f * (z0 + z1))) *
+                       glm::scale(glm::mat4(1.0f), glm::vec3(0.7f * w0, 0.7f * w0, 0.5f * (z1 - z0)));
+          post.material.colour = glm::vec3(0.35f);
+          items.push_back(post);
+        }
+        for (std::size_t k = 0; k < b.lengths.size(); ++k) {
+          const float w = static_cast<float>(b.widths[k]);
+          const core::Vec3 mid = 0.5 * (pose.joints[k] + pose.joints[k + 1]);
+          DrawItem link;
+          link.shape = Shape::box;
+          link.model = glm::translate(glm::mat4(1.0f), to_glm(mid)) *
+                       glm::rotate(glm::mat4(1.0f), static_cast<float>(pose.phi[k]), glm::vec3(0, 0, 1)) *
+                       glm::scale(glm::mat4(1.0f),
+                                  glm::vec3(0.5f * static_cast<float>(b.lengths[k]), 0.5f * w, 0.5f * w));
+          link.material.colour = k % 2 == 0 ? kBoxColour : glm::vec3(0.15f, 0.50f, 0.75f);
+          items.push_back(link);
+          DrawItem joint;
+          joint.shape = Shape::cylinder;
+          joint.model = glm::translate(glm::mat4(1.0f), to_glm(pose.joints[k])) *
+                        glm::scale(glm::mat4(1.0f), glm::vec3(0.95f * w, 0.95f * w, 0.85f * w));
+          joint.material.colour = kJointColour;
+          joint.material.specular = 0.5f;
+          items.push_back(joint);
+        }
+        // The tip: a small sphere, so the end of the chain reads clearly.
+        DrawItem tip;
+        tip.shape = Shape::sphere;
+        tip.model = glm::translate(glm::mat4(1.0f), to_glm(pose.joints.back())) *
+                    glm::scale(glm::mat4(1.0f), glm::vec3(0.6f * static_cast<float>(b.widths.back())));
+        tip.material.colour = kJointColour;
+        items.push_back(tip);
+        break;
+      }
+    }
+  }
+  return items;
+}
+
+std::vector<TrailVertex> build_trail(const SceneDescription& scene, const PoseTrack& poses,
+                                     double t, double seconds, float width) {
+  std::vector<TrailVertex> strip;
+  if (scene.contacts.empty()) return strip;
+  const ContactVisual& c = scene.contacts.front();
+  int body = -1;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].name == c.body) body = static_cast<int>(i);
+  }
+  if (body < 0) return strip;
+  const double t0 = std::max(poses.start_time(), t - seconds);
+  const int steps = 96;
+  core::Vec3 previous = core::Vec3::Zero();
+  for (int i = 0; i <= steps; ++i) {
+    const double s = t0 + (t - t0) * i / steps;
+    const core::Vec3 p = poses.position(body, s) - c.radius * c.normal;
+    // Project onto the surface plane (slightly above it) so a bounce does not lift the trail.
+    core::Vec3 on = p - c.normal * (c.normal.dot(p));
+    for (const auto& surface : scene.surfaces) {
+      if ((surface.normal - c.normal).norm() < 1e-9) on += (surface.offset + 1e-3) * c.normal;
+    }
+    core::Vec3 dir = i == 0 ? core::Vec3(core::Vec3::UnitX()) : core::Vec3(on - previous);
+    if (dir.norm() < 1e-9) dir = core::Vec3::UnitX();
+    const core::Vec3 side = c.normal.cross(dir).normalized() * (0.5 * width);
+    const double slip = poses.signal(c.contact + ".slip", s);
+    const float k = std::isnan(slip) ? 0.0f : static_cast<float>(std::min(1.0, slip / 0.05));
+    const glm::vec3 colour = glm::mix(glm::vec3(0.05f, 0.55f, 0.15f), glm::vec3(0.85f, 0.05f, 0.05f), k);
+    strip.push_back({to_glm(on - side), colour});
+    strip.push_back({to_glm(on + side), colour});
+    previous = on;
+  }
+  return strip;
+}
+
+}  // namespace stiction::render

@@ -1,0 +1,151 @@
+// What the renderer draws: the shapes of a scene (from its components and its document) and
+// their poses at any time (from the trajectory's signals only: `<body>.p.*`, `<body>.q.*`,
+// `<arm>.theta.*`), turned into a list of draw items.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <toml++/toml.h>
+
+#include "core/network.hpp"
+#include "core/trajectory.hpp"
+#include "core/types.hpp"
+
+namespace stiction::render {
+
+// The trajectory lacks a column the renderer needs, or has no rows (exit code 1).
+class RenderError : public std::runtime_error {
+ public:
+  explicit RenderError(const std::string& message) : std::runtime_error(message) {}
+};
+
+struct BodyVisual {
+  enum class Kind { sphere, box, block, arm };
+  Kind kind = Kind::sphere;
+  std::string name;
+  double radius = 0.0;                  // sphere
+  core::Vec3 size{0.1, 0.1, 0.1};       // box, block: full side lengths
+  core::Vec3 up{0.0, 0.0, 1.0};         // block: normal of the surface it rests on
+  core::Vec3 base = core::Vec3::Zero();  // arm
+  std::vector<double> lengths, widths;  // arm links
+};
+
+struct SurfaceVisual {
+  core::Vec3 normal{0.0, 0.0, 1.0};
+  double offset = 0.0;
+};
+
+// A contact whose touching point can leave a trail (point = p - radius * normal).
+struct ContactVisual {
+  std::string contact;  // impedance name, for its slip signal
+  std::string body;
+  double radius = 0.0;
+  core::Vec3 normal{0.0, 0.0, 1.0};
+};
+
+struct SceneDescription {
+  std::vector<BodyVisual> bodies;
+  std::vector<SurfaceVisual> surfaces;  // empty: a floor is put under the scene
+  std::vector<ContactVisual> contacts;
+};
+
+// Shapes from the network's components (dynamic_cast) and the body tables of the document
+// (shape, radius, size, link widths); surfaces from kikuuwe_contact impedances.
+SceneDescription describe_scene(const core::Network& network, const toml::table& document);
+
+enum class Shape { sphere, box, cylinder, plane, trail };
+
+enum class MaterialKind { plain = 0, checker = 1, sphere_pattern = 2 };
+
+struct Material {
+  MaterialKind kind = MaterialKind::plain;
+  glm::vec3 colour{0.5f};   // linear RGB
+  glm::vec3 colour2{0.5f};
+  float shininess = 32.0f;
+  float specular = 0.25f;
+  float checker_size = 0.2f;   // metres per square (checker)
+  float grid_spacing = 1.0f;    // metres between darker grid lines (checker)
+  float local_scale = 1.0f;     // unit-shape coordinates -> metres (checker)
+  glm::vec2 local_offset{0.0f}; // added after scaling, so squares align with the world
+};
+
+struct DrawItem {
+  Shape shape = Shape::box;
+  glm::mat4 model{1.0f};  // unit shape -> world
+  Material material;
+  bool casts_shadow = true;
+};
+
+struct Bounds {
+  glm::vec3 min{1e30f};
+  glm::vec3 max{-1e30f};
+  void add(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  void add(const Bounds& b) {
+    if (!b.empty()) {
+      add(b.min);
+      add(b.max);
+    }
+  }
+  bool empty() const { return min.x > max.x; }
+  glm::vec3 centre() const { return 0.5f * (min + max); }
+  float radius() const { return 0.5f * glm::length(max - min); }
+};
+
+// Pose lookups with linear interpolation between rows (quaternions: normalized lerp).
+class PoseTrack {
+ public:
+  // Throws RenderError naming a missing column.
+  PoseTrack(const core::Trajectory& trajectory, const SceneDescription& scene);
+
+  double start_time() const { return t_.front(); }
+  double end_time() const { return t_.back(); }
+
+  core::Vec3 position(int body, double t) const;
+  core::Quat orientation(int body, double t) const;
+  double angle(int body, int joint, double t) const;
+  // Value of a trajectory column (or the norm of the columns NAME.*) at time t; NaN if absent.
+  double signal(const std::string& name, double t) const;
+
+ private:
+  struct Columns {
+    std::vector<int> p;      // x y z
+    std::vector<int> q;      // w x y z
+    std::vector<int> theta;  // arm joints
+  };
+  // Row index r and weight w with value = (1 - w) row[r] + w row[r + 1].
+  std::pair<int, double> locate(double t) const;
+  double value(int column, double t) const;
+
+  const core::Trajectory& trajectory_;
+  std::vector<double> t_;
+  std::vector<Columns> columns_;
+};
+
+// Everything to draw at time t: surfaces, bodies (arms as boxes plus joint cylinders).
+std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t);
+
+// Axis-aligned bounds of the bodies (not the surfaces) at time t.
+Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double t);
+// Union of body_bounds over `samples` times spread over the run.
+Bounds run_bounds(const SceneDescription& scene, const PoseTrack& poses, int samples = 64);
+
+// Contact-point trail over [t - seconds, t] as a ribbon lying on the surface; the colour
+// shows the contact's slip speed (red: slipping, green: sticking). Empty if no contacts.
+struct TrailVertex {
+  glm::vec3 position;
+  glm::vec3 colour;
+};
+std::vector<TrailVertex> build_trail(const SceneDescription& scene, const PoseTrack& poses,
+                                     double t, double seconds, float width);
+
+glm::vec3 to_glm(const core::Vec3& v);
+
+// True if `column` is "SIGNAL.AXIS" with AXIS one of x y z w or a joint index (DESIGN 4).
+bool is_axis_of(const std::string& column, const std::string& signal);
+
+}  // namespace stiction::render

@@ -1,0 +1,195 @@
+#include "render/video_encoder.hpp"
+
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavformat/avformat.h>
+#include <libavutil/imgutils.h>
+#include <libavutil/opt.h>
+#include <libswscale/swscale.h>
+}
+
+#include <unistd.h>
+
+#include <system_error>
+
+namespace stiction::render {
+namespace {
+
+std::string av_message(int code) {
+  char buffer[AV_ERROR_MAX_STRING_SIZE] = {};
+  av_strerror(code, buffer, sizeof buffer);
+  return buffer;
+}
+
+struct CodecContextDeleter {
+  void operator()(AVCodecContext* c) const { avcodec_free_context(&c); }
+};
+struct FrameDeleter {
+  void operator()(AVFrame* f) const { av_frame_free(&f); }
+};
+struct PacketDeleter {
+  void operator()(AVPacket* p) const { av_packet_free(&p); }
+};
+struct SwsDeleter {
+  void operator()(SwsContext* s) const { sws_freeContext(s); }
+};
+// Closes the file (if open) and frees the muxer.
+struct FormatDeleter {
+  void operator()(AVFormatContext* f) const {
+    if (f->pb && !(f->oformat->flags & AVFMT_NOFILE)) avio_closep(&f->pb);
+    avformat_free_context(f);
+  }
+};
+
+}  // namespace
+
+struct VideoEncoder::State {
+  std::unique_ptr<AVFormatContext, FormatDeleter> format;
+  std::unique_ptr<AVCodecContext, CodecContextDeleter> codec;
+  std::unique_ptr<AVFrame, FrameDeleter> frame;
+  std::unique_ptr<AVPacket, PacketDeleter> packet;
+  std::unique_ptr<SwsContext, SwsDeleter> sws;
+  AVStream* stream = nullptr;  // owned by format
+  long frames = 0;
+  bool finished = false;
+};
+
+VideoEncoder::VideoEncoder(std::filesystem::path path, const VideoOptions& options)
+    : path_(std::move(path)), state_(std::make_unique<State>()) {
+  if (options.width <= 0 || options.height <= 0 || options.width % 2 || options.height % 2) {
+    throw VideoError("video size must be even and positive, got " + std::to_string(options.width) +
+                     "x" + std::to_string(options.height));
+  }
+  temp_ = path_.string() + ".tmp." + std::to_string(::getpid());
+  State& s = *state_;
+
+  // libx264 prints statistics at info level on stderr, which would garble the progress bar.
+  // (The level is process-wide in FFmpeg; only errors are wanted from it anywhere here.)
+  if (av_log_get_level() > AV_LOG_ERROR) av_log_set_level(AV_LOG_ERROR);
+  const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
+  if (!codec) throw VideoError("libavcodec has no libx264 encoder (Debian: libavcodec-extra59 or libx264)");
+
+  AVFormatContext* format = nullptr;
+  int rc = avformat_alloc_output_context2(&format, nullptr, "mp4", temp_.c_str());
+  if (rc < 0 || !format) throw VideoError("cannot create an MP4 muxer: " + av_message(rc));
+  s.format.reset(format);
+
+  s.codec.reset(avcodec_alloc_context3(codec));
+  if (!s.codec) throw VideoError("out of memory (codec context)");
+  AVCodecContext* c = s.codec.get();
+  const AVRational rate = av_d2q(options.fps, 100000);
+  c->width = options.width;
+  c->height = options.height;
+  c->framerate = rate;
+  c->time_base = av_inv_q(rate);
+  c->pix_fmt = AV_PIX_FMT_YUV420P;
+  c->gop_size = static_cast<int>(options.fps * 2.0);
+  c->color_primaries = AVCOL_PRI_BT709;
+  c->color_trc = AVCOL_TRC_BT709;
+  c->colorspace = AVCOL_SPC_BT709;
+  c->color_range = AVCOL_RANGE_MPEG;
+  if (s.format->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  av_opt_set(c->priv_data, "preset", options.preset.c_str(), 0);
+  av_opt_set(c->priv_data, "crf", std::to_string(options.crf).c_str(), 0);
+  rc = avcodec_open2(c, codec, nullptr);
+  if (rc < 0) throw VideoError("cannot open the H.264 encoder: " + av_message(rc));
+
+  s.stream = avformat_new_stream(s.format.get(), nullptr);
+  if (!s.stream) throw VideoError("out of memory (stream)");
+  s.stream->time_base = c->time_base;
+  s.stream->avg_frame_rate = rate;
+  rc = avcodec_parameters_from_context(s.stream->codecpar, c);
+  if (rc < 0) throw VideoError("cannot set stream parameters: " + av_message(rc));
+
+  rc = avio_open(&s.format->pb, temp_.c_str(), AVIO_FLAG_WRITE);
+  if (rc < 0) throw VideoError("cannot write " + path_.string() + ": " + av_message(rc));
+  rc = avformat_write_header(s.format.get(), nullptr);
+  if (rc < 0) {
+    s.format.reset();
+    std::error_code ec;
+    std::filesystem::remove(temp_, ec);
+    throw VideoError("cannot write the MP4 header of " + path_.string() + ": " + av_message(rc));
+  }
+
+  s.frame.reset(av_frame_alloc());
+  s.packet.reset(av_packet_alloc());
+  if (!s.frame || !s.packet) throw VideoError("out of memory (frame)");
+  s.frame->format = AV_PIX_FMT_YUV420P;
+  s.frame->width = options.width;
+  s.frame->height = options.height;
+  s.frame->color_primaries = AVCOL_PRI_BT709;
+  s.frame->color_trc = AVCOL_TRC_BT709;
+  s.frame->colorspace = AVCOL_SPC_BT709;
+  s.frame->color_range = AVCOL_RANGE_MPEG;
+  rc = av_frame_get_buffer(s.frame.get(), 0);
+  if (rc < 0) throw VideoError("cannot allocate a frame: " + av_message(rc));
+
+  s.sws.reset(sws_getContext(options.width, options.height, AV_PIX_FMT_RGBA, options.width,
+                             options.height, AV_PIX_FMT_YUV420P, SWS_BILINEAR, nullptr, nullptr,
+                             nullptr));
+  if (!s.sws) throw VideoError("cannot create the RGBA -> yuv420p converter");
+  const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
+  sws_setColorspaceDetails(s.sws.get(), bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
+}
+
+VideoEncoder::~VideoEncoder() {
+  if (state_ && !state_->finished) {
+    state_.reset();  // closes the file
+    std::error_code ec;
+    std::filesystem::remove(temp_, ec);
+  }
+}
+
+long VideoEncoder::frames_written() const { return state_->frames; }
+
+void VideoEncoder::drain(bool flush) {
+  State& s = *state_;
+  for (;;) {
+    const int rc = avcodec_receive_packet(s.codec.get(), s.packet.get());
+    if (rc == AVERROR(EAGAIN) || rc == AVERROR_EOF) return;
+    if (rc < 0) throw VideoError("H.264 encoding failed: " + av_message(rc));
+    av_packet_rescale_ts(s.packet.get(), s.codec->time_base, s.stream->time_base);
+    s.packet->stream_index = s.stream->index;
+    const int wrc = av_interleaved_write_frame(s.format.get(), s.packet.get());
+    if (wrc < 0) throw VideoError("cannot write " + path_.string() + ": " + av_message(wrc));
+  }
+  (void)flush;
+}
+
+void VideoEncoder::encode(const image::Image& image) {
+  State& s = *state_;
+  if (s.finished) throw VideoError("encode() after finish()");
+  if (image.width != s.codec->width || image.height != s.codec->height) {
+    throw VideoError("frame size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                     " differs from the video's");
+  }
+  int rc = av_frame_make_writable(s.frame.get());
+  if (rc < 0) throw VideoError("cannot reuse the frame: " + av_message(rc));
+  const std::uint8_t* src[1] = {image.pixels.data()};
+  const int stride[1] = {static_cast<int>(image.stride())};
+  sws_scale(s.sws.get(), src, stride, 0, image.height, s.frame->data, s.frame->linesize);
+  s.frame->pts = s.frames++;
+  rc = avcodec_send_frame(s.codec.get(), s.frame.get());
+  if (rc < 0) throw VideoError("H.264 encoding failed: " + av_message(rc));
+  drain(false);
+}
+
+std::filesystem::path VideoEncoder::finish(const std::filesystem::path& final_path) {
+  State& s = *state_;
+  if (s.finished) throw VideoError("finish() called twice");
+  int rc = avcodec_send_frame(s.codec.get(), nullptr);
+  if (rc < 0) throw VideoError("cannot flush the encoder: " + av_message(rc));
+  drain(true);
+  rc = av_write_trailer(s.format.get());
+  if (rc < 0) throw VideoError("cannot finish " + path_.string() + ": " + av_message(rc));
+  rc = avio_closep(&s.format->pb);
+  if (rc < 0) throw VideoError("cannot close " + path_.string() + ": " + av_message(rc));
+  const std::filesystem::path target = final_path.empty() ? path_ : final_path;
+  std::error_code ec;
+  std::filesystem::rename(temp_, target, ec);
+  if (ec) throw VideoError("cannot rename " + temp_.string() + " to " + target.string() + ": " + ec.message());
+  s.finished = true;
+  return target;
+}
+
+}  // namespace stiction::render

@@ -1,0 +1,382 @@
+#include "scene/components.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "components/admittance/planar_arm.hpp"
+#include "components/admittance/point_mass.hpp"
+#include "components/admittance/rigid_body.hpp"
+#include "components/impedance/dahl.hpp"
+#include "components/impedance/kikuuwe_contact.hpp"
+#include "components/impedance/kikuuwe_friction.hpp"
+#include "components/impedance/lugre.hpp"
+#include "components/impedance/penalty_joint.hpp"
+#include "components/impedance/spring_damper.hpp"
+#include "components/impedance/torque_source.hpp"
+#include "components/maps/contact_point_map.hpp"
+#include "components/maps/frame_pair_map.hpp"
+#include "components/maps/joint_map.hpp"
+#include "components/maps/point_map.hpp"
+#include "scene/axis_torque_map.hpp"
+#include "scene/expression.hpp"
+
+namespace stiction::scene {
+
+using core::Vec3;
+
+namespace {
+
+const std::vector<std::string> kBodyTypes{"point_mass", "rigid_body", "planar_arm"};
+const std::vector<std::string> kImpedanceTypes{"kikuuwe_contact", "kikuuwe_friction", "lugre",
+                                               "dahl",            "spring_damper",    "penalty_joint",
+                                               "torque_source"};
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+std::string name_of(const TableReader& table) {
+  const std::string& p = table.path();
+  return p.substr(p.rfind('.') + 1);
+}
+
+Vec3 unit(TableReader& table, std::string_view key, const Vec3& fallback) {
+  const Vec3 v = table.vec3(key, fallback);
+  if (!(v.norm() > 1e-12)) table.fail(key, "must be a non-zero vector");
+  return v.normalized();
+}
+
+std::string type_of(TableReader& table, const std::vector<std::string>& known) {
+  const std::string type = table.required_string("type");
+  if (std::find(known.begin(), known.end(), type) == known.end()) {
+    table.fail("type", "unknown component type '" + type + "' (expected one of " + join(known) + ")");
+  }
+  return type;
+}
+
+// Components check their own parameters as a last line of defence; report what they
+// reject at the table, as any other input error.
+template <typename Make>
+auto construct(TableReader& table, Make make) {
+  try {
+    return make();
+  } catch (const std::invalid_argument& e) {
+    throw InputError::at(table.table().source(), table.path() + ": " + e.what());
+  }
+}
+
+components::TorqueSource::Profile profile(TableReader& table, std::string_view key) {
+  const toml::node* node = table.node(key);
+  if (node == nullptr) table.fail(key, "missing (a number or an expression of t is required)");
+  if (node->is_number()) {
+    const double value = node->value<double>().value();
+    return [value](double) { return value; };
+  }
+  if (!node->is_string()) table.fail(key, "expected a number or an expression of t (a string)");
+  auto expression = std::make_shared<Expression>(node->as_string()->get(), node->source(),
+                                                 table.path() + "." + std::string(key));
+  return [expression](double t) { return expression->evaluate(t); };
+}
+
+}  // namespace
+
+std::vector<TableReader> ComponentBuilder::entries(TableReader& section) {
+  std::vector<std::pair<const toml::key*, const toml::table*>> found;
+  for (const auto& [key, value] : section.table()) {
+    const toml::node* node = section.node(key.str());
+    if (!node->is_table()) section.fail(key.str(), "expected a table (a component)");
+    found.emplace_back(&key, node->as_table());
+  }
+  std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
+    const auto& sa = a.first->source().begin;
+    const auto& sb = b.first->source().begin;
+    return sa.line != sb.line ? sa.line < sb.line : sa.column < sb.column;
+  });
+  std::vector<TableReader> out;
+  for (const auto& [key, table] : found) out.emplace_back(*table, section.path() + "." + std::string(key->str()));
+  return out;
+}
+
+void ComponentBuilder::check_name(TableReader& table) {
+  const std::string name = name_of(table);
+  const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+  if (!plain) {
+    throw InputError::at(table.table().source(),
+                         table.path() + ": component names may use letters, digits, '_' and '-' only"
+                                        " (they name CSV columns)");
+  }
+  if (bodies_.contains(name) || impedance_types_.contains(name)) {
+    throw InputError::at(table.table().source(),
+                         table.path() + ": the name '" + name + "' is already used by another component");
+  }
+}
+
+const ComponentBuilder::BodyInfo& ComponentBuilder::body(TableReader& table, std::string_view key) {
+  const std::string name = table.required_string(key);
+  const auto it = bodies_.find(name);
+  if (it == bodies_.end()) {
+    std::vector<std::string> names;
+    for (const auto& [n, info] : bodies_) names.push_back(n);
+    table.fail(key, "no body named '" + name + "' (bodies: " + join(names) + ")");
+  }
+  return it->second;
+}
+
+const core::Body* ComponentBuilder::pose_body(TableReader& table, std::string_view key) {
+  const BodyInfo& info = body(table, key);
+  const auto* pose = dynamic_cast<const core::Body*>(info.admittance);
+  if (pose == nullptr) {
+    table.fail(key, "'" + info.admittance->name() + "' is a " + std::string(info.admittance->type()) +
+                        ", not a point_mass or rigid_body");
+  }
+  return pose;
+}
+
+void ComponentBuilder::add_body(TableReader& table) {
+  check_name(table);
+  const std::string name = name_of(table);
+  const std::string type = type_of(table, kBodyTypes);
+  BodyInfo info;
+  std::unique_ptr<core::Admittance> admittance;
+
+  if (type == "point_mass") {
+    components::PointMassParams p;
+    p.mass = table.positive("mass", table.required_number("mass"));
+    p.position = table.vec3("position", p.position);
+    p.velocity = table.vec3("velocity", p.velocity);
+    p.gravity = gravity_;
+    admittance = construct(table, [&] { return std::make_unique<components::PointMass>(name, p); });
+  } else if (type == "rigid_body") {
+    components::RigidBodyParams p;
+    p.mass = table.positive("mass", table.required_number("mass"));
+    const std::string shape = table.string("shape", "");
+    Vec3 diagonal = Vec3::Zero();
+    if (shape == "sphere" || shape == "hollow_sphere") {
+      const double r = table.positive("radius", table.required_number("radius"));
+      diagonal.setConstant((shape == "sphere" ? 2.0 / 5.0 : 2.0 / 3.0) * p.mass * r * r);
+      info.sphere_radius = r;
+    } else if (shape == "box") {
+      if (!table.has("size")) table.fail("size", "missing (a box needs size = [lx, ly, lz])");
+      const Vec3 s = table.vec3("size", Vec3::Zero());
+      if (!(s.minCoeff() > 0.0)) table.fail("size", "every side must be > 0");
+      diagonal << s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
+          s.x() * s.x() + s.y() * s.y();
+      diagonal *= p.mass / 12.0;
+    } else if (!shape.empty()) {
+      table.fail("shape", "unknown shape '" + shape + "' (expected sphere, hollow_sphere or box)");
+    }
+    if (table.has("inertia")) {
+      diagonal = table.vec3("inertia", Vec3::Zero());
+      if (!(diagonal.minCoeff() > 0.0)) table.fail("inertia", "every principal moment must be > 0");
+    } else if (shape.empty()) {
+      table.fail("inertia", "missing (give `shape` or `inertia = [Jxx, Jyy, Jzz]`)");
+    }
+    p.inertia = diagonal.asDiagonal();
+    p.position = table.vec3("position", p.position);
+    p.velocity = table.vec3("velocity", p.velocity);
+    if (table.has("orientation")) {
+      const std::vector<double> q = table.numbers("orientation");
+      if (q.size() != 4) table.fail("orientation", "expected a quaternion [w, x, y, z]");
+      p.orientation = core::Quat(q[0], q[1], q[2], q[3]);
+      if (!(p.orientation.norm() > 1e-12)) table.fail("orientation", "must be a non-zero quaternion");
+      p.orientation.normalize();
+    }
+    p.angular_velocity = table.vec3("angular_velocity", p.angular_velocity);
+    p.gravity = gravity_;
+    admittance = construct(table, [&] { return std::make_unique<components::RigidBody>(name, p); });
+  } else {  // planar_arm
+    components::PlanarArmParams p;
+    std::vector<TableReader> links = table.array_of_tables("links");
+    if (links.empty()) table.fail("links", "missing (an array of link tables is required)");
+    for (TableReader& link : links) {
+      const double length = link.positive("length", link.required_number("length"));
+      const double mass = link.positive("mass", link.required_number("mass"));
+      const double width = link.non_negative("width", 0.0);
+      components::ArmLink l = components::box_link(length, width, mass);
+      l.com = link.number("com", l.com);
+      l.inertia = link.non_negative("inertia", l.inertia);
+      link.finish();
+      p.links.push_back(l);
+    }
+    p.base = table.vec3("base", p.base);
+    const auto n = static_cast<std::size_t>(links.size());
+    for (const char* key : {"angles", "rates"}) {
+      if (!table.has(key)) continue;
+      const std::vector<double> v = table.numbers(key);
+      if (v.size() != n) table.fail(key, "expected " + std::to_string(n) + " numbers, one per link");
+      (std::string_view(key) == "angles" ? p.angles : p.rates) =
+          Eigen::Map<const core::Vec>(v.data(), static_cast<Eigen::Index>(n));
+    }
+    // The arm moves in a horizontal plane: gravity must not have a component in it.
+    if (std::hypot(gravity_.x(), gravity_.y()) > 0.0) {
+      table.fail("type", "a planar_arm moves in the x-y plane: gravity must be along z");
+    }
+    admittance = construct(table, [&] { return std::make_unique<components::PlanarArm>(name, p); });
+  }
+  table.finish();
+  info.admittance = admittance.get();
+  bodies_.emplace(name, info);
+  network_.add_admittance(std::move(admittance));
+}
+
+void ComponentBuilder::add_impedance(TableReader& table) {
+  check_name(table);
+  const std::string name = name_of(table);
+  const std::string type = type_of(table, kImpedanceTypes);
+  std::unique_ptr<core::Impedance> impedance;
+  std::unique_ptr<core::CoordinateMap> map;
+
+  // Wiring of a 1-D element on joint `joint` of an arm; nullptr if `body` is not an arm.
+  auto joint_map = [&]() -> std::unique_ptr<core::CoordinateMap> {
+    const BodyInfo& info = body(table, "body");
+    const auto* arm = dynamic_cast<const core::JointSpace*>(info.admittance);
+    if (arm == nullptr) {
+      if (table.has("joint")) table.fail("joint", "'" + info.admittance->name() + "' has no joints");
+      return nullptr;
+    }
+    if (!table.has("joint")) table.fail("joint", "missing (which joint of '" + arm->name() + "')");
+    const long joint = table.integer("joint", 0);
+    if (joint < 0 || joint >= arm->joint_count()) {
+      table.fail("joint", "must be in 0.." + std::to_string(arm->joint_count() - 1));
+    }
+    return std::make_unique<components::JointMap>(*arm, static_cast<int>(joint));
+  };
+  // Wiring of a 3-D element between a point of `body` and a point of `other` (or the world).
+  auto point_map = [&]() -> std::unique_ptr<core::CoordinateMap> {
+    const core::Body* a = pose_body(table, "body");
+    const Vec3 point = table.vec3("point", Vec3::Zero());
+    const core::Body* b = table.has("other") ? pose_body(table, "other") : nullptr;
+    if (b == a) table.fail("other", "must differ from `body`");
+    const Vec3 other_point = table.vec3("other_point", Vec3::Zero());
+    return std::make_unique<components::PointMap>(*a, point, b, other_point);
+  };
+  auto joint_only = [&]() {
+    auto m = joint_map();
+    if (!m) table.fail("body", "a " + type + " element acts on a joint: `body` must be a planar_arm");
+    return m;
+  };
+
+  if (type == "kikuuwe_contact") {
+    const BodyInfo& info = body(table, "body");
+    const core::Body* b = pose_body(table, "body");
+    components::KikuuweContactParams p;
+    p.normal = unit(table, "normal", p.normal);
+    p.offset = table.number("offset", p.offset);
+    p.stiffness = table.positive("stiffness", p.stiffness);
+    p.damping = table.non_negative("damping", p.damping);
+    p.mu = table.non_negative("mu", p.mu);
+    if (table.has("tangential_stiffness")) p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
+    if (table.has("tangential_damping")) p.tangential_damping = table.non_negative("tangential_damping", 0.0);
+    const double radius = table.non_negative("radius", info.sphere_radius);
+    impedance = construct(table, [&] { return std::make_unique<components::KikuuweContact>(name, p); });
+    map = std::make_unique<components::ContactPointMap>(*b, radius, p.normal);
+  } else if (type == "kikuuwe_friction") {
+    components::KikuuweFrictionParams p;
+    map = joint_map();
+    if (!map) map = point_map();
+    p.dimension = map->force_size();
+    p.stiffness = table.positive("stiffness", p.stiffness);
+    p.damping = table.non_negative("damping", p.damping);
+    p.force_limit = table.non_negative("force_limit", p.force_limit);
+    impedance = construct(table, [&] { return std::make_unique<components::KikuuweFriction>(name, p); });
+  } else if (type == "lugre") {
+    components::LuGreParams p;
+    map = joint_only();
+    p.stiffness = table.positive("stiffness", p.stiffness);
+    p.damping = table.non_negative("damping", p.damping);
+    p.viscous = table.non_negative("viscous", p.viscous);
+    p.force_limit = table.positive("force_limit", p.force_limit);
+    p.static_limit = table.non_negative("static_limit", p.static_limit);
+    p.stribeck_velocity = table.non_negative("stribeck_velocity", p.stribeck_velocity);
+    if (p.stribeck_velocity > 0.0 && !table.has("static_limit")) {
+      table.fail("static_limit", "missing (the Stribeck effect needs the static level too)");
+    }
+    p.initial_e = table.number("initial_e", p.initial_e);
+    impedance = construct(table, [&] { return std::make_unique<components::LuGre>(name, p); });
+  } else if (type == "dahl") {
+    components::DahlParams p;
+    map = joint_only();
+    p.stiffness = table.positive("stiffness", p.stiffness);
+    p.force_limit = table.positive("force_limit", p.force_limit);
+    p.initial_e = table.number("initial_e", p.initial_e);
+    impedance = construct(table, [&] { return std::make_unique<components::Dahl>(name, p); });
+  } else if (type == "spring_damper") {
+    components::SpringDamperParams p;
+    map = joint_map();
+    if (!map) map = point_map();
+    p.dimension = map->force_size();
+    p.stiffness = table.non_negative("stiffness", p.stiffness);
+    p.damping = table.non_negative("damping", p.damping);
+    if (table.has("rest")) {
+      const toml::node* rest = table.node("rest");
+      std::vector<double> v;
+      if (rest->is_number()) v.push_back(rest->value<double>().value());
+      else v = table.numbers("rest");
+      if (static_cast<int>(v.size()) != p.dimension) {
+        table.fail("rest", "expected " + std::to_string(p.dimension) + " number(s)");
+      }
+      p.rest = Eigen::Map<const core::Vec>(v.data(), static_cast<Eigen::Index>(v.size()));
+    }
+    impedance = construct(table, [&] { return std::make_unique<components::SpringDamper>(name, p); });
+  } else if (type == "penalty_joint") {
+    components::PenaltyJointParams p;
+    const core::Body* child = pose_body(table, "body");
+    const core::Body* parent = table.has("parent") ? pose_body(table, "parent") : nullptr;
+    if (!child->can_rotate() || (parent != nullptr && !parent->can_rotate())) {
+      table.fail("body", "a penalty joint connects rigid bodies (or a rigid body and the ground)");
+    }
+    if (parent == child) table.fail("parent", "must differ from `body`");
+    const Vec3 point = table.vec3("point", Vec3::Zero());
+    const Vec3 parent_point = table.vec3("parent_point", Vec3::Zero());
+    p.axis_child = unit(table, "axis", p.axis_child);
+    p.axis_parent = unit(table, "parent_axis", p.axis_parent);
+    p.separation_stiffness = table.positive("separation_stiffness", p.separation_stiffness);
+    p.separation_damping = table.non_negative("separation_damping", p.separation_damping);
+    p.bending_stiffness = table.positive("bending_stiffness", p.bending_stiffness);
+    p.bending_damping = table.non_negative("bending_damping", p.bending_damping);
+    p.friction_stiffness = table.positive("friction_stiffness", p.friction_stiffness);
+    p.friction_damping = table.non_negative("friction_damping", p.friction_damping);
+    p.friction_limit = table.non_negative("friction_limit", p.friction_limit);
+    if (table.has("reference")) {
+      const std::vector<double> q = table.numbers("reference");
+      if (q.size() != 4) table.fail("reference", "expected a quaternion [w, x, y, z]");
+      p.reference = core::Quat(q[0], q[1], q[2], q[3]);
+      if (!(p.reference.norm() > 1e-12)) table.fail("reference", "must be a non-zero quaternion");
+      p.reference.normalize();
+    }
+    p.angle_offset = table.number("angle_offset", p.angle_offset);
+    p.initial_e = table.number("initial_e", p.initial_e);
+    impedance = construct(table, [&] { return std::make_unique<components::PenaltyJoint>(name, p); });
+    map = std::make_unique<components::FramePairMap>(parent, parent_point, *child, point);
+  } else {  // torque_source
+    map = joint_map();
+    if (!map) {
+      const core::Body* child = pose_body(table, "body");
+      const core::Body* parent = table.has("parent") ? pose_body(table, "parent") : nullptr;
+      if (!child->can_rotate() || (parent != nullptr && !parent->can_rotate())) {
+        table.fail("body", "a torque needs bodies that rotate (rigid_body) or a planar_arm joint");
+      }
+      if (parent == child) table.fail("parent", "must differ from `body`");
+      const Vec3 axis = unit(table, "axis", Vec3::UnitZ());
+      map = std::make_unique<AxisTorqueMap>(*child, parent, axis);
+    }
+    std::vector<components::TorqueSource::Profile> profiles{profile(table, "torque")};
+    impedance = construct(table, [&] {
+      return std::make_unique<components::TorqueSource>(name, std::move(profiles));
+    });
+  }
+  // Elements with a slip speed (contacts, joint friction) get stick/slip events.
+  if (impedance->has_slip()) stick_thresholds_[name] = table.positive("stick_threshold", 1e-3);
+  table.finish();
+  impedance_types_.emplace(name, type);
+  network_.add_impedance(std::move(impedance), std::move(map));
+}
+
+}  // namespace stiction::scene

@@ -1,0 +1,46 @@
+// Factories for the component tables of a scene: [bodies.NAME] (admittances) and
+// [impedances.NAME] (impedances with their wiring). One place holds the defaults and ranges
+// of every key (docs/scene_format.md lists them).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/body.hpp"
+#include "core/network.hpp"
+#include "scene/toml_reader.hpp"
+
+namespace stiction::scene {
+
+class ComponentBuilder {
+ public:
+  ComponentBuilder(core::Network& network, const core::Vec3& gravity)
+      : network_(network), gravity_(gravity) {}
+
+  // The entries of [bodies] or [impedances] in file order (toml++ keeps keys sorted; the
+  // state layout and the CSV columns follow the order the author wrote).
+  std::vector<TableReader> entries(TableReader& section);
+
+  void add_body(TableReader& table);
+  void add_impedance(TableReader& table);
+
+  const std::map<std::string, double>& stick_thresholds() const { return stick_thresholds_; }
+
+ private:
+  struct BodyInfo {
+    core::Admittance* admittance = nullptr;
+    double sphere_radius = 0.0;  // for the default contact radius; 0 if not a sphere
+  };
+  void check_name(TableReader& table);
+  const BodyInfo& body(TableReader& table, std::string_view key);
+  const core::Body* pose_body(TableReader& table, std::string_view key);
+
+  core::Network& network_;
+  core::Vec3 gravity_;
+  std::map<std::string, BodyInfo> bodies_;
+  std::map<std::string, std::string> impedance_types_;
+  std::map<std::string, double> stick_thresholds_;
+};
+
+}  // namespace stiction::scene

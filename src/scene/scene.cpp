@@ -1,0 +1,142 @@
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "components/admittance/planar_arm.hpp"
+#include "components/admittance/point_mass.hpp"
+#include "components/admittance/rigid_body.hpp"
+#include "core/integrator.hpp"
+#include "scene/components.hpp"
+#include "scene/overrides.hpp"
+
+namespace stiction::scene {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Tables owned by the renderer and the plotter (validated there, not here).
+constexpr const char* kForeignSections[] = {"render", "camera", "overlay", "plots"};
+
+toml::table parse_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": error: cannot read the scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    return toml::parse(text.str(), path.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError::at(e.source(), std::string(e.description()));
+  }
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+core::RunOptions read_simulation(TableReader& root) {
+  core::RunOptions run;
+  std::optional<TableReader> sim = root.subtable("simulation");
+  if (!sim) return run;
+  const auto names = core::integrator_names();
+  run.integrator = sim->string("integrator", run.integrator);
+  if (std::find(names.begin(), names.end(), run.integrator) == names.end()) {
+    sim->fail("integrator", "unknown integrator '" + run.integrator + "' (expected one of " +
+                                join(names) + ")");
+  }
+  run.dt = sim->positive("dt", run.dt);
+  run.duration = sim->positive("duration", run.duration);
+  run.output_rate = sim->positive("output_rate", run.output_rate);
+  run.energy_growth_limit = sim->positive("energy_growth_limit", run.energy_growth_limit);
+  sim->finish();
+  return run;
+}
+
+}  // namespace
+
+std::vector<fs::path> scene_directories() {
+  return {fs::path(STICTION_INSTALL_DATA_DIR) / "scenes", fs::path(STICTION_SOURCE_DATA_DIR) / "scenes"};
+}
+
+fs::path find_scene(const std::string& name_or_path) {
+  std::error_code ec;
+  const fs::path as_path(name_or_path);
+  if (fs::is_regular_file(as_path, ec)) return as_path;
+  const bool looks_like_name = as_path.filename() == as_path && !as_path.has_extension();
+  if (looks_like_name) {
+    for (const fs::path& dir : scene_directories()) {
+      const fs::path candidate = dir / (name_or_path + ".toml");
+      if (fs::is_regular_file(candidate, ec)) return candidate;
+    }
+  }
+  std::vector<std::string> names;
+  for (const auto& [name, description] : bundled_scenes()) names.push_back(name);
+  throw InputError("error: SCENE '" + name_or_path + "': no such file" +
+                   (looks_like_name ? " or bundled scene (bundled: " + join(names) + ")" : ""));
+}
+
+std::vector<std::pair<std::string, std::string>> bundled_scenes() {
+  std::map<std::string, std::string> found;  // the first directory wins, as in find_scene
+  for (const fs::path& dir : scene_directories()) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      if (entry.path().extension() != ".toml") continue;
+      const std::string name = entry.path().stem().string();
+      if (found.contains(name)) continue;
+      std::string description;
+      try {
+        const toml::table doc = toml::parse_file(entry.path().string());
+        description = doc["description"].value_or(std::string{});
+      } catch (const toml::parse_error&) {
+        description = "(unreadable: run `stiction check " + name + "`)";
+      }
+      found.emplace(name, description);
+    }
+  }
+  return {found.begin(), found.end()};
+}
+
+Scene load_scene(const std::string& name_or_path, const std::vector<std::string>& overrides) {
+  const fs::path path = find_scene(name_or_path);
+  toml::table document = parse_file(path);
+  for (const std::string& assignment : overrides) apply_override(document, assignment);
+  return build_scene(std::move(document), path);
+}
+
+Scene build_scene(toml::table document, const fs::path& path) {
+  Scene scene;
+  scene.path = path;
+  scene.document = std::move(document);
+  TableReader root(scene.document, "");
+  scene.name = root.string("name", path.stem().string());
+  scene.description = root.string("description", "");
+  for (const char* section : kForeignSections) root.node(section);
+  const core::Vec3 gravity = root.vec3("gravity", core::Vec3(0.0, 0.0, -9.8));
+  scene.run = read_simulation(root);
+
+  scene.network = std::make_unique<core::Network>();
+  ComponentBuilder builder(*scene.network, gravity);
+  if (auto bodies = root.subtable("bodies")) {
+    for (TableReader& body : builder.entries(*bodies)) builder.add_body(body);
+    bodies->finish();
+  }
+  if (auto impedances = root.subtable("impedances")) {
+    for (TableReader& impedance : builder.entries(*impedances)) builder.add_impedance(impedance);
+    impedances->finish();
+  }
+  root.finish();
+  if (scene.network->admittances().empty()) {
+    throw InputError::at(scene.document.source(), "the scene has no [bodies]");
+  }
+  scene.stick_thresholds = builder.stick_thresholds();
+  scene.run.stick_thresholds = scene.stick_thresholds;
+  scene.network->finalize();
+  return scene;
+}
+
+}  // namespace stiction::scene

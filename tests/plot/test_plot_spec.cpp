@@ -1,0 +1,204 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "plot/plot_spec.hpp"
+#include "scene/toml_reader.hpp"
+#include "synthetic.hpp"
+
+using namespace stiction;
+
+namespace {
+
+const std::vector<std::string> kColumns{"t", "sphere.p.z", "sphere.v.x", "ground.slip.x"};
+
+std::vector<plot::PlotSpec> read(const std::string& text) {
+  const toml::table doc = toml::parse(std::string_view(text), std::string_view("scenes/test.toml"));
+  return plot::read_plot_specs(doc, "scenes/test.toml", kColumns);
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    read(text);
+  } catch (const scene::InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("plot specs are read from [[plots]]", "[plot][spec]") {
+  const auto specs = read(R"(
+[simulation]
+duration = 1.0
+
+[[plots]]
+name = "fig4"
+title = "Sphere"
+size = [1200, 800]
+time = [0.0, 0.8]
+events = ["ground.stick_time"]
+  [[plots.panels]]
+  signals = ["sphere.v.x", "ground.slip.x"]
+  legend = ["centre", "contact point"]
+  label = "Horizontal velocity"
+  unit = "m/s"
+  [[plots.panels]]
+  signals = ["sphere.p.z"]
+  log = true
+  relative_to = 0.5
+
+[[plots]]
+  [[plots.panels]]
+  signals = ["sphere.p.z"]
+)");
+  REQUIRE(specs.size() == 2);
+  const plot::PlotSpec& a = specs[0];
+  CHECK(a.name == "fig4");
+  CHECK(a.title == "Sphere");
+  CHECK(a.width == 1200);
+  CHECK(a.height == 800);
+  CHECK(a.t_min == 0.0);
+  CHECK(a.t_max == 0.8);
+  CHECK(a.only_events == std::vector<std::string>{"ground.stick_time"});
+  REQUIRE(a.panels.size() == 2);
+  CHECK(a.panels[0].signals == std::vector<std::string>{"sphere.v.x", "ground.slip.x"});
+  CHECK(a.panels[0].legend[1] == "contact point");
+  CHECK(a.panels[0].unit == "m/s");
+  CHECK_FALSE(a.panels[0].log);
+  CHECK(a.panels[1].log);
+  CHECK(a.panels[1].relative_to == 0.5);
+  CHECK(specs[1].name == "plot2");
+  CHECK(specs[1].width == 1600);
+  CHECK(specs[1].mark_events);
+  CHECK(read("[simulation]\nduration = 1.0\n").empty());
+}
+
+TEST_CASE("an unknown signal names file, line, column, the signal and the columns",
+          "[plot][spec]") {
+  const std::string message = error_of(R"([[plots]]
+name = "p"
+  [[plots.panels]]
+  signals = ["sphere.v.x", "sphere.vel.x"]
+)");
+  CHECK_THAT(message, Catch::StartsWith("scenes/test.toml:4:28: error:"));
+  CHECK_THAT(message, Catch::Contains("'sphere.vel.x'"));
+  CHECK_THAT(message, Catch::Contains("sphere.p.z, sphere.v.x, ground.slip.x"));
+  CHECK_THAT(message, Catch::Contains("plots[0].panels[0].signals"));
+}
+
+TEST_CASE("bad plot specs are input errors at their position", "[plot][spec]") {
+  CHECK_THAT(
+      error_of("[[plots]]\ncolour = 1\n  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n"),
+      Catch::StartsWith("scenes/test.toml:2:") && Catch::Contains("unknown key 'plots[0].colour'"));
+  CHECK_THAT(
+      error_of("[[plots]]\n  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n  colour = 1\n"),
+      Catch::Contains("unknown key 'plots[0].panels[0].colour'"));
+  CHECK_THAT(error_of("[[plots]]\nname = \"x\"\n"), Catch::Contains("panels"));
+  CHECK_THAT(error_of("[[plots]]\n  [[plots.panels]]\n  label = \"v\"\n"),
+             Catch::Contains("signals") && Catch::Contains("missing"));
+  CHECK_THAT(error_of("[[plots]]\n  [[plots.panels]]\n  signals = []\n"),
+             Catch::Contains("at least one signal"));
+  CHECK_THAT(error_of("[[plots]]\n  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n"
+                      "  legend = [\"a\", \"b\"]\n"),
+             Catch::StartsWith("scenes/test.toml:4:") && Catch::Contains("one entry per signal"));
+  CHECK_THAT(
+      error_of("[[plots]]\nsize = [100, 100]\n  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n"),
+      Catch::StartsWith("scenes/test.toml:2:") && Catch::Contains("size"));
+  CHECK_THAT(
+      error_of("[[plots]]\nname = \"../x\"\n  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n"),
+      Catch::Contains("file name"));
+  CHECK_THAT(
+      error_of("[[plots]]\ntime = [1, 0]\n  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n"),
+      Catch::Contains("end > start"));
+  CHECK_THAT(
+      error_of("[[plots]]\nname = \"a\"\n  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n"
+               "[[plots]]\nname = \"a\"\n  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n"),
+      Catch::StartsWith("scenes/test.toml:6:") && Catch::Contains("exists already"));
+  CHECK_THAT(error_of("plots = 3\n"), Catch::Contains("array of tables"));
+}
+
+TEST_CASE("the paper figures are the defaults when their signals exist", "[plot][spec]") {
+  const auto sphere = plot::default_plot_specs(plot::testing::sphere_run(0.1).columns());
+  REQUIRE(sphere.size() == 1);
+  CHECK(sphere[0].name == plot::paper_fig4_spec().name);
+  const auto arm = plot::default_plot_specs(plot::testing::arm_run(0.1).columns());
+  REQUIRE(arm.size() == 1);
+  CHECK(arm[0].name == plot::paper_fig7_spec().name);
+  const auto other = plot::default_plot_specs({"t", "box.p.x", "box.p.y", "box.v.x", "spring.f"});
+  REQUIRE(other.size() == 1);
+  REQUIRE(other[0].panels.size() == 3);
+  CHECK(other[0].panels[0].signals == std::vector<std::string>{"box.p.x", "box.p.y"});
+  CHECK(other[0].panels[2].signals == std::vector<std::string>{"spring.f"});
+  CHECK(plot::default_plot_specs({"t"}).empty());
+}
+
+TEST_CASE("figures from a run: series, events and relative signals", "[plot][spec]") {
+  const core::Trajectory run = plot::testing::sphere_run(1.0);
+  const std::map<std::string, double> events{{"ground.stick_time", 0.6033},
+                                             {"ground.slip_time", 0.01}};
+  plot::PlotSpec spec = plot::paper_fig4_spec();
+  plot::Figure figure = plot::make_figure(spec, run, events);
+  REQUIRE(figure.panels.size() == 2);
+  CHECK(figure.panels[0].series.size() == 2);
+  CHECK(figure.panels[0].series[0].x.size() == static_cast<std::size_t>(run.row_count()));
+  REQUIRE(figure.events.size() == 2);
+  CHECK(figure.events[0].label == "ground slip: t = 0.010 s");
+  CHECK(figure.events[1].label == "ground stick: t = 0.603 s");
+  spec.only_events = {"ground.stick_time"};
+  CHECK(plot::make_figure(spec, run, events).events.size() == 1);
+  spec.mark_events = false;
+  CHECK(plot::make_figure(spec, run, events).events.empty());
+
+  spec.t_min = 0.2;
+  spec.t_max = 0.4;
+  spec.panels[1].relative_to = 0.5;  // after the window: no samples, no NaN
+  figure = plot::make_figure(spec, run, {});
+  const auto& x = figure.panels[0].series[0].x;
+  CHECK(x.front() >= 0.199 - 1e-9);
+  CHECK(x.back() <= 0.401 + 1e-9);
+  CHECK(figure.panels[1].series[0].x.empty());
+
+  plot::PlotSpec rel;
+  plot::PanelSpec v;
+  v.signals = {"sphere.v.x"};
+  v.relative_to = 0.25;
+  rel.panels.push_back(v);
+  figure = plot::make_figure(rel, run, {});
+  const plot::Series& s = figure.panels[0].series[0];
+  CHECK(s.x.front() == Approx(0.25));
+  CHECK(s.y.front() == Approx(0.0).margin(1e-12));
+  CHECK(s.y.back() < 0.0);
+
+  plot::PlotSpec bad = plot::paper_fig7_spec();
+  CHECK_THROWS_WITH(plot::make_figure(bad, run, {}),
+                    Catch::Contains("arm.theta.0") && Catch::Contains("sphere.v.x"));
+}
+
+TEST_CASE("comparison figures label runs by name and need the signals in every run",
+          "[plot][spec]") {
+  const core::Trajectory a = plot::testing::arm_run(6.0);
+  const core::Trajectory b = plot::testing::arm_run(6.0, 0.01);
+  const std::vector<plot::Run> runs{{"two_link", &a}, {"two_link_lugre", &b}};
+  const plot::PlotSpec spec = plot::default_comparison_spec(runs);
+  CHECK(spec.name == plot::drift_comparison_spec().name);
+  const plot::Figure figure = plot::make_comparison_figure(spec, runs);
+  CHECK(figure.title == "two_link vs two_link_lugre");
+  REQUIRE(figure.panels.size() == 3);
+  REQUIRE(figure.panels[0].series.size() == 2);
+  CHECK(figure.panels[0].series[0].label == "two_link");
+  CHECK(figure.panels[0].series[1].label == "two_link_lugre");
+  REQUIRE(figure.panels[2].series.size() == 4);
+  CHECK(figure.panels[2].series[1].label == "two_link_lugre: \u03B8\u2080");
+  // One colour per run in every panel, one dash pattern per series within a panel.
+  CHECK(figure.panels[2].series[0].style->colour == figure.panels[0].series[0].style->colour);
+  CHECK(figure.panels[2].series[0].style->dash != figure.panels[2].series[2].style->dash);
+  // Drift panel: Kikuuwe-like run flat at zero, drifting run growing.
+  CHECK(std::abs(figure.panels[2].series[0].y.back()) < 1e-12);
+  CHECK(figure.panels[2].series[1].y.back() == Approx(0.01).epsilon(0.05));
+
+  const core::Trajectory sphere = plot::testing::sphere_run(0.1);
+  CHECK_THROWS_WITH(
+      plot::make_comparison_figure(spec, {{"two_link", &a}, {"sphere_roll", &sphere}}),
+      Catch::StartsWith("run 'sphere_roll'"));
+}
