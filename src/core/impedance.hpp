@@ -39,6 +39,11 @@ class Impedance {
   virtual void write_signals(ConstVecRef x_hat, ConstVecRef y, ConstVecRef u,
                              VecRef out) const = 0;
 
+  // Which smooth piece of its law the element is on at (x_hat, y; tau): e.g. 0 open,
+  // 1 stuck, 2 sliding for a contact. Linear stability analysis is only meaningful while no
+  // element changes regime during a step; smooth elements return 0.
+  virtual int regime(ConstVecRef /*x_hat*/, ConstVecRef /*y*/, double /*tau*/) const { return 0; }
+
   // Power this element feeds into the admittances at (x_hat, u), for elements that are
   // energy sources (prescribed torques); passive elements return 0. The energy monitor
   // allows the network energy to grow by what the sources put in, and no more.

@@ -211,6 +211,18 @@ Vec3 Network::slip_velocity(int impedance, ConstVecRef x) {
   return impedances_[impedance]->slip_velocity(x_hat);
 }
 
+std::size_t Network::regime_signature(ConstVecRef x, double tau) {
+  std::size_t signature = 0;
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const Slot& s = impedance_slots_[i];
+    auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+    maps_[i]->motion(x, x_hat);
+    const int r = impedances_[i]->regime(x_hat, x.segment(s.state_offset, s.state_size), tau);
+    signature = signature * 31 + static_cast<std::size_t>(r + 1);
+  }
+  return signature;
+}
+
 bool Network::has_sources() const {
   for (const auto& i : impedances_) {
     if (i->is_source()) return true;

@@ -53,6 +53,10 @@ class Network {
   // Slip velocity of impedance i (which must have has_slip()) at state x.
   Vec3 slip_velocity(int impedance, ConstVecRef x);
 
+  // Regimes of all impedances at (x; tau) folded into one number: equal numbers mean the
+  // same smooth piece of the system (see Impedance::regime).
+  std::size_t regime_signature(ConstVecRef x, double tau);
+
   // Power fed in by source elements at (t, x).
   double source_power(double t, ConstVecRef x);
   bool has_sources() const;

@@ -52,6 +52,15 @@ void KikuuweContact::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, do
   u.head<3>() = -on_body;
 }
 
+int KikuuweContact::regime(ConstVecRef x_hat, ConstVecRef y, double tau) const {
+  Eigen::Vector3d u;
+  Eigen::Vector2d y_dot;
+  evaluate(0.0, x_hat, y, tau, u, y_dot);
+  if (u.isZero(0.0)) return 0;  // open
+  const Eigen::Vector2d v_t(t1_.dot(Vec3(x_hat.segment<3>(3))), t2_.dot(Vec3(x_hat.segment<3>(3))));
+  return y_dot == v_t ? 1 : 2;  // stuck (eps == v exactly) or sliding
+}
+
 Vec3 KikuuweContact::slip_velocity(ConstVecRef x_hat) const {
   const Vec3 v_c = x_hat.segment<3>(3);
   return v_c - n_.dot(v_c) * n_;

@@ -40,6 +40,7 @@ class KikuuweContact final : public core::Impedance {
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
   double stiffness() const override { return params_.stiffness; }
+  int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   bool has_slip() const override { return true; }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;

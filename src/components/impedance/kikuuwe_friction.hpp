@@ -36,6 +36,12 @@ class KikuuweFriction final : public core::Impedance {
                      core::VecRef out) const override;
   double stiffness() const override { return params_.stiffness; }
   bool has_slip() const override { return params_.dimension <= 3; }
+  int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override {
+    const int n = params_.dimension;
+    const double norm = ((params_.damping + tau * params_.stiffness) * x_hat.segment(n, n) +
+                         params_.stiffness * y).norm();
+    return norm <= params_.force_limit ? 1 : 2;
+  }
   double stored_energy(core::ConstVecRef /*x_hat*/, core::ConstVecRef y) const override {
     return 0.5 * params_.stiffness * y.squaredNorm();
   }

@@ -104,6 +104,16 @@ void PenaltyJoint::evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVe
   u.tail<3>() = p.bending_stiffness * bend + p.bending_damping * w_perp + f[0] * n;
 }
 
+int PenaltyJoint::regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const {
+  Eigen::Matrix<double, 6, 1> u;
+  Eigen::Matrix<double, 1, 1> y_dot;
+  evaluate(0.0, x_hat, y, tau, u, y_dot);
+  const Frame c = frame_at(x_hat, 0);
+  const Frame b = frame_at(x_hat, 13);
+  const Vec3 n = mean_axis(c.q * params_.axis_child, b.q * params_.axis_parent);
+  return y_dot[0] == n.dot(c.w - b.w) ? 1 : 2;
+}
+
 double PenaltyJoint::stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const {
   const auto& p = params_;
   const Frame c = frame_at(x_hat, 0);

@@ -63,6 +63,8 @@ class PenaltyJoint final : public core::Impedance {
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   // Stick/slip events on the relative rate about the axis (in the x entry, as for joints).
   bool has_slip() const override { return true; }
+  // 1 while the friction about the axis is stuck, 2 while it slides.
+  int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
   const PenaltyJointParams& params() const { return params_; }
 
