@@ -55,19 +55,17 @@ struct FusedSphere {
     static constexpr double offset[4] = {0.0, 0.5, 0.5, 1.0};
     static constexpr double tau[4] = {0.5, 0.5, 1.0, 1.0};
     static constexpr double weight[4] = {1.0 / 6, 2.0 / 6, 2.0 / 6, 1.0 / 6};
-    Eigen::Matrix<double, 13, 1> xi = Eigen::Matrix<double, 13, 1>::Zero(), sum_x;
-    Eigen::Vector2d eps = Eigen::Vector2d::Zero(), sum_e;
-    sum_x.setZero();
-    sum_e.setZero();
+    Eigen::Matrix<double, 13, 1> xi[4];
+    Eigen::Vector2d eps[4];
     for (int r = 0; r < 4; ++r) {
-      const Eigen::Matrix<double, 13, 1> s = x + (offset[r] * T) * xi;  // (27c)
-      const Eigen::Vector2d es = e + (offset[r] * T) * eps;              // (27b)
-      stage(s, es, tau[r] * T, xi, eps);
-      sum_x += weight[r] * xi;
-      sum_e += weight[r] * eps;
+      const Eigen::Matrix<double, 13, 1> s = r == 0 ? x : Eigen::Matrix<double, 13, 1>(x + (offset[r] * T) * xi[r - 1]);  // (27c)
+      const Eigen::Vector2d es = r == 0 ? e : Eigen::Vector2d(e + (offset[r] * T) * eps[r - 1]);  // (27b)
+      stage(s, es, tau[r] * T, xi[r], eps[r]);
     }
-    x += T * sum_x;  // (27h)
-    e += T * sum_e;  // (27g)
+    for (int r = 0; r < 4; ++r) {
+      x += (T * weight[r]) * xi[r];  // (27h)
+      e += (T * weight[r]) * eps[r];  // (27g)
+    }
     x.segment<4>(6).normalize();
   }
 };

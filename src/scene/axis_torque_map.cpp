@@ -35,11 +35,11 @@ void AxisTorqueMap::apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef
   const auto xc = x.segment(child_slot_.state_offset, child_slot_.state_size);
   const auto mc = child_.motion(xc);
   const Vec3 torque = -u[0] * (mc.q * axis_);
-  child_.add_wrench(xc, mc.p, Vec3::Zero(), torque,
+  child_.add_wrench(xc, Vec3::Zero(), Vec3::Zero(), torque,
                     u_hat.segment(child_slot_.input_offset, child_slot_.input_size));
   if (parent_ != nullptr) {
     const auto xp = x.segment(parent_slot_.state_offset, parent_slot_.state_size);
-    parent_->add_wrench(xp, parent_->motion(xp).p, Vec3::Zero(), -torque,
+    parent_->add_wrench(xp, Vec3::Zero(), Vec3::Zero(), -torque,
                         u_hat.segment(parent_slot_.input_offset, parent_slot_.input_size));
   }
 }

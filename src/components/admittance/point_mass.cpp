@@ -45,7 +45,7 @@ core::BodyMotion PointMass::motion(ConstVecRef x) const {
   return m;
 }
 
-void PointMass::add_wrench(ConstVecRef /*x*/, const Vec3& /*at*/, const Vec3& force,
+void PointMass::add_wrench(ConstVecRef /*x*/, const Vec3& /*lever*/, const Vec3& force,
                            const Vec3& /*torque*/, VecRef u_hat) const {
   // A point has no rotational inertia: a force acts at the point itself whatever the
   // lever arm, and a free torque has nothing to turn. Maps only attach at the origin.

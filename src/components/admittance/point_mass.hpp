@@ -28,7 +28,7 @@ class PointMass final : public core::Body {
   double energy(core::ConstVecRef x) const override;
 
   core::BodyMotion motion(core::ConstVecRef x) const override;
-  void add_wrench(core::ConstVecRef x, const core::Vec3& at, const core::Vec3& force,
+  void add_wrench(core::ConstVecRef x, const core::Vec3& lever, const core::Vec3& force,
                   const core::Vec3& torque, core::VecRef u_hat) const override;
   bool can_rotate() const override { return false; }
   const PointMassParams& params() const { return params_; }

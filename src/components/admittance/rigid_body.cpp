@@ -80,12 +80,11 @@ core::BodyMotion RigidBody::motion(ConstVecRef x) const {
   return m;
 }
 
-void RigidBody::add_wrench(ConstVecRef x, const Vec3& at, const Vec3& force, const Vec3& torque,
-                           VecRef u_hat) const {
-  const Vec3 p = x.segment<3>(0);
+void RigidBody::add_wrench(ConstVecRef x, const Vec3& lever, const Vec3& force,
+                           const Vec3& torque, VecRef u_hat) const {
   const Quat q = quat_of(x).normalized();
   u_hat.segment<3>(0) += force;
-  u_hat.segment<3>(3) += q.conjugate() * ((at - p).cross(force) + torque);
+  u_hat.segment<3>(3) += q.conjugate() * (lever.cross(force) + torque);
 }
 
 }  // namespace stiction::components

@@ -34,7 +34,7 @@ class RigidBody final : public core::Body {
   double energy(core::ConstVecRef x) const override;
 
   core::BodyMotion motion(core::ConstVecRef x) const override;
-  void add_wrench(core::ConstVecRef x, const core::Vec3& at, const core::Vec3& force,
+  void add_wrench(core::ConstVecRef x, const core::Vec3& lever, const core::Vec3& force,
                   const core::Vec3& torque, core::VecRef u_hat) const override;
   bool can_rotate() const override { return true; }
   const RigidBodyParams& params() const { return params_; }

@@ -16,8 +16,7 @@ void ContactPointMap::motion(core::ConstVecRef x, core::VecRef x_hat) const {
 
 void ContactPointMap::apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const {
   const auto xs = x.segment(slot_.state_offset, slot_.state_size);
-  const Vec3 p = body_.motion(xs).p;
-  body_.add_wrench(xs, p + offset_, -Vec3(u.head<3>()), Vec3::Zero(),
+  body_.add_wrench(xs, offset_, -Vec3(u.head<3>()), Vec3::Zero(),
                    u_hat.segment(slot_.input_offset, slot_.input_size));
 }
 

@@ -57,11 +57,11 @@ void FramePairMap::apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef 
   const Vec3 f = u.head<3>();
   const Vec3 torque = u.tail<3>();
   const auto xc = x.segment(child_slot_.state_offset, child_slot_.state_size);
-  child_.add_wrench(xc, child_.motion(xc).point(child_local_), -f, -torque,
+  child_.add_wrench(xc, child_.motion(xc).q * child_local_, -f, -torque,
                     u_hat.segment(child_slot_.input_offset, child_slot_.input_size));
   if (parent_ != nullptr) {
     const auto xp = x.segment(parent_slot_.state_offset, parent_slot_.state_size);
-    parent_->add_wrench(xp, parent_->motion(xp).point(parent_local_), f, torque,
+    parent_->add_wrench(xp, parent_->motion(xp).q * parent_local_, f, torque,
                         u_hat.segment(parent_slot_.input_offset, parent_slot_.input_size));
   }
 }
