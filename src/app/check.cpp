@@ -8,7 +8,9 @@
 #include "components/impedance/kikuuwe_friction.hpp"
 #include "components/impedance/lugre.hpp"
 #include "components/impedance/spring_damper.hpp"
+#include "app/network_graph.hpp"
 #include "core/integrator.hpp"
+#include "core/stability.hpp"
 #include "scene/scene.hpp"
 
 namespace stiction::app {
@@ -72,7 +74,7 @@ std::string labels_of(const core::LayoutEntry& entry) {
 
 }  // namespace
 
-int check_command(const std::string& scene_name) {
+int check_command(const std::string& scene_name, const std::string& graph_path) {
   scene::Scene scene = scene::load_scene(scene_name);
   core::Network& network = *scene.network;
   const core::RunOptions& run = scene.run;
@@ -93,8 +95,7 @@ int check_command(const std::string& scene_name) {
                 labels_of(e).c_str());
   }
 
-  const core::Tableau& tableau = core::tableau_by_name(run.integrator);
-  std::printf("\ndt advice for %s (stiff modes, linearized at the initial state):\n", run.integrator.c_str());
+  std::printf("\nstiffest elements (linearized at the initial state):\n");
   bool any = false;
   for (std::size_t i = 0; i < network.impedances().size(); ++i) {
     const core::Impedance& imp = *network.impedances()[i];
@@ -107,32 +108,39 @@ int check_command(const std::string& scene_name) {
                   imp.name().c_str(), std::string(imp.type()).c_str(), K);
       continue;
     }
-    const double m_eff = 1.0 / mobility;
     const double omega = std::sqrt(K * mobility);
-    std::printf("  %s (%s): K = %g against an effective mass/inertia %g: omega = %.5g rad/s\n",
-                imp.name().c_str(), std::string(imp.type()).c_str(), K, m_eff, omega);
     const double B = damping_of(imp);
     const double zeta = std::isfinite(B) ? B * mobility / (2.0 * omega) : std::nan("");
-    if (tableau.imaginary_stability > 0.0) {
-      const double limit = tableau.imaginary_stability / omega;
-      std::printf("    %s is stable for dt < %.3g / omega = %.3g s (scene dt %g: %s)\n",
-                  run.integrator.c_str(), tableau.imaginary_stability, limit, run.dt,
-                  run.dt < limit ? "ok" : "TOO LARGE");
-    } else {
-      std::printf("    %s is unstable for an undamped oscillator at any dt: damping is required", run.integrator.c_str());
-      if (std::isfinite(zeta) && zeta > 0.0) {
-        const double limit = 2.0 * zeta / omega;
-        std::printf("; with damping ratio %.3g it needs dt < 2 zeta / omega = %.3g s (scene dt %g: %s)",
-                    zeta, limit, run.dt, run.dt < limit ? "ok" : "TOO LARGE");
-      }
-      std::printf("\n");
-      if (dynamic_cast<const components::KikuuweFriction*>(&imp) != nullptr && run.integrator == "euler") {
-        std::printf("    (while stuck, eq. 19 integrates its spring semi-implicitly under euler: "
-                    "stable for dt < 2 / omega = %.3g s)\n", 2.0 / omega);
-      }
-    }
+    std::printf("  %s (%s): K = %g against an effective mass/inertia %g: omega = %.5g rad/s, "
+                "damping ratio %.3g; an undamped mode at this omega limits rk4 to dt < 2.83 / "
+                "omega = %.3g s\n",
+                imp.name().c_str(), std::string(imp.type()).c_str(), K, 1.0 / mobility, omega,
+                zeta, 2.8284271247461903 / omega);
   }
   if (!any) std::printf("  no stiff elements\n");
+
+  // The real limit depends on all elements at once, on the friction laws' stage sizes and on
+  // the states the scene passes through: linearize the actual step map along a run.
+  std::printf("\npredicted largest stable step (step map linearized at 40 states of a run at "
+              "the scene's settings; a mode growing > 5%% per step counts as unstable):\n");
+  const auto states = core::sample_states(network, run, 40);
+  for (const std::string name : {"euler", "symplectic_euler", "heun", "rk4"}) {
+    const core::StepLimit limit = core::predict_step_limit(network, name, states);
+    if (limit.unbounded) {
+      std::printf("  %-17s no limit found up to 1 s (every stiff state changes regime within "
+                  "such a step)\n", name.c_str());
+    } else if (limit.max_step <= 0.0) {
+      std::printf("  %-17s unstable at every step size tried\n", name.c_str());
+    } else {
+      std::printf("  %-17s dt < %.3g s (limited at t = %.3g s)%s\n", name.c_str(), limit.max_step,
+                  limit.limiting_time,
+                  name == run.integrator ? (run.dt < limit.max_step ? "  scene dt: ok" : "  scene dt: TOO LARGE") : "");
+    }
+  }
+  if (!graph_path.empty()) {
+    write_network_dot(scene, graph_path);
+    std::printf("\nwrote %s\n", graph_path.c_str());
+  }
   return kExitOk;
 }
 

@@ -13,6 +13,9 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitUnstable = 3;
+// Ctrl-C during the render: the video so far is kept as video.partial.mp4 (128 + SIGINT,
+// the shell's convention for a command ended by Ctrl-C).
+inline constexpr int kExitInterrupted = 130;
 
 struct RunArguments {
   std::string scene;
@@ -20,14 +23,40 @@ struct RunArguments {
   std::optional<std::string> integrator;
   std::optional<double> dt;
   std::optional<double> duration;
+  std::optional<double> tolerance;  // selects rk4_adaptive
   std::vector<std::string> overrides;
   bool quiet = false;
-  // Accepted for the contract; rendering is not part of this build yet.
   bool no_video = false, no_plots = false, frames = false;
 };
 
+// `stiction compare SCENE SCENE...`: runs each scene (no video) and writes OUT/compare.png.
+struct CompareArguments {
+  std::vector<std::string> scenes;
+  std::string out;                     // empty: out/compare/
+  std::vector<std::string> overrides;  // applied to every scene
+  bool quiet = false;
+};
+
+// `stiction study SCENE`: speed against accuracy of the integrators (src/app/study.hpp).
+struct StudyArguments {
+  std::string scene;
+  std::string out;                      // empty: out/<scene name>/study/
+  std::vector<std::string> integrators; // empty: all
+  std::vector<double> dts;              // empty: the scene dt times 8, 4, 2, 1, 1/2, ...
+  std::vector<double> tolerances;       // empty: 1e-4 .. 1e-10 for rk4_adaptive
+  std::optional<double> reference_dt;   // empty: scene dt / 16
+  int repeats = 3;
+  std::vector<std::string> overrides;
+  bool quiet = false;
+};
+
 int run_command(const RunArguments& args);
-int check_command(const std::string& scene);
+int study_command(const StudyArguments& args);
+int compare_command(const CompareArguments& args);
+// Validates a scene, prints its state layout, the stiffest elements and the predicted
+// largest stable step of each fixed-step integrator; with a graph path, writes the network
+// as Graphviz DOT.
+int check_command(const std::string& scene, const std::string& graph_path = {});
 int scenes_command();
 
 }  // namespace stiction::app

@@ -37,6 +37,11 @@ int dispatch(int argc, char** argv) {
   CLI::Option* duration_opt = run->add_option("--duration", duration,
                                               "simulated time in s, overrides simulation.duration")
                                   ->check(CLI::PositiveNumber);
+  double tolerance = 0.0;
+  CLI::Option* tolerance_opt =
+      run->add_option("--tolerance", tolerance,
+                      "local error bound per state entry; selects the integrator rk4_adaptive")
+          ->check(CLI::PositiveNumber);
   run->add_option("--set", run_args.overrides,
                   "KEY=VALUE: set a dotted key of the scene to a TOML value (repeatable)")
       ->allow_extra_args(false);
@@ -48,8 +53,50 @@ int dispatch(int argc, char** argv) {
   std::string check_scene;
   CLI::App* check = cli.add_subcommand("check", "validate a scene, print its state layout and dt advice");
   check->add_option("SCENE", check_scene, "bundled scene name or path to a .toml file")->required();
+  std::string check_graph;
+  check->add_option("--graph", check_graph,
+                    "also write the scene's network (Fig. 2 of the paper) as Graphviz DOT");
 
   CLI::App* scenes = cli.add_subcommand("scenes", "list the bundled scenes");
+
+  app::StudyArguments study_args;
+  double reference_dt = 0.0;
+  CLI::App* study = cli.add_subcommand(
+      "study", "speed against accuracy of the integrators on a scene; writes study.csv, study.md, "
+               "work_precision.png");
+  study->add_option("SCENE", study_args.scene, "bundled scene name or path to a .toml file")->required();
+  study->add_option("--integrators", study_args.integrators, "comma-separated integrators (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(core::integrator_names()));
+  study->add_option("--dts", study_args.dts,
+                    "comma-separated step sizes in s (default: scene dt x 8, 4, 2, 1, 1/2, ... pruned)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  study->add_option("--tolerances", study_args.tolerances,
+                    "comma-separated tolerances for rk4_adaptive (default 1e-4 .. 1e-10)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  CLI::Option* reference_dt_opt =
+      study->add_option("--reference-dt", reference_dt, "step of the rk4 reference (default scene dt / 16)")
+          ->check(CLI::PositiveNumber);
+  study->add_option("--repeats", study_args.repeats, "timing repeats per run, median kept (default 3)")
+      ->check(CLI::Range(1, 100));
+  study->add_option("--out", study_args.out, "output directory (default out/<scene name>/study/)");
+  study->add_option("--set", study_args.overrides,
+                    "KEY=VALUE: set a dotted key of the scene to a TOML value (repeatable)")
+      ->allow_extra_args(false);
+  study->add_flag("--quiet", study_args.quiet, "print nothing but errors");
+
+  app::CompareArguments compare_args;
+  CLI::App* compare = cli.add_subcommand(
+      "compare", "run several scenes (no video) and overlay their signals in compare.png");
+  compare->add_option("SCENE", compare_args.scenes, "two or more bundled scene names or .toml paths")
+      ->required();
+  compare->add_option("--out", compare_args.out, "output directory (default out/compare/)");
+  compare->add_option("--set", compare_args.overrides,
+                      "KEY=VALUE: set a dotted key of every scene to a TOML value (repeatable)")
+      ->allow_extra_args(false);
+  compare->add_flag("--quiet", compare_args.quiet, "print nothing but errors");
 
   try {
     cli.parse(argc, argv);
@@ -63,9 +110,15 @@ int dispatch(int argc, char** argv) {
     if (integrator_opt->count() > 0) run_args.integrator = integrator;
     if (dt_opt->count() > 0) run_args.dt = dt;
     if (duration_opt->count() > 0) run_args.duration = duration;
+    if (tolerance_opt->count() > 0) run_args.tolerance = tolerance;
     return app::run_command(run_args);
   }
-  if (*check) return app::check_command(check_scene);
+  if (*compare) return app::compare_command(compare_args);
+  if (*study) {
+    if (reference_dt_opt->count() > 0) study_args.reference_dt = reference_dt;
+    return app::study_command(study_args);
+  }
+  if (*check) return app::check_command(check_scene, check_graph);
   if (*scenes) return app::scenes_command();
   return app::kExitBadInput;
 }

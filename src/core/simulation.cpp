@@ -100,7 +100,6 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   double t_checked = 0.0;
   constexpr long kEnergyCheckEvery = 8;
 
-
   const auto start = std::chrono::steady_clock::now();
   long sample = 0;
   network.write_signals(0.0, x, T, row_now);

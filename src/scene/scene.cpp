@@ -49,6 +49,20 @@ core::RunOptions read_simulation(TableReader& root) {
     sim->fail("integrator", "unknown integrator '" + run.integrator + "' (expected one of " +
                                 join(names) + ")");
   }
+  // A tolerance selects the adaptive integrator unless one is named; a fixed-step integrator
+  // would silently ignore it, and rk4_adaptive cannot run without one.
+  if (sim->has("tolerance")) {
+    run.tolerance = sim->positive("tolerance", run.tolerance);
+    if (!sim->has("integrator")) {
+      run.integrator = "rk4_adaptive";
+    } else if (run.integrator != "rk4_adaptive") {
+      sim->fail("tolerance", "only the integrator rk4_adaptive uses a tolerance (integrator is '" +
+                                 run.integrator + "')");
+    }
+  } else if (run.integrator == "rk4_adaptive") {
+    sim->fail("integrator", "rk4_adaptive needs a tolerance: add tolerance = 1e-8 (for example) "
+                            "to [simulation]");
+  }
   run.dt = sim->positive("dt", run.dt);
   run.duration = sim->positive("duration", run.duration);
   run.output_rate = sim->positive("output_rate", run.output_rate);

@@ -176,9 +176,17 @@ TEST_CASE("cli: check prints the state layout and dt advice") {
   CHECK_THAT(o.out, Contains("[0..12]"));
   CHECK_THAT(o.out, Contains("sphere (rigid_body): p.x p.y p.z"));
   CHECK_THAT(o.out, Contains("ground (kikuuwe_contact): e.0 e.1"));
-  CHECK_THAT(o.out, Contains("rk4 is stable for dt <"));
+  CHECK_THAT(o.out, Contains("predicted largest stable step"));
+  CHECK_THAT(o.out, Contains("rk4               dt < "));
   const Outcome e = stiction({"check", "two_link", "--dt", "1"}, scratch("check2"));
   CHECK(e.code == 2);  // check takes no run options
+  const fs::path dot = scratch("check3") / "net.dot";
+  const Outcome g = stiction({"check", "two_link", "--graph", dot.string()}, scratch("check3"));
+  CHECK(g.code == 0);
+  std::ifstream in(dot);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK_THAT(text, Contains("\"arm\" -> \"joint0_friction\""));
+  CHECK_THAT(text, Contains("\"motor1\" -> \"arm\""));
 }
 
 TEST_CASE("cli: bad input gives exit 2 and FILE:LINE:COL: error: naming the key") {

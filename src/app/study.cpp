@@ -1,0 +1,492 @@
+#include "app/study.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "core/integrator.hpp"
+#include "core/stability.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::app {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Rows whose key error is above this (relative to the signals' scale) have left the
+// asymptotic range: the method is stable but the answer is qualitatively wrong.
+constexpr double kSaturatedError = 0.05;
+// Rows within this factor of the reference's noise are measuring the reference.
+constexpr double kNoiseFactor = 10.0;
+
+std::string format_g(double value, int digits = 3) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  if (n == 0) return kNaN;
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+bool is_fixed_step(const std::string& integrator) { return integrator != "rk4_adaptive"; }
+
+// What the study needs from one reference-like run: the key columns and the stick times.
+struct Measured {
+  std::vector<std::vector<double>> key;  // per key signal, per row
+  std::vector<double> stick_times;       // per slip component, NaN: none
+};
+
+class Study {
+ public:
+  Study(const StudyOptions& options, const StudyLog& log)
+      : options_(options), log_(log), scene_(scene::load_scene(options.scene, options.overrides)) {
+    result_.scene = scene_.name;
+    result_.scene_dt = scene_.run.dt;
+    result_.duration = scene_.run.duration;
+    result_.output_rate = scene_.run.output_rate;
+    result_.reference_dt = options.reference_dt.value_or(scene_.run.dt / 16.0);
+    if (!(result_.reference_dt > 0.0)) throw scene::InputError("--reference-dt: must be > 0");
+    std::vector<std::string> columns{"t"};
+    for (auto& c : scene_.network->signal_columns()) columns.push_back(std::move(c));
+    result_.key_signals = key_signal_columns(columns);
+    if (result_.key_signals.empty()) {
+      throw scene::InputError(scene_.name + ": the scene has no key signals (*.p.*, *.v.*, *.theta.*) to compare");
+    }
+    for (const auto& name : result_.key_signals) key_columns_.push_back(index_of(columns, name));
+    for (const auto& imp : scene_.network->impedances()) {
+      if (imp->has_slip()) result_.slip_components.push_back(imp->name());
+    }
+    integrators_ = options.integrators.empty() ? core::integrator_names() : options.integrators;
+    const auto known = core::integrator_names();
+    for (const auto& name : integrators_) {
+      if (std::find(known.begin(), known.end(), name) == known.end()) {
+        core::make_stepper(name, 1, 1.0, 1.0);  // throws, naming the known integrators
+      }
+    }
+    for (double dt : options.dts) {
+      if (!(dt > 0.0)) throw scene::InputError("--dts: every step must be > 0");
+    }
+    for (double tol : options.tolerances) {
+      if (!(tol > 0.0)) throw scene::InputError("--tolerances: every tolerance must be > 0");
+    }
+  }
+
+  StudyResult run() {
+    const auto start = std::chrono::steady_clock::now();
+    run_reference();
+    for (const auto& integrator : integrators_) {
+      if (is_fixed_step(integrator)) {
+        run_fixed_grid(integrator);
+      } else {
+        run_adaptive_grid(integrator);
+      }
+    }
+    for (const auto& integrator : integrators_) {
+      if (is_fixed_step(integrator)) result_.orders.push_back(observed_order(result_, integrator));
+    }
+    if (options_.bisect) stability_limits();
+    result_.total_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return std::move(result_);
+  }
+
+ private:
+  static int index_of(const std::vector<std::string>& columns, const std::string& name) {
+    const auto it = std::find(columns.begin(), columns.end(), name);
+    return static_cast<int>(it - columns.begin());
+  }
+
+  void say(const std::string& line) const {
+    if (log_) log_(line);
+  }
+
+  core::RunOptions options_for(const std::string& integrator, double dt, double tolerance) const {
+    core::RunOptions run = scene_.run;
+    run.integrator = integrator;
+    run.dt = dt;
+    run.tolerance = tolerance;
+    return run;
+  }
+
+  Measured measure(const core::RunResult& run) const {
+    Measured m;
+    const core::Trajectory& tr = run.trajectory;
+    for (int c : key_columns_) m.key.push_back(tr.column(c));
+    for (const auto& name : result_.slip_components) {
+      double t = kNaN;
+      for (const auto& history : run.slip_events) {
+        if (history.component == name && history.monitor.stick_time() >= 0.0) {
+          t = history.monitor.stick_time();
+        }
+      }
+      m.stick_times.push_back(t);
+    }
+    return m;
+  }
+
+  // Largest error of each key signal over the rows both runs have. With a fixed step dt
+  // (> 0), only the rows that fall on a step of the run are compared when there are any:
+  // the others are interpolated linearly between two steps, an O(dt^2) error of the output,
+  // not of the integrator (it would cap rk4's observed order at 2).
+  std::vector<double> signal_errors(const Measured& run, double dt) const {
+    std::vector<bool> use;
+    const std::size_t all = run.key.empty() ? 0 : std::min(run.key[0].size(), reference_.key[0].size());
+    bool any = false;
+    for (std::size_t r = 0; r < all; ++r) {
+      const double steps = static_cast<double>(r) / result_.output_rate / dt;
+      use.push_back(dt <= 0.0 || std::abs(steps - std::round(steps)) < 1e-6);
+      any = any || use.back();
+    }
+    if (!any) use.assign(all, true);
+    std::vector<double> errors;
+    for (std::size_t s = 0; s < run.key.size(); ++s) {
+      const auto& a = run.key[s];
+      const auto& b = reference_.key[s];
+      const std::size_t rows = std::min(a.size(), b.size());
+      double worst = 0.0;
+      for (std::size_t r = 0; r < rows; ++r) {
+        if (!use[r]) continue;
+        const double e = std::abs(a[r] - b[r]);
+        worst = std::isfinite(e) ? std::max(worst, e) : std::numeric_limits<double>::infinity();
+      }
+      errors.push_back(worst);
+    }
+    return errors;
+  }
+
+  // max over signals of error / scale, and the signal that attains it.
+  std::pair<double, std::string> key_error(const std::vector<double>& errors) const {
+    double worst = 0.0;
+    std::string name;
+    for (std::size_t s = 0; s < errors.size(); ++s) {
+      const double e = errors[s] / result_.key_scales[s];
+      if (!(e <= worst)) {  // also takes NaN and infinity
+        worst = e;
+        name = result_.key_signals[s];
+      }
+    }
+    return {worst, name};
+  }
+
+  // Scale of each key signal: the largest |value| of any axis of its vector signal
+  // (`sphere.p.*`) in the reference, so that one axis that stays near zero (the height of a
+  // rolling sphere) is measured against the size of the motion, not against itself.
+  void set_scales() {
+    std::map<std::string, double> group_max;
+    auto group_of = [](const std::string& name) { return name.substr(0, name.rfind('.')); };
+    for (std::size_t s = 0; s < reference_.key.size(); ++s) {
+      double m = 0.0;
+      for (double v : reference_.key[s]) m = std::max(m, std::abs(v));
+      double& g = group_max[group_of(result_.key_signals[s])];
+      g = std::max(g, m);
+    }
+    for (const auto& name : result_.key_signals) {
+      const double g = group_max[group_of(name)];
+      result_.key_scales.push_back(g > 0.0 ? g : 1.0);
+    }
+  }
+
+  void run_reference() {
+    const double h = result_.reference_dt;
+    say("reference: rk4, dt = " + format_g(h) + " s ...");
+    core::RunResult ref = core::simulate(*scene_.network, options_for("rk4", h, 0.0));
+    if (ref.instability) {
+      throw scene::InputError("--reference-dt " + format_g(h) +
+                              ": the reference run (rk4) went unstable at t = " +
+                              format_g(ref.instability->time) + " s in '" +
+                              ref.instability->component + "'; pass a smaller --reference-dt");
+    }
+    result_.reference_steps = ref.steps;
+    result_.reference_wall_seconds = ref.wall_seconds;
+    reference_ = measure(ref);
+    result_.reference_stick_times = reference_.stick_times;
+    set_scales();
+    // The reference's own error: rk4 at twice its step against it.
+    core::RunResult check = core::simulate(*scene_.network, options_for("rk4", 2.0 * h, 0.0));
+    if (check.instability) {
+      result_.reference_noise = result_.reference_stick_noise = kNaN;
+    } else {
+      const Measured m = measure(check);
+      result_.reference_noise = key_error(signal_errors(m, 2.0 * h)).first;
+      result_.reference_stick_noise = result_.slip_components.empty() ? kNaN : 0.0;
+      for (std::size_t i = 0; i < m.stick_times.size(); ++i) {
+        const double rel = std::abs(m.stick_times[i] - reference_.stick_times[i]) /
+                           std::abs(reference_.stick_times[i]);
+        if (!(rel <= result_.reference_stick_noise)) result_.reference_stick_noise = rel;
+      }
+    }
+    say("reference: " + std::to_string(ref.steps) + " steps in " + format_g(ref.wall_seconds) +
+        " s; rk4 at 2x its step differs by " + format_g(result_.reference_noise) +
+        " (key error), " + format_g(result_.reference_stick_noise) + " (stick time, relative)");
+  }
+
+  // One grid point: a first run, then repeats for the timing if they are cheap.
+  StudyRow run_point(const std::string& integrator, double dt, double tolerance) {
+    const core::RunOptions run = options_for(integrator, dt, tolerance);
+    core::RunResult first = core::simulate(*scene_.network, run);
+    StudyRow row;
+    row.integrator = integrator;
+    row.dt = dt;
+    row.tolerance = tolerance;
+    row.steps = first.steps;
+    row.evaluations = first.evaluations;
+    std::vector<double> walls{first.wall_seconds};
+    if (first.instability) {
+      row.status = "unstable";
+      row.instability = first.instability;
+    } else {
+      row.status = "ok";
+      const int extra = static_cast<int>(std::clamp(
+          std::floor(options_.repeat_budget_seconds / std::max(first.wall_seconds, 1e-9)) - 1.0,
+          0.0, static_cast<double>(std::max(options_.repeats, 1) - 1)));
+      for (int i = 0; i < extra; ++i) {
+        walls.push_back(core::simulate(*scene_.network, run).wall_seconds);
+      }
+    }
+    row.repeats = static_cast<int>(walls.size());
+    row.wall_seconds = median(walls);
+
+    const Measured m = measure(first);
+    const std::size_t slips = result_.slip_components.size();
+    if (first.instability) {
+      row.signal_errors.assign(result_.key_signals.size(), kNaN);
+      row.key_error = kNaN;
+      row.stick_times.assign(slips, kNaN);
+      row.stick_errors.assign(slips, kNaN);
+      row.stick_relative_errors.assign(slips, kNaN);
+      row.max_stick_relative_error = kNaN;
+    } else {
+      row.signal_errors = signal_errors(m, is_fixed_step(integrator) ? dt : 0.0);
+      std::tie(row.key_error, row.worst_signal) = key_error(row.signal_errors);
+      row.stick_times = m.stick_times;
+      row.max_stick_relative_error = slips == 0 ? kNaN : 0.0;
+      for (std::size_t i = 0; i < slips; ++i) {
+        const double ref = reference_.stick_times[i];
+        const double err = std::abs(m.stick_times[i] - ref);
+        row.stick_errors.push_back(err);
+        row.stick_relative_errors.push_back(err / std::abs(ref));
+        // A missing stick (NaN) makes the row's event error NaN: it missed the event.
+        if (!(row.stick_relative_errors.back() <= row.max_stick_relative_error)) {
+          row.max_stick_relative_error = row.stick_relative_errors.back();
+        }
+      }
+    }
+
+    std::string line = integrator + (tolerance > 0.0 ? " tol " + format_g(tolerance)
+                                                     : " dt " + format_g(dt)) + ": ";
+    if (row.instability) {
+      line += "unstable at t = " + format_g(row.instability->time) + " s in '" +
+              row.instability->component + "'";
+    } else {
+      line += format_g(row.wall_seconds) + " s, key error " + format_g(row.key_error) +
+              ", stick error " + format_g(row.max_stick_relative_error) + " (relative)";
+    }
+    say(line);
+    result_.rows.push_back(row);
+    return row;
+  }
+
+  void run_fixed_grid(const std::string& integrator) {
+    if (!options_.dts.empty()) {
+      std::vector<double> dts = options_.dts;
+      std::sort(dts.rbegin(), dts.rend());
+      for (double dt : dts) run_point(integrator, dt, 0.0);
+      return;
+    }
+    // Default grid: scene dt x 8, 4, 2, 1, 1/2, ... coarse to fine, pruned.
+    const double base = scene_.run.dt;
+    // rk4 finer than 4x the reference step would measure the reference, not itself.
+    const double finest = integrator == "rk4" ? 4.0 * result_.reference_dt : result_.reference_dt;
+    double last_wall = 0.0;
+    for (int k = 3; k >= -10; --k) {
+      const double dt = base * std::ldexp(1.0, k);
+      if (dt < finest * (1.0 - 1e-9)) break;
+      if (last_wall > 0.0 && 2.0 * last_wall > options_.max_run_seconds) {
+        note(integrator + ": steps below " + format_g(2.0 * dt) + " s not run (the next would take about " +
+             format_g(2.0 * last_wall, 2) + " s, over the " + format_g(options_.max_run_seconds, 2) +
+             " s per run budget)");
+        break;
+      }
+      const StudyRow row = run_point(integrator, dt, 0.0);
+      if (row.status == "ok") last_wall = row.wall_seconds;
+    }
+  }
+
+  void run_adaptive_grid(const std::string& integrator) {
+    std::vector<double> tolerances = options_.tolerances;
+    const bool defaults = tolerances.empty();
+    if (defaults) tolerances = {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+    std::sort(tolerances.rbegin(), tolerances.rend());
+    double last_wall = 0.0;
+    for (double tol : tolerances) {
+      if (defaults && last_wall > 0.0 && 2.0 * last_wall > options_.max_run_seconds) {
+        note(integrator + ": tolerances below " + format_g(tol * 10.0) + " not run (time budget)");
+        break;
+      }
+      const StudyRow row = run_point(integrator, scene_.run.dt, tol);
+      if (row.status == "ok") last_wall = row.wall_seconds;
+    }
+  }
+
+  void note(const std::string& text) {
+    result_.notes.push_back(text);
+    say(text);
+  }
+
+  // Whole run of the scene at step h: true if its monitor saw no instability.
+  bool stable_run(const std::string& integrator, double h, StabilityLimit& limit) {
+    ++limit.runs;
+    return !core::simulate(*scene_.network, options_for(integrator, h, 0.0)).instability;
+  }
+
+  void stability_limits() {
+    say("stability: sampling " + std::to_string(options_.stability_samples) + " states (" +
+        scene_.run.integrator + ", dt = " + format_g(scene_.run.dt) + ")");
+    const auto states =
+        core::sample_states(*scene_.network, scene_.run, options_.stability_samples);
+    for (const auto& integrator : integrators_) {
+      if (!is_fixed_step(integrator)) continue;
+      StabilityLimit limit;
+      limit.integrator = integrator;
+      const core::StepLimit predicted = core::predict_step_limit(*scene_.network, integrator, states);
+      limit.predicted = predicted.max_step;
+      limit.predicted_unbounded = predicted.unbounded;
+      limit.predicted_time = predicted.limiting_time;
+      bisect(integrator, limit);
+      say("stability " + integrator + ": predicted " + format_g(limit.predicted, 4) +
+          " s, bisected " + format_g(limit.bisected, 4) + " s (" + std::to_string(limit.runs) +
+          " runs)");
+      result_.limits.push_back(limit);
+    }
+  }
+
+  // Bracket from the grid (largest stable step below the smallest unstable one), widened by
+  // doubling or halving when the grid has no unstable or no stable step, then bisected in
+  // log h down to options_.bisection_precision.
+  void bisect(const std::string& integrator, StabilityLimit& limit) {
+    double lo = 0.0, hi = std::numeric_limits<double>::infinity();
+    for (const auto& row : result_.rows) {
+      if (row.integrator == integrator && row.status == "unstable") hi = std::min(hi, row.dt);
+    }
+    for (const auto& row : result_.rows) {
+      if (row.integrator == integrator && row.status == "ok" && row.dt < hi) lo = std::max(lo, row.dt);
+    }
+    const double longest = result_.duration / 4.0;
+    if (!std::isfinite(hi)) {
+      double h = lo > 0.0 ? lo : scene_.run.dt;
+      for (;;) {
+        h *= 2.0;
+        if (h > longest) {
+          limit.bisected = lo;
+          limit.note = "stable at every step tried, up to " + format_g(lo) + " s";
+          return;
+        }
+        if (!stable_run(integrator, h, limit)) {
+          hi = h;
+          break;
+        }
+        lo = h;
+      }
+    }
+    if (lo == 0.0) {
+      double h = hi;
+      for (int i = 0; i < 12; ++i) {
+        h /= 2.0;
+        const auto t0 = std::chrono::steady_clock::now();
+        if (stable_run(integrator, h, limit)) {
+          lo = h;
+          break;
+        }
+        hi = h;
+        const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (2.0 * took > options_.max_run_seconds) break;
+      }
+      if (lo == 0.0) {
+        limit.unstable_above = hi;
+        limit.note = "unstable at every step tried, down to " + format_g(hi) + " s";
+        return;
+      }
+    }
+    while (hi / lo > 1.0 + options_.bisection_precision) {
+      const double mid = std::sqrt(lo * hi);
+      if (stable_run(integrator, mid, limit)) {
+        lo = mid;
+      } else {
+        hi = mid;
+      }
+    }
+    limit.bisected = lo;
+    limit.unstable_above = hi;
+  }
+
+  const StudyOptions& options_;
+  const StudyLog& log_;
+  scene::Scene scene_;
+  std::vector<std::string> integrators_;
+  std::vector<int> key_columns_;
+  Measured reference_;
+  StudyResult result_;
+};
+
+}  // namespace
+
+std::vector<std::string> key_signal_columns(const std::vector<std::string>& columns) {
+  std::vector<std::string> keys;
+  for (const auto& name : columns) {
+    const auto first = name.find('.');
+    const auto last = name.rfind('.');
+    if (first == std::string::npos || last == first) continue;
+    const std::string signal = name.substr(first + 1, last - first - 1);
+    if (signal == "p" || signal == "v" || signal == "theta") keys.push_back(name);
+  }
+  return keys;
+}
+
+OrderEstimate observed_order(const StudyResult& result, const std::string& integrator) {
+  OrderEstimate estimate;
+  estimate.integrator = integrator;
+  std::vector<double> xs, ys;
+  const double floor = std::isfinite(result.reference_noise) ? kNoiseFactor * result.reference_noise : 0.0;
+  for (const auto& row : result.rows) {
+    if (row.integrator != integrator || row.tolerance > 0.0 || row.status != "ok") continue;
+    if (!(row.key_error > floor && row.key_error < kSaturatedError)) continue;
+    xs.push_back(std::log(row.dt));
+    ys.push_back(std::log(row.key_error));
+    estimate.dt_min = estimate.points == 0 ? row.dt : std::min(estimate.dt_min, row.dt);
+    estimate.dt_max = std::max(estimate.dt_max, row.dt);
+    ++estimate.points;
+  }
+  if (estimate.points < 2 || estimate.dt_max / estimate.dt_min < 1.5) {
+    estimate.order = kNaN;
+    return estimate;
+  }
+  double mx = 0.0, my = 0.0;
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    mx += xs[i];
+    my += ys[i];
+  }
+  mx /= static_cast<double>(xs.size());
+  my /= static_cast<double>(ys.size());
+  double sxy = 0.0, sxx = 0.0;
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    sxy += (xs[i] - mx) * (ys[i] - my);
+    sxx += (xs[i] - mx) * (xs[i] - mx);
+  }
+  estimate.order = sxy / sxx;
+  return estimate;
+}
+
+StudyResult run_study(const StudyOptions& options, const StudyLog& log) {
+  Study study(options, log);
+  return study.run();
+}
+
+}  // namespace stiction::app

@@ -1,0 +1,137 @@
+// `stiction study SCENE`: speed against accuracy of the integrators on one scene.
+//
+// For each integrator and step size (tolerance for rk4_adaptive) the scene is simulated in
+// this process and measured: wall time of the simulation alone (median of repeats), steps,
+// network evaluations, the largest error of the scene's key signals (`*.p.*`, `*.v.*` of
+// bodies, `*.theta.*` of arms and joints) over the common output rows against a reference
+// run (rk4 at a much smaller step), and the error of the first stick time of each contact
+// or joint against the reference's. A run that goes unstable is a row with status
+// `unstable`, never an error. Then, for each fixed-step integrator, the largest stable step
+// is found by bisection over whole runs of the scene and set beside the one predicted by
+// core::predict_step_limit from the linearized step map.
+//
+// The measuring (this header) is apart from the reporting (study_report.cpp: study.csv,
+// study.md, work_precision.png) and from the command line (study_command.cpp).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/simulation.hpp"
+#include "image/image.hpp"
+#include "text/font.hpp"
+
+namespace stiction::app {
+
+struct StudyOptions {
+  std::string scene;                    // bundled name or path
+  std::vector<std::string> overrides;   // --set KEY=VALUE
+  std::vector<std::string> integrators; // empty: every integrator
+  std::vector<double> dts;              // empty: scene dt times 8, 4, 2, 1, 1/2, ... (pruned)
+  std::vector<double> tolerances;       // empty: 1e-4 .. 1e-10 (rk4_adaptive)
+  std::optional<double> reference_dt;   // empty: scene dt / 16
+  int repeats = 3;                      // timing repeats (fewer for long runs)
+  // Default grids only: a finer step is not run when the previous run of the same
+  // integrator, doubled, would take longer than this (wall seconds). The finest default
+  // step is the reference's (rk4: 4x the reference's).
+  double max_run_seconds = 3.0;
+  // Timing repeats are cut so that one grid point takes at most about this long.
+  double repeat_budget_seconds = 2.0;
+  bool bisect = true;                   // stability limits (fixed-step integrators)
+  int stability_samples = 30;           // states for core::predict_step_limit
+  double bisection_precision = 0.01;    // relative width of the final bracket
+};
+
+// One run of the grid.
+struct StudyRow {
+  std::string integrator;
+  double dt = 0.0;         // the step; rk4_adaptive: its first step
+  double tolerance = 0.0;  // rk4_adaptive only, else 0
+  std::string status;      // "ok" or "unstable"
+  std::optional<core::Instability> instability;
+  long steps = 0;
+  long evaluations = 0;
+  double wall_seconds = 0.0;  // median over `repeats`
+  int repeats = 0;
+  // Largest |run - reference| of each key signal over the rows both have (NaN if unstable).
+  std::vector<double> signal_errors;
+  // max over key signals of signal_error / scale of the signal (see StudyResult::key_scales).
+  double key_error = 0.0;
+  std::string worst_signal;
+  // Per slip component (StudyResult::slip_components): first stick time (NaN: none) and
+  // its error against the reference's, absolute (s) and relative (to the reference time).
+  std::vector<double> stick_times;
+  std::vector<double> stick_errors;
+  std::vector<double> stick_relative_errors;
+  double max_stick_relative_error = 0.0;  // NaN when a stick time is missing
+};
+
+// Observed order of one fixed-step integrator: least-squares slope of log(key error)
+// against log(dt) over its usable rows (stable, not saturated, above the reference's noise).
+struct OrderEstimate {
+  std::string integrator;
+  double order = 0.0;  // NaN with fewer than two usable rows
+  int points = 0;
+  double dt_min = 0.0, dt_max = 0.0;
+};
+
+struct StabilityLimit {
+  std::string integrator;
+  double predicted = 0.0;       // core::predict_step_limit (0: none found)
+  bool predicted_unbounded = false;
+  double predicted_time = 0.0;  // time of the sampled state that limits it
+  double bisected = 0.0;        // largest step found stable by whole runs (0: none)
+  double unstable_above = 0.0;  // smallest step found unstable (the bracket's top)
+  int runs = 0;                 // runs spent by the bisection
+  std::string note;             // e.g. "stable at every step tried"
+};
+
+struct StudyResult {
+  std::string scene;
+  double scene_dt = 0.0;
+  double duration = 0.0;
+  double output_rate = 0.0;
+  std::string reference_integrator = "rk4";
+  double reference_dt = 0.0;
+  long reference_steps = 0;
+  double reference_wall_seconds = 0.0;
+  // Key error of rk4 at 2 x reference_dt against the reference: errors near this are the
+  // reference's own, so they are left out of the order fits.
+  double reference_noise = 0.0;
+  // Likewise for the stick times: the largest relative difference of rk4 at 2 x
+  // reference_dt from the reference (NaN without slip components).
+  double reference_stick_noise = 0.0;
+  std::vector<std::string> key_signals;
+  std::vector<double> key_scales;  // max |value| of each key signal's vector in the reference
+  std::vector<std::string> slip_components;
+  std::vector<double> reference_stick_times;  // NaN: no stick in the reference
+  std::vector<StudyRow> rows;
+  std::vector<OrderEstimate> orders;
+  std::vector<StabilityLimit> limits;
+  std::vector<std::string> notes;  // pruning and other remarks, printed in study.md
+  double total_seconds = 0.0;
+};
+
+// Progress lines (one per run) for stderr; may be empty.
+using StudyLog = std::function<void(const std::string&)>;
+
+StudyResult run_study(const StudyOptions& options, const StudyLog& log = {});
+
+// Key signals among trajectory columns: `<component>.p.<axis>`, `<component>.v.<axis>`,
+// `<component>.theta.<axis>`.
+std::vector<std::string> key_signal_columns(const std::vector<std::string>& columns);
+
+// The usable rows of `integrator` and the slope through them (see OrderEstimate).
+OrderEstimate observed_order(const StudyResult& result, const std::string& integrator);
+
+// Reports (study_report.cpp).
+std::string study_csv(const StudyResult& result);
+std::string study_markdown(const StudyResult& result);
+image::Image work_precision_figure(const StudyResult& result, text::Font& font);
+// Writes study.csv, study.md and work_precision.png into `out`, each atomically.
+void write_study(const StudyResult& result, const std::filesystem::path& out);
+
+}  // namespace stiction::app

@@ -1,0 +1,226 @@
+// The study's reports: study.csv (one row per run), study.md (tables a user can paste) and
+// work_precision.png (error against cost, log-log).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "app/study.hpp"
+#include "image/png.hpp"
+#include "io/atomic_file.hpp"
+#include "plot/figure.hpp"
+
+namespace stiction::app {
+namespace {
+
+std::string num(double value, int digits = 4) {
+  if (!std::isfinite(value)) return "";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+// For Markdown cells: a dash where there is no value.
+std::string cell(double value, int digits = 3) {
+  const std::string s = num(value, digits);
+  return s.empty() ? "–" : s;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+  return out;
+}
+
+double max_stick_error(const StudyRow& row) {
+  double worst = row.stick_errors.empty() ? NAN : 0.0;
+  for (double e : row.stick_errors) {
+    if (!(e <= worst)) worst = e;
+  }
+  return worst;
+}
+
+std::string step_cell(const StudyRow& row) {
+  return row.tolerance > 0.0 ? "tol " + num(row.tolerance, 3) : num(row.dt, 4);
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string out;
+  for (const auto& item : items) {
+    if (!out.empty()) out += separator;
+    out += item;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string study_csv(const StudyResult& r) {
+  std::string out = "integrator,dt,tolerance,status,unstable_time,unstable_component,steps,"
+                    "evaluations,wall_seconds,repeats,key_error,worst_signal";
+  for (const auto& s : r.key_signals) out += ",error_" + s;
+  for (const auto& c : r.slip_components) {
+    out += ",stick_time_" + c;
+    out += ",stick_error_" + c;
+    out += ",stick_relative_error_" + c;
+  }
+  out += '\n';
+  for (const auto& row : r.rows) {
+    out += csv_field(row.integrator);
+    out += ',' + num(row.dt, 10) + ',' + (row.tolerance > 0.0 ? num(row.tolerance, 10) : "");
+    out += ',' + row.status;
+    out += ',' + (row.instability ? num(row.instability->time, 10) : std::string());
+    out += ',' + (row.instability ? csv_field(row.instability->component) : std::string());
+    out += ',' + std::to_string(row.steps) + ',' + std::to_string(row.evaluations);
+    out += ',' + num(row.wall_seconds, 6) + ',' + std::to_string(row.repeats);
+    out += ',' + num(row.key_error, 6) + ',' + csv_field(row.worst_signal);
+    for (double e : row.signal_errors) out += ',' + num(e, 6);
+    for (std::size_t i = 0; i < r.slip_components.size(); ++i) {
+      out += ',' + num(row.stick_times[i], 10);
+      out += ',' + num(row.stick_errors[i], 6);
+      out += ',' + num(row.stick_relative_errors[i], 6);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string study_markdown(const StudyResult& r) {
+  std::string md = "# `stiction study " + r.scene + "`\n\n";
+  md += "Scene dt " + num(r.scene_dt) + " s, duration " + num(r.duration) + " s, output " +
+        num(r.output_rate) + " rows/s. ";
+  md += "Reference: **" + r.reference_integrator + " at dt = " + num(r.reference_dt) + " s** (" +
+        num(r.scene_dt / r.reference_dt, 3) + "x finer than the scene's), " +
+        std::to_string(r.reference_steps) + " steps, " + num(r.reference_wall_seconds, 3) +
+        " s. rk4 at twice that step differs from it by " + num(r.reference_noise, 3) + " (key error)" +
+        (r.slip_components.empty() ? std::string() : " and " + num(r.reference_stick_noise, 3) + " (stick time, relative)") +
+        ": errors near these measure the reference as much as the run.\n\n";
+  md += "Key error: max over the key signals (" + join(r.key_signals, ", ") +
+        ") of max |x - x_ref| over the common output rows (for a fixed step, the rows that fall on one "
+        "of its steps: the others are interpolated linearly between steps), divided by the signal's "
+        "scale (the largest |value| of its vector in the reference). ";
+  if (!r.slip_components.empty()) {
+    md += "Stick error: first stick time of each contact/joint against the reference's (";
+    std::vector<std::string> refs;
+    for (std::size_t i = 0; i < r.slip_components.size(); ++i) {
+      refs.push_back(r.slip_components[i] + " " + num(r.reference_stick_times[i], 7) + " s");
+    }
+    md += join(refs, ", ") + "); the worst of them, absolute and relative to the reference time. ";
+  }
+  md += "Wall time: the simulation alone, median of the repeats (rep).\n\n";
+
+  md += "| integrator | dt [s] | status | steps | evaluations | wall [ms] | rep | key error | worst signal "
+        "| stick error [s] | stick error (rel) |\n";
+  md += "|---|---:|---|---:|---:|---:|---:|---:|---|---:|---:|\n";
+  for (const auto& row : r.rows) {
+    std::string status = row.status;
+    if (row.instability) {
+      status += " at " + num(row.instability->time, 4) + " s (" + row.instability->component + ")";
+    }
+    md += "| " + row.integrator + " | " + step_cell(row) + " | " + status + " | " +
+          std::to_string(row.steps) + " | " + std::to_string(row.evaluations) + " | " +
+          cell(1e3 * row.wall_seconds, 3) + " | " + std::to_string(row.repeats) + " | " +
+          cell(row.key_error) + " | " + (row.worst_signal.empty() ? "–" : row.worst_signal) +
+          " | " + cell(max_stick_error(row)) + " | " + cell(row.max_stick_relative_error) + " |\n";
+  }
+
+  if (!r.orders.empty()) {
+    md += "\n## Observed order\n\nSlope of log(key error) against log(dt) over the stable rows "
+          "whose key error lies between 10x the reference's noise and 0.05 (saturated); – when "
+          "fewer than two rows qualify.\n\n";
+    md += "| integrator | observed order | rows used | dt range [s] |\n|---|---:|---:|---|\n";
+    for (const auto& o : r.orders) {
+      md += "| " + o.integrator + " | " + cell(o.order, 3) + " | " + std::to_string(o.points) + " | " +
+            (o.points > 0 ? num(o.dt_min, 3) + " – " + num(o.dt_max, 3) : "–") + " |\n";
+    }
+  }
+
+  if (!r.limits.empty()) {
+    md += "\n## Stability limits\n\nPredicted: `core::predict_step_limit`, spectral radius of "
+          "the linearized step map at states sampled along a run at the scene's own options. "
+          "Bisected: whole runs of the scene (its full duration), unstable when the run's "
+          "monitor stops it (non-finite state or energy growth); the largest stable step "
+          "found, the bracket closed to 1%.\n\n";
+    md += "| integrator | predicted [s] | limiting state t [s] | bisected [s] | first unstable [s] "
+          "| predicted / bisected | runs | note |\n|---|---:|---:|---:|---:|---:|---:|---|\n";
+    for (const auto& l : r.limits) {
+      const std::string predicted = l.predicted_unbounded ? ">= " + num(l.predicted, 4) : cell(l.predicted, 4);
+      const double ratio = l.bisected > 0.0 && l.predicted > 0.0 ? l.predicted / l.bisected : NAN;
+      md += "| " + l.integrator + " | " + predicted + " | " + cell(l.predicted_time, 4) + " | " +
+            cell(l.bisected > 0.0 ? l.bisected : NAN, 4) + " | " +
+            cell(l.unstable_above > 0.0 ? l.unstable_above : NAN, 4) + " | " + cell(ratio, 3) +
+            " | " + std::to_string(l.runs) + " | " + l.note + " |\n";
+    }
+  }
+  if (!r.notes.empty()) {
+    md += "\n## Notes\n\n";
+    for (const auto& n : r.notes) md += "- " + n + "\n";
+  }
+  md += "\nWhole study: " + num(r.total_seconds, 3) + " s.\n";
+  return md;
+}
+
+image::Image work_precision_figure(const StudyResult& r, text::Font& font) {
+  plot::Figure figure;
+  figure.panels.reserve(2);  // `key` and `stick` point into it
+  figure.title = "Work-precision: " + r.scene + " (reference rk4, dt = " + num(r.reference_dt, 3) + " s)";
+  // The figure's horizontal axis is linear only: it carries log10 of the cost.
+  figure.x_label = "Cost: log\u2081\u2080(wall time of the simulation / 1 s)";
+  figure.x_unit = "";
+  plot::Panel& key = figure.panels.emplace_back();
+  key.label = "Key-signal error (relative)";
+  key.log = true;
+  plot::Panel* stick = nullptr;
+  if (!r.slip_components.empty()) {
+    stick = &figure.panels.emplace_back();
+    stick->label = "Stick-time error (relative)";
+    stick->log = true;
+    stick->references.push_back({1e-4, "1e-4"});
+  }
+  // Keep the order of first appearance of the integrators.
+  std::vector<std::string> integrators;
+  for (const auto& row : r.rows) {
+    if (std::find(integrators.begin(), integrators.end(), row.integrator) == integrators.end()) {
+      integrators.push_back(row.integrator);
+    }
+  }
+  for (std::size_t k = 0; k < integrators.size(); ++k) {
+    std::vector<const StudyRow*> rows;
+    for (const auto& row : r.rows) {
+      if (row.integrator == integrators[k] && row.status == "ok" && row.wall_seconds > 0.0) rows.push_back(&row);
+    }
+    std::sort(rows.begin(), rows.end(),
+              [](const StudyRow* a, const StudyRow* b) { return a->wall_seconds < b->wall_seconds; });
+    plot::Series ks, ss;
+    ks.label = integrators[k];  // one legend (top panel) serves both panels
+    ks.style = ss.style = plot::series_style(static_cast<int>(k));
+    for (const StudyRow* row : rows) {
+      const double x = std::log10(row->wall_seconds);
+      ks.x.push_back(x);
+      ks.y.push_back(row->key_error > 0.0 ? row->key_error : NAN);
+      ss.x.push_back(x);
+      ss.y.push_back(row->max_stick_relative_error > 0.0 ? row->max_stick_relative_error : NAN);
+    }
+    key.series.push_back(std::move(ks));
+    if (stick != nullptr) stick->series.push_back(std::move(ss));
+  }
+  return plot::render(figure, font);
+}
+
+void write_study(const StudyResult& result, const std::filesystem::path& out) {
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw io::IoError(out.string() + ": cannot create the output directory: " + ec.message());
+  io::write_file_atomically(out / "study.csv", study_csv(result));
+  io::write_file_atomically(out / "study.md", study_markdown(result));
+  text::Font font = text::Font::open_default();
+  image::write_png(out / "work_precision.png", work_precision_figure(result, font), image::PngSpeed::small);
+}
+
+}  // namespace stiction::app
