@@ -41,7 +41,7 @@ struct StudyOptions {
   // Timing repeats are cut so that one grid point takes at most about this long.
   double repeat_budget_seconds = 2.0;
   bool bisect = true;                   // stability limits (fixed-step integrators)
-  int stability_samples = 30;           // states for core::predict_step_limit
+  int stability_samples = 40;           // states for core::predict_step_limit (as check)
   double bisection_precision = 0.01;    // relative width of the final bracket
 };
 
