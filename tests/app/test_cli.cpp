@@ -15,45 +15,21 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "run_stiction.hpp"
+
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
 
-struct Outcome {
-  int code = -1;
-  std::string out;  // stdout and stderr together
-};
+using stiction::testing::Outcome;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("stiction_test_app_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return stiction::testing::scratch_dir("stiction_test_app_", name);
 }
 
-std::string quote(const std::string& s) {
-  std::string q(1, '\'');
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-Outcome stiction(const std::vector<std::string>& args, const fs::path& cwd) {
-  std::string command = std::string("cd ") + quote(cwd.string()) + " && " + quote(STICTION_BINARY);
-  for (const auto& a : args) {
-    command += ' ';
-    command += quote(a);
-  }
-  command += " 2>&1";
-  Outcome o;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) o.out.append(buffer, n);
-  const int status = ::pclose(pipe);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
+Outcome run_cli(const std::vector<std::string>& args, const fs::path& cwd) {
+  return stiction::testing::run_stiction(args, cwd);
 }
 
 void write(const fs::path& p, const std::string& text) {
@@ -129,7 +105,7 @@ torque = "t < 4 ? min(0.52, 0.3*t) : 0.3"
 void expect_input_error(const fs::path& dir, const std::string& text, const std::string& key,
                         int line) {
   write(dir / "bad.toml", text);
-  const Outcome o = stiction({"run", "bad.toml", "--out", "bad_out"}, dir);
+  const Outcome o = run_cli({"run", "bad.toml", "--out", "bad_out"}, dir);
   INFO(o.out);
   CHECK(o.code == 2);
   CHECK_THAT(o.out, Contains("bad.toml:" + std::to_string(line) + ":"));
@@ -142,25 +118,25 @@ void expect_input_error(const fs::path& dir, const std::string& text, const std:
 
 TEST_CASE("cli: --help, --version, no subcommand, unknown option") {
   const fs::path dir = scratch("help");
-  Outcome o = stiction({"--help"}, dir);
+  Outcome o = run_cli({"--help"}, dir);
   CHECK(o.code == 0);
   CHECK_THAT(o.out, Contains("run"));
   CHECK_THAT(o.out, Contains("check"));
   CHECK_THAT(o.out, Contains("scenes"));
-  o = stiction({"--version"}, dir);
+  o = run_cli({"--version"}, dir);
   CHECK(o.code == 0);
   CHECK_THAT(o.out, Contains("stiction "));
-  CHECK(stiction({}, dir).code == 2);
-  CHECK(stiction({"run", "sphere_roll", "--bogus"}, dir).code == 2);
-  CHECK(stiction({"run", "sphere_roll", "--dt", "-1"}, dir).code == 2);
-  CHECK(stiction({"run", "sphere_roll", "--integrator", "rk5"}, dir).code == 2);
-  o = stiction({"run", "no_such_scene"}, dir);
+  CHECK(run_cli({}, dir).code == 2);
+  CHECK(run_cli({"run", "sphere_roll", "--bogus"}, dir).code == 2);
+  CHECK(run_cli({"run", "sphere_roll", "--dt", "-1"}, dir).code == 2);
+  CHECK(run_cli({"run", "sphere_roll", "--integrator", "rk5"}, dir).code == 2);
+  o = run_cli({"run", "no_such_scene"}, dir);
   CHECK(o.code == 2);
   CHECK_THAT(o.out, Contains("no_such_scene"));
 }
 
 TEST_CASE("cli: scenes lists the bundled scenes with descriptions") {
-  const Outcome o = stiction({"scenes"}, scratch("scenes"));
+  const Outcome o = run_cli({"scenes"}, scratch("scenes"));
   CHECK(o.code == 0);
   for (const char* name : {"sphere_roll", "two_link", "two_link_lugre", "two_link_dahl",
                            "two_link_penalty", "slope_hold", "slope_slide"}) {
@@ -170,7 +146,7 @@ TEST_CASE("cli: scenes lists the bundled scenes with descriptions") {
 }
 
 TEST_CASE("cli: check prints the state layout and dt advice") {
-  const Outcome o = stiction({"check", "sphere_roll"}, scratch("check"));
+  const Outcome o = run_cli({"check", "sphere_roll"}, scratch("check"));
   INFO(o.out);
   CHECK(o.code == 0);
   CHECK_THAT(o.out, Contains("[0..12]"));
@@ -178,10 +154,10 @@ TEST_CASE("cli: check prints the state layout and dt advice") {
   CHECK_THAT(o.out, Contains("ground (kikuuwe_contact): e.0 e.1"));
   CHECK_THAT(o.out, Contains("predicted largest stable step"));
   CHECK_THAT(o.out, Contains("rk4               dt < "));
-  const Outcome e = stiction({"check", "two_link", "--dt", "1"}, scratch("check2"));
+  const Outcome e = run_cli({"check", "two_link", "--dt", "1"}, scratch("check2"));
   CHECK(e.code == 2);  // check takes no run options
   const fs::path dot = scratch("check3") / "net.dot";
-  const Outcome g = stiction({"check", "two_link", "--graph", dot.string()}, scratch("check3"));
+  const Outcome g = run_cli({"check", "two_link", "--graph", dot.string()}, scratch("check3"));
   CHECK(g.code == 0);
   std::ifstream in(dot);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -194,7 +170,7 @@ TEST_CASE("cli: bad input gives exit 2 and FILE:LINE:COL: error: naming the key"
   const std::string base = kGoodScene;
   write(dir / "good.toml", base);
   {
-    const Outcome o = stiction({"run", "good.toml", "--out", "o", "--quiet"}, dir);
+    const Outcome o = run_cli({"run", "good.toml", "--out", "o", "--quiet"}, dir);
     INFO(o.out);
     REQUIRE(o.code == 0);
     CHECK(o.out.empty());  // --quiet: nothing but errors
@@ -226,7 +202,7 @@ TEST_CASE("cli: bad input gives exit 2 and FILE:LINE:COL: error: naming the key"
     std::string s = kArmScene;
     s.replace(s.find("0.3*t) : 0.3"), 12, "0.3*t) : 0.3 +");
     write(dir / "bad.toml", s);
-    const Outcome o = stiction({"run", "bad.toml", "--out", "bad_out"}, dir);
+    const Outcome o = run_cli({"run", "bad.toml", "--out", "bad_out"}, dir);
     INFO(o.out);
     CHECK(o.code == 2);
     CHECK_THAT(o.out, Contains("bad.toml:12:"));
@@ -240,7 +216,7 @@ TEST_CASE("cli: bad input gives exit 2 and FILE:LINE:COL: error: naming the key"
 
 TEST_CASE("cli: --set overrides scene values, unknown keys are errors") {
   const fs::path dir = scratch("set");
-  Outcome o = stiction({"run", "sphere_roll", "--out", "o", "--quiet", "--set", "simulation.duration=0.05",
+  Outcome o = run_cli({"run", "sphere_roll", "--out", "o", "--quiet", "--set", "simulation.duration=0.05",
                         "--set", "bodies.sphere.velocity=[3.0, 0.0, 0.0]"},
                        dir);
   INFO(o.out);
@@ -251,13 +227,13 @@ TEST_CASE("cli: --set overrides scene values, unknown keys are errors") {
   CHECK(csv.rows.size() == 51);
   CHECK(csv.rows[0][csv.column("sphere.v.x")] == 3.0);
 
-  o = stiction({"run", "sphere_roll", "--out", "o2", "--set", "bodies.sphere.masss=1"}, dir);
+  o = run_cli({"run", "sphere_roll", "--out", "o2", "--set", "bodies.sphere.masss=1"}, dir);
   CHECK(o.code == 2);
   CHECK_THAT(o.out, Contains("--set bodies.sphere.masss:1:1: error: unknown key 'bodies.sphere.masss'"));
-  o = stiction({"run", "sphere_roll", "--out", "o2", "--set", "bodies.sphere.mass=-3"}, dir);
+  o = run_cli({"run", "sphere_roll", "--out", "o2", "--set", "bodies.sphere.mass=-3"}, dir);
   CHECK(o.code == 2);
   CHECK_THAT(o.out, Contains("--set bodies.sphere.mass:1:20: error: bodies.sphere.mass: must be > 0"));
-  o = stiction({"run", "sphere_roll", "--out", "o2", "--set", "nosuch.key=1"}, dir);
+  o = run_cli({"run", "sphere_roll", "--out", "o2", "--set", "nosuch.key=1"}, dir);
   CHECK(o.code == 2);
   CHECK_THAT(o.out, Contains("error: unknown key 'nosuch'"));
   CHECK_FALSE(fs::exists(dir / "o2" / "summary.json"));
@@ -265,7 +241,7 @@ TEST_CASE("cli: --set overrides scene values, unknown keys are errors") {
 
 TEST_CASE("cli: run writes trajectory.csv and summary.json per the output contract") {
   const fs::path dir = scratch("run");
-  const Outcome o = stiction({"run", "sphere_roll", "--no-video", "--no-plots", "--quiet"}, dir);
+  const Outcome o = run_cli({"run", "sphere_roll", "--no-video", "--no-plots", "--quiet"}, dir);
   INFO(o.out);
   REQUIRE(o.code == 0);
   const fs::path out = dir / "out" / "sphere_roll";  // the default --out
@@ -301,7 +277,7 @@ TEST_CASE("cli: run writes trajectory.csv and summary.json per the output contra
 TEST_CASE("cli: rows come at the output rate whatever dt") {
   const fs::path dir = scratch("rate");
   for (const char* dt : {"1e-4", "3e-4"}) {
-    const Outcome o = stiction({"run", "sphere_roll", "--out", dt, "--quiet", "--dt", dt, "--duration", "0.05"}, dir);
+    const Outcome o = run_cli({"run", "sphere_roll", "--out", dt, "--quiet", "--dt", dt, "--duration", "0.05"}, dir);
     INFO(o.out);
     REQUIRE(o.code == 0);
     const Csv csv = read_csv(dir / dt / "trajectory.csv");
@@ -314,7 +290,7 @@ TEST_CASE("cli: rows come at the output rate whatever dt") {
 TEST_CASE("cli: an unstable run exits 3, keeps its rows and says what to do") {
   const fs::path dir = scratch("unstable");
   // The contact is stable below ~2.6e-4 s with RK4; 2e-3 s diverges within a few steps.
-  const Outcome o = stiction({"run", "sphere_roll", "--out", "o", "--dt", "2e-3"}, dir);
+  const Outcome o = run_cli({"run", "sphere_roll", "--out", "o", "--dt", "2e-3"}, dir);
   INFO(o.out);
   CHECK(o.code == 3);
   CHECK_THAT(o.out, Contains("instability at t = "));

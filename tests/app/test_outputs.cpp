@@ -22,6 +22,8 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "run_stiction.hpp"
+
 extern char** environ;
 
 namespace fs = std::filesystem;
@@ -29,39 +31,14 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-struct Outcome {
-  int code = -1;
-  std::string out;  // stdout and stderr together
-};
+using stiction::testing::Outcome;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("stiction_test_outputs_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return stiction::testing::scratch_dir("stiction_test_outputs_", name);
 }
 
-std::string quote(const std::string& s) {
-  std::string q(1, '\'');
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-Outcome stiction(const std::vector<std::string>& args, const fs::path& cwd) {
-  std::string command = "cd ";
-  command += quote(cwd.string()) + " && " + quote(STICTION_BINARY);
-  for (const auto& a : args) command += ' ' + quote(a);
-  command += " 2>&1";
-  Outcome o;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) o.out.append(buffer, n);
-  const int status = ::pclose(pipe);
-  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
+Outcome run_cli(const std::vector<std::string>& args, const fs::path& cwd) {
+  return stiction::testing::run_stiction(args, cwd);
 }
 
 std::string read_bytes(const fs::path& p) {
@@ -107,7 +84,7 @@ nlohmann::json read_json(const fs::path& p) {
 
 TEST_CASE("run writes video.mp4 and the scene's plots", "[app][outputs]") {
   const fs::path dir = scratch("video");
-  const Outcome o = stiction({"run", "sphere_roll", "--duration", "0.2", "--set", "render.size=[320,180]",
+  const Outcome o = run_cli({"run", "sphere_roll", "--duration", "0.2", "--set", "render.size=[320,180]",
                               "--out", "out"},
                              dir);
   INFO(o.out);
@@ -128,7 +105,7 @@ TEST_CASE("run --frames writes one PNG per video frame", "[app][outputs]") {
   const fs::path dir = scratch("frames");
   fs::create_directories(dir / "out" / "frames");
   std::ofstream(dir / "out" / "frames" / "000099.png") << "from an older, longer run";
-  const Outcome o = stiction({"run", "sphere_roll", "--duration", "0.05", "--set", "render.size=[320,180]",
+  const Outcome o = run_cli({"run", "sphere_roll", "--duration", "0.05", "--set", "render.size=[320,180]",
                               "--no-video", "--no-plots", "--frames", "--out", "out"},
                              dir);
   INFO(o.out);
@@ -142,7 +119,7 @@ TEST_CASE("run --frames writes one PNG per video frame", "[app][outputs]") {
 
 TEST_CASE("run --no-video --no-plots writes neither", "[app][outputs]") {
   const fs::path dir = scratch("none");
-  const Outcome o = stiction({"run", "sphere_roll", "--duration", "0.2", "--no-video", "--no-plots",
+  const Outcome o = run_cli({"run", "sphere_roll", "--duration", "0.2", "--no-video", "--no-plots",
                               "--out", "out"},
                              dir);
   INFO(o.out);
@@ -163,7 +140,7 @@ name = "speed"
   [[plots.panels]]
   signals = ["block.p.z", "block.vel.x"]
 )";
-  const Outcome o = stiction({"run", "scene.toml", "--out", "out"}, dir);
+  const Outcome o = run_cli({"run", "scene.toml", "--out", "out"}, dir);
   INFO(o.out);
   CHECK(o.code == 2);
   // Line 10, column 27: the second string of the array.
@@ -175,7 +152,7 @@ name = "speed"
 
 TEST_CASE("bad render settings fail before the simulation", "[app][outputs]") {
   const fs::path dir = scratch("bad_render");
-  const Outcome o = stiction({"run", "sphere_roll", "--set", "render.size=[321,180]", "--out", "out"}, dir);
+  const Outcome o = run_cli({"run", "sphere_roll", "--set", "render.size=[321,180]", "--out", "out"}, dir);
   INFO(o.out);
   CHECK(o.code == 2);
   CHECK_THAT(o.out, Contains("render.size"));
@@ -185,7 +162,7 @@ TEST_CASE("bad render settings fail before the simulation", "[app][outputs]") {
 TEST_CASE("an unstable run writes no plots and no video", "[app][outputs]") {
   const fs::path dir = scratch("unstable");
   // RK4 with a step far beyond the contact's limit (about 1.7e-4 s for sphere_roll).
-  const Outcome o = stiction({"run", "sphere_roll", "--dt", "2e-3", "--duration", "0.5", "--set",
+  const Outcome o = run_cli({"run", "sphere_roll", "--dt", "2e-3", "--duration", "0.5", "--set",
                               "render.size=[320,180]", "--out", "out"},
                              dir);
   INFO(o.out);
@@ -227,20 +204,20 @@ TEST_CASE("Ctrl-C during the render keeps a playable video.partial.mp4", "[app][
 
 TEST_CASE("the tolerance option selects rk4_adaptive", "[app][outputs]") {
   const fs::path dir = scratch("tolerance");
-  const Outcome ok = stiction({"run", "sphere_roll", "--tolerance", "1e-7", "--duration", "0.1",
+  const Outcome ok = run_cli({"run", "sphere_roll", "--tolerance", "1e-7", "--duration", "0.1",
                                "--no-video", "--no-plots", "--out", "out"},
                               dir);
   INFO(ok.out);
   REQUIRE(ok.code == 0);
   CHECK(read_json(dir / "out" / "summary.json")["integrator"] == "rk4_adaptive");
 
-  const Outcome clash = stiction({"run", "sphere_roll", "--tolerance", "1e-7", "--integrator", "rk4",
+  const Outcome clash = run_cli({"run", "sphere_roll", "--tolerance", "1e-7", "--integrator", "rk4",
                                   "--no-video", "--no-plots", "--out", "out2"},
                                  dir);
   CHECK(clash.code == 2);
   CHECK_THAT(clash.out, Contains("--tolerance"));
 
-  const Outcome missing = stiction({"run", "sphere_roll", "--integrator", "rk4_adaptive", "--no-video",
+  const Outcome missing = run_cli({"run", "sphere_roll", "--integrator", "rk4_adaptive", "--no-video",
                                     "--no-plots", "--out", "out3"},
                                    dir);
   CHECK(missing.code == 2);
@@ -254,22 +231,22 @@ TEST_CASE("[simulation] tolerance selects rk4_adaptive and is checked", "[app][o
   std::ofstream(dir / "clash.toml") << "[simulation]\nintegrator = \"rk4\"\ntolerance = 1e-8\n" << body;
   std::ofstream(dir / "missing.toml") << "[simulation]\nintegrator = \"rk4_adaptive\"\n" << body;
 
-  const Outcome ok = stiction({"run", "adaptive.toml", "--no-video", "--no-plots", "--out", "out"}, dir);
+  const Outcome ok = run_cli({"run", "adaptive.toml", "--no-video", "--no-plots", "--out", "out"}, dir);
   INFO(ok.out);
   REQUIRE(ok.code == 0);
   CHECK(read_json(dir / "out" / "summary.json")["integrator"] == "rk4_adaptive");
 
-  const Outcome clash = stiction({"check", "clash.toml"}, dir);
+  const Outcome clash = run_cli({"check", "clash.toml"}, dir);
   CHECK(clash.code == 2);
   CHECK_THAT(clash.out, Contains("clash.toml:3:13: error:"));
-  const Outcome missing = stiction({"check", "missing.toml"}, dir);
+  const Outcome missing = run_cli({"check", "missing.toml"}, dir);
   CHECK(missing.code == 2);
   CHECK_THAT(missing.out, Contains("missing.toml:2:14: error:"));
 }
 
 TEST_CASE("compare overlays two runs in compare.png", "[app][outputs]") {
   const fs::path dir = scratch("compare");
-  const Outcome o = stiction({"compare", "two_link", "two_link_lugre", "--set", "simulation.duration=6",
+  const Outcome o = run_cli({"compare", "two_link", "two_link_lugre", "--set", "simulation.duration=6",
                               "--out", "cmp"},
                              dir);
   INFO(o.out);
@@ -278,7 +255,7 @@ TEST_CASE("compare overlays two runs in compare.png", "[app][outputs]") {
   CHECK(png_size(dir / "cmp" / "compare.png") == std::pair{1600, 1000});
   CHECK_THAT(o.out, Contains("cmp/compare.png"));
 
-  const Outcome one = stiction({"compare", "two_link", "--out", "cmp1"}, dir);
+  const Outcome one = run_cli({"compare", "two_link", "--out", "cmp1"}, dir);
   CHECK(one.code == 2);
   CHECK_FALSE(fs::exists(dir / "cmp1" / "compare.png"));
 }
