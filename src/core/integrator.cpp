@@ -65,7 +65,16 @@ std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, do
 }
 
 RungeKuttaStepper::RungeKuttaStepper(const Tableau& tableau, int state_dim, double dt)
-    : tableau_(tableau), dt_(dt), xi_(tableau.stages, Vec::Zero(state_dim)), stage_x_(state_dim) {}
+    : tableau_(tableau), dt_(dt), xi_(tableau.stages, Vec::Zero(state_dim)), stage_x_(state_dim) {
+  const int s = tableau_.stages;
+  stage_terms_.resize(s);
+  for (int r = 0; r < s; ++r) {
+    for (int j = 0; j < r; ++j) {
+      if (tableau_.a[r * s + j] != 0.0) stage_terms_[r].push_back({j, tableau_.a[r * s + j]});
+    }
+    if (tableau_.b[r] != 0.0) weights_.push_back({r, tableau_.b[r]});
+  }
+}
 
 double RungeKuttaStepper::advance(Network& network, double t, double limit, Vec& x) {
   const double h = std::min(dt_, limit);
@@ -73,20 +82,47 @@ double RungeKuttaStepper::advance(Network& network, double t, double limit, Vec&
   return h;
 }
 
+void RungeKuttaStepper::combine(const Vec& x, const std::vector<Term>& terms, double T,
+                                Vec& out) const {
+  auto xi = [&](std::size_t k) -> const Vec& { return xi_[terms[k].stage]; };
+  auto c = [&](std::size_t k) { return T * terms[k].coefficient; };
+  switch (terms.size()) {
+    case 0:
+      out = x;
+      break;
+    case 1:
+      out.noalias() = x + c(0) * xi(0);
+      break;
+    case 2:
+      out.noalias() = x + c(0) * xi(0) + c(1) * xi(1);
+      break;
+    case 3:
+      out.noalias() = x + c(0) * xi(0) + c(1) * xi(1) + c(2) * xi(2);
+      break;
+    case 4:
+      out.noalias() = x + c(0) * xi(0) + c(1) * xi(1) + c(2) * xi(2) + c(3) * xi(3);
+      break;
+    default:
+      out = x;
+      for (std::size_t k = 0; k < terms.size(); ++k) out.noalias() += c(k) * xi(k);
+  }
+}
+
 void RungeKuttaStepper::step(Network& network, double t, double T, Vec& x) {
   const int s = tableau_.stages;
   for (int r = 0; r < s; ++r) {
-    stage_x_ = x;
-    for (int j = 0; j < r; ++j) {
-      const double a = tableau_.a[r * s + j];
-      if (a != 0.0) stage_x_.noalias() += (T * a) * xi_[j];
+    const double t_stage = t + tableau_.c[r] * T;
+    const double tau = T * tableau_.d[r];
+    if (stage_terms_[r].empty()) {
+      network.derivative(t_stage, x, tau, xi_[r]);  // no copy for a stage at x itself
+    } else {
+      combine(x, stage_terms_[r], T, stage_x_);
+      network.derivative(t_stage, stage_x_, tau, xi_[r]);
     }
-    network.derivative(t + tableau_.c[r] * T, stage_x_, T * tableau_.d[r], xi_[r]);
   }
   evaluations_ += s;
-  for (int r = 0; r < s; ++r) {
-    if (tableau_.b[r] != 0.0) x.noalias() += (T * tableau_.b[r]) * xi_[r];
-  }
+  combine(x, weights_, T, stage_x_);
+  x.swap(stage_x_);
   network.project(x);
 }
 

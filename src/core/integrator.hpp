@@ -70,8 +70,18 @@ class RungeKuttaStepper final : public Stepper {
   void step(Network& network, double t, double T, Vec& x);
 
  private:
+  struct Term {
+    int stage;
+    double coefficient;
+  };
+  // x + T sum_j coefficient_j xi_j in one pass over the vector (Eigen fuses up to four
+  // terms into a single loop; explicit tableaux rarely need more).
+  void combine(const Vec& x, const std::vector<Term>& terms, double T, Vec& out) const;
+
   Tableau tableau_;
   double dt_;
+  std::vector<std::vector<Term>> stage_terms_;  // nonzero a_rj of each stage
+  std::vector<Term> weights_;                   // nonzero b_r
   std::vector<Vec> xi_;  // stage derivatives, allocated once
   Vec stage_x_;
 };
