@@ -106,6 +106,7 @@ int run_command(const RunArguments& args) {
   description.duration = run.duration;
   description.output_rate = run.output_rate;
   description.state_dim = scene.network->state_dim();
+  if (run.tolerance > 0.0) description.tolerance = run.tolerance;
   if (result.instability) description.suggested_dt = suggested_dt(run);
 
   const auto summary = io::make_summary(description, result);

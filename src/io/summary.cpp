@@ -26,9 +26,11 @@ nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunRe
   s["scene"] = run.scene;
   s["integrator"] = run.integrator;
   s["dt"] = run.dt;
+  if (run.tolerance) s["tolerance"] = *run.tolerance;
   s["duration"] = run.duration;
   s["output_rate"] = run.output_rate;
   s["steps"] = result.steps;
+  s["evaluations"] = result.evaluations;
   s["state_dim"] = run.state_dim;
   s["wall_seconds"] = result.wall_seconds;
   s["status"] = result.instability ? "unstable" : "ok";

@@ -20,6 +20,7 @@ struct RunDescription {
   double duration = 0.0;
   double output_rate = 0.0;
   int state_dim = 0;
+  std::optional<double> tolerance;                 // rk4_adaptive only
   std::optional<double> suggested_dt;              // reported with an instability
 };
 

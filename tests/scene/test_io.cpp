@@ -115,7 +115,7 @@ TEST_CASE("summary: fields, final row by column name, events, instability") {
     monitor.observe(t, core::Vec3(std::max(0.0, 0.5 - t), 0.0, 0.0));
   }
   result.slip_events.push_back({"ground", monitor});
-  io::RunDescription run{"demo", "rk4", 1e-4, 0.5, 1000.0, 15, std::nullopt};
+  io::RunDescription run{"demo", "rk4", 1e-4, 0.5, 1000.0, 15, std::nullopt, std::nullopt};
   nlohmann::json s = nlohmann::json::parse(io::make_summary(run, result).dump());
   CHECK(s["scene"] == "demo");
   CHECK(s["integrator"] == "rk4");
