@@ -40,7 +40,7 @@ int compare_command(const CompareArguments& args) {
     results.push_back(simulate_scene(s, progress));
     const core::RunResult& r = results.back();
     if (r.instability) {
-      print_instability(s.name, s.run, *r.instability);
+      print_instability(s.name, s.run, *r.instability, suggested_dt(s));
       return kExitUnstable;
     }
     if (!args.quiet) {

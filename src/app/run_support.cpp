@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include "app/progress.hpp"
+#include "core/integrator.hpp"
+#include "core/stability.hpp"
 
 namespace stiction::app {
 namespace {
@@ -64,14 +66,27 @@ std::map<std::string, double> event_times(const core::RunResult& result) {
   return events;
 }
 
-double suggested_dt(const core::RunOptions& run) {
-  // A quarter of the step is a first guess that clears most explicit stability limits
-  // (RK4's limit scales with dt, and a factor 4 leaves room for stiff transients).
-  return run.dt / 4.0;
+double suggested_dt(scene::Scene& scene) {
+  const core::RunOptions& run = scene.run;
+  const double quarter = run.dt / 4.0;
+  if (core::find_tableau(run.integrator) == nullptr && run.integrator != "symplectic_euler") {
+    return quarter;  // adaptive: the tolerance is what to change
+  }
+  core::RunOptions pilot = run;
+  pilot.dt = quarter;
+  const auto states = core::sample_states(*scene.network, pilot, 40);
+  const core::StepLimit limit =
+      core::predict_step_limit(*scene.network, run.integrator, states, 1e-9, run.dt);
+  if (!limit.unbounded && limit.max_step > 0.0 && 0.8 * limit.max_step < run.dt) {
+    return 0.8 * limit.max_step;
+  }
+  // The linearization sees nothing wrong at this step (a non-linear or impact-driven
+  // instability): fall back to a quarter of the step.
+  return quarter;
 }
 
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
-                       const core::Instability& inst) {
+                       const core::Instability& inst, double suggested_dt) {
   if (run.integrator == "rk4_adaptive") {
     std::fprintf(stderr,
                  "error: %s: numerical instability at t = %.6g s in '%s' (%s) with rk4_adaptive, "
@@ -84,7 +99,7 @@ void print_instability(const std::string& scene_name, const core::RunOptions& ru
                "error: %s: numerical instability at t = %.6g s in '%s' (%s) with %s, dt = %g s; "
                "try a smaller step, e.g. --dt %g\n",
                scene_name.c_str(), inst.time, inst.component.c_str(), inst.reason.c_str(),
-               run.integrator.c_str(), run.dt, suggested_dt(run));
+               run.integrator.c_str(), run.dt, suggested_dt);
 }
 
 InterruptFlag::InterruptFlag(std::atomic<bool>& flag) {
