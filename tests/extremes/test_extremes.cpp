@@ -127,3 +127,28 @@ TEST_CASE("slope_hold for 1000 s: drift after settling below 1e-9 m", "[extremes
   std::printf("slope_hold drift between 1 s and 1000 s: %.3e m\n", drift);
   CHECK(drift < 1e-9);
 }
+
+TEST_CASE("two_link at 0.8x and 1.25x of the predicted limit: clean, then caught", "[extremes]") {
+  for (const std::string integrator : {"euler", "heun"}) {
+    auto probe = scene::load_scene("two_link", {"simulation.integrator=\"" + integrator + "\""});
+    const auto states = core::sample_states(*probe.network, probe.run, 40);
+    const auto limit = core::predict_step_limit(*probe.network, integrator, states);
+    REQUIRE(limit.max_step > 0.0);
+    REQUIRE_FALSE(limit.unbounded);
+    auto run_at = [&](double dt) {
+      auto s = scene::load_scene("two_link", {"simulation.integrator=\"" + integrator + "\""});
+      core::RunOptions options = s.run;
+      options.dt = dt;
+      return core::simulate(*s.network, options);
+    };
+    const auto below = run_at(0.8 * limit.max_step);
+    const auto above = run_at(1.25 * limit.max_step);
+    std::printf("two_link %s: predicted limit %.4g s; at 0.8x %s, at 1.25x %s (t = %.3g s)\n",
+                integrator.c_str(), limit.max_step, below.instability ? "unstable" : "clean",
+                above.instability ? "unstable" : "clean",
+                above.instability ? above.instability->time : -1.0);
+    CHECK_FALSE(below.instability);
+    CHECK(above.instability);
+    CHECK(all_finite(above.trajectory));
+  }
+}
