@@ -51,6 +51,7 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
     }
   }
   // What to frame: the whole run, or the followed body's neighbourhood at the start.
+  follow_vertical_ = settings.follow_vertical;
   Bounds bounds;
   if (follow_ >= 0) {
     follow_origin_ = to_glm(poses.position(follow_, poses.start_time()));
@@ -59,6 +60,7 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
     const float h = std::max(0.5f * std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z}), 0.02f);
     bounds.add(c - glm::vec3(3.5f * h, 2.0f * h, h));
     bounds.add(c + glm::vec3(3.5f * h, 2.0f * h, h));
+    follow_region_ = bounds;
   } else {
     bounds = run_bounds(scene, poses);
   }
@@ -80,15 +82,29 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
   }
 }
 
+glm::vec3 CameraRig::shift(double t) const {
+  if (follow_ < 0) return glm::vec3(0.0f);
+  glm::vec3 s = to_glm(poses_.position(follow_, t)) - follow_origin_;
+  // By default horizontal motion only: a bounce does not shake the picture.
+  if (!follow_vertical_) s.z = 0.0f;
+  return s;
+}
+
 Camera CameraRig::at(double t) const {
   Camera c = base_;
-  if (follow_ >= 0) {
-    glm::vec3 shift = to_glm(poses_.position(follow_, t)) - follow_origin_;
-    shift.z = 0.0f;  // horizontal motion only: a bounce does not shake the picture
-    c.eye += shift;
-    c.target += shift;
-  }
+  const glm::vec3 s = shift(t);
+  c.eye += s;
+  c.target += s;
   return c;
+}
+
+Bounds CameraRig::follow_bounds(double t) const {
+  if (follow_ < 0) return Bounds{};
+  const glm::vec3 s = shift(t);
+  Bounds b;
+  b.add(follow_region_.min + s);
+  b.add(follow_region_.max + s);
+  return b;
 }
 
 }  // namespace stiction::render

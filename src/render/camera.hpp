@@ -1,5 +1,6 @@
 // Perspective camera, framed automatically from the scene's bounds or set by the scene file
-// ([camera] position/target/fov), optionally following one body's horizontal motion.
+// ([camera] position/target/fov), optionally following one body's horizontal motion (or, with
+// follow_vertical, its motion along all three axes).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -32,12 +33,21 @@ class CameraRig {
   CameraRig(const CameraSettings& settings, const SceneDescription& scene, const PoseTrack& poses,
             float aspect);
   Camera at(double t) const;
+  // True if the camera follows a body along all three axes.
+  bool follows_vertically() const { return follow_ >= 0 && follow_vertical_; }
+  // The region framed around the followed body at time t (the body's neighbourhood at the
+  // start, moved as the camera is); empty for a fixed camera.
+  Bounds follow_bounds(double t) const;
 
  private:
+  glm::vec3 shift(double t) const;
+
   const PoseTrack& poses_;
   Camera base_;
   int follow_ = -1;             // body index, -1: fixed
+  bool follow_vertical_ = false;
   glm::vec3 follow_origin_{0};  // followed body's position at the start
+  Bounds follow_region_;        // followed body's neighbourhood at the start
 };
 
 }  // namespace stiction::render

@@ -151,12 +151,16 @@ FrameRenderer::~FrameRenderer() {
 }
 
 void FrameRenderer::render(double t, image::Image& out) {
-  const std::vector<DrawItem> items = build_items(scene_, poses_, t);
+  const Bounds focus = camera_->follows_vertically() ? camera_->follow_bounds(t) : Bounds{};
+  const std::vector<DrawItem> items = build_items(scene_, poses_, t, focus);
   std::vector<TrailVertex> trail;
   if (settings_.overlay.trail) {
     trail = build_trail(scene_, poses_, t, settings_.overlay.trail_seconds, trail_width_);
   }
-  renderer_->draw(items, camera_->at(t), shadow_bounds_, trail);
+  // A camera following a body in 3D (a long descent) gets a shadow map fitted around the
+  // body each frame: fitted to the whole run, its texels could be metres wide.
+  const Bounds shadow_bounds = focus.empty() ? shadow_bounds_ : focus;
+  renderer_->draw(items, camera_->at(t), shadow_bounds, trail);
   renderer_->read_back(out);
   if (overlay_) overlay_->draw(out, poses_, t);
 }

@@ -81,6 +81,10 @@ void read_camera(TableReader& r, CameraSettings& c, const std::vector<std::strin
       std::find(bodies.begin(), bodies.end(), c.follow) == bodies.end()) {
     r.fail("follow", "no body named '" + c.follow + "' (bodies: " + join(bodies) + ")");
   }
+  c.follow_vertical = r.boolean("follow_vertical", c.follow_vertical);
+  if (c.follow_vertical && c.follow.empty()) {
+    r.fail("follow_vertical", "needs `follow` (the body whose motion the camera tracks)");
+  }
   if (c.position && c.target && (*c.position - *c.target).norm() < 1e-9) {
     r.fail("target", "must differ from position");
   }

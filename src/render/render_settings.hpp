@@ -18,6 +18,8 @@
 //   target = [x, y, z]
 //   fov = 40                # vertical field of view, degrees
 //   follow = "sphere"       # keep this body's horizontal position in view
+//   follow_vertical = false # true: follow its height too (needs `follow`); the shadow map is
+//                           # then fitted around the body every frame (long descents)
 //
 //   [overlay]
 //   enabled = true          # draw the time and the signal
@@ -47,6 +49,7 @@ struct CameraSettings {
   std::optional<core::Vec3> target;
   double fov_degrees = 40.0;
   std::string follow;  // body name, empty: fixed camera
+  bool follow_vertical = false;  // also follow the body's vertical motion
 };
 
 struct OverlaySettings {

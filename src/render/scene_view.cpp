@@ -11,6 +11,9 @@
 #include "components/admittance/point_mass.hpp"
 #include "components/admittance/rigid_body.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
+#include "components/impedance/penalty_joint.hpp"
+#include "core/admittance.hpp"
+#include "core/coordinate_map.hpp"
 
 namespace stiction::render {
 namespace {
@@ -81,18 +84,52 @@ ArmPose arm_pose(const BodyVisual& arm, const PoseTrack& poses, int index, doubl
 const glm::vec3 kSphereColour{0.90f, 0.30f, 0.03f};
 const glm::vec3 kSphereColour2{0.86f, 0.86f, 0.82f};
 const glm::vec3 kBoxColour{0.10f, 0.28f, 0.62f};
+const glm::vec3 kLinkColour2{0.15f, 0.50f, 0.75f};  // every other link of a chain
 const glm::vec3 kJointColour{0.06f, 0.06f, 0.07f};
 const glm::vec3 kBlockColour{0.72f, 0.10f, 0.08f};
 const glm::vec3 kGroundLight{0.78f, 0.78f, 0.76f};
 const glm::vec3 kGroundDark{0.55f, 0.57f, 0.60f};
 
+// True if body `index` is a child or a parent of a joint: a link, drawn as an arm's link is.
+bool is_link(const SceneDescription& scene, int index) {
+  return std::any_of(scene.joints.begin(), scene.joints.end(),
+                     [&](const JointVisual& j) { return j.child == index || j.parent == index; });
+}
+
+// Rotation taking the unit shapes' z axis to `axis` (unit).
+glm::mat4 align_z(const core::Vec3& axis) {
+  core::Vec3 t1, t2;
+  tangents(axis, t1, t2);
+  return rotation_from_basis(t1, t2, axis);
+}
+
+// World position of a joint's articulation point and world direction of its axis, both from
+// the child's pose (the parent's point differs by the joint's tiny separation).
+core::Vec3 joint_point(const JointVisual& j, const PoseTrack& poses, double t) {
+  return poses.position(j.child, t) + poses.orientation(j.child, t) * j.point;
+}
+core::Vec3 joint_axis(const JointVisual& j, const PoseTrack& poses, double t) {
+  return (poses.orientation(j.child, t) * j.axis).normalized();
+}
+
+// Half-extents of the axis-aligned box around a box of full sides `size` turned by `q`.
+glm::vec3 box_half_extent(const core::Vec3& size, const core::Quat& q) {
+  const core::Mat3 r = q.toRotationMatrix();
+  const core::Vec3 e = r.cwiseAbs() * (0.5 * size);
+  return {static_cast<float>(e.x()), static_cast<float>(e.y()), static_cast<float>(e.z())};
+}
+
 // Characteristic size of the scene's bodies: sets the checker square.
 double body_scale(const SceneDescription& scene) {
   double s = std::numeric_limits<double>::infinity();
-  for (const auto& b : scene.bodies) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyVisual& b = scene.bodies[i];
     switch (b.kind) {
       case BodyVisual::Kind::sphere: s = std::min(s, b.radius); break;
       case BodyVisual::Kind::box:
+        // A jointed link counts as an arm's link does: half its length.
+        s = std::min(s, (is_link(scene, static_cast<int>(i)) ? 0.5 : 1.0) * b.size.maxCoeff());
+        break;
       case BodyVisual::Kind::block: s = std::min(s, b.size.maxCoeff()); break;
       case BodyVisual::Kind::arm:
         for (double l : b.lengths) s = std::min(s, 0.5 * l);
@@ -175,6 +212,34 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
       scene.contacts.push_back(c);
       if (b.kind == BodyVisual::Kind::block) b.up = s.normal;
     }
+  }
+  auto body_index = [&](const core::Admittance* a) {
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (a != nullptr && scene.bodies[i].name == a->name()) return static_cast<int>(i);
+    }
+    return -1;
+  };
+  const toml::table* imps = document["impedances"].as_table();
+  for (std::size_t i = 0; i < network.impedances().size(); ++i) {
+    const auto* joint = dynamic_cast<const components::PenaltyJoint*>(network.impedances()[i].get());
+    if (!joint) continue;
+    // The map lists the child first, then the parent (none: the ground).
+    const auto wired = network.map_of(static_cast<int>(i)).admittances();
+    JointVisual j;
+    j.name = joint->name();
+    j.child = wired.empty() ? -1 : body_index(wired[0]);
+    j.parent = wired.size() > 1 ? body_index(wired[1]) : -1;
+    if (j.child < 0 || (wired.size() > 1 && j.parent < 0)) continue;
+    const toml::table* t = imps ? (*imps)[j.name].as_table() : nullptr;
+    if (t) {
+      j.point = vec3_of((*t)["point"], j.point);
+      j.parent_point = vec3_of((*t)["parent_point"], j.parent_point);
+    }
+    j.axis = joint->params().axis_child.normalized();
+    const BodyVisual& c = scene.bodies[static_cast<std::size_t>(j.child)];
+    if (c.kind == BodyVisual::Kind::box) j.width = c.size.minCoeff();
+    if (c.kind == BodyVisual::Kind::sphere) j.width = c.radius;
+    scene.joints.push_back(j);
   }
   return scene;
 }
@@ -276,14 +341,20 @@ Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double
       continue;
     }
     const glm::vec3 p = to_glm(poses.position(index, t));
-    float r = 0.0f;
+    glm::vec3 r(0.0f);
     switch (b.kind) {
-      case BodyVisual::Kind::sphere: r = static_cast<float>(b.radius); break;
-      case BodyVisual::Kind::box: r = static_cast<float>(0.5 * b.size.norm()); break;
-      default: r = static_cast<float>(b.size.norm()); break;
+      case BodyVisual::Kind::sphere: r = glm::vec3(static_cast<float>(b.radius)); break;
+      case BodyVisual::Kind::box: r = box_half_extent(b.size, poses.orientation(index, t)); break;
+      default: r = glm::vec3(static_cast<float>(b.size.norm())); break;
     }
-    bounds.add(p - glm::vec3(r));
-    bounds.add(p + glm::vec3(r));
+    bounds.add(p - r);
+    bounds.add(p + r);
+  }
+  // Joint cylinders, as an arm's joints.
+  for (const auto& j : scene.joints) {
+    const glm::vec3 p = to_glm(joint_point(j, poses, t));
+    bounds.add(p - glm::vec3(static_cast<float>(j.width)));
+    bounds.add(p + glm::vec3(static_cast<float>(j.width)));
   }
   return bounds;
 }
@@ -298,7 +369,8 @@ Bounds run_bounds(const SceneDescription& scene, const PoseTrack& poses, int sam
   return bounds;
 }
 
-std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t) {
+std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t,
+                                  const Bounds& focus) {
   std::vector<DrawItem> items;
   const Bounds all = run_bounds(scene, poses, 16);
   const double scale = body_scale(scene);
@@ -309,14 +381,21 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
   double floor_z = 0.0;
   if (surfaces.empty()) {
     double gap = 0.5 * scale;
+    // Arms and jointed rigid bodies: three link widths below the lowest joint.
+    double link_width = 0.0;
     for (const auto& b : scene.bodies) {
-      if (b.kind == BodyVisual::Kind::arm) gap = 3.0 * *std::max_element(b.widths.begin(), b.widths.end());
+      if (b.kind == BodyVisual::Kind::arm) {
+        link_width = std::max(link_width, *std::max_element(b.widths.begin(), b.widths.end()));
+      }
     }
+    for (const auto& j : scene.joints) link_width = std::max(link_width, j.width);
+    if (link_width > 0.0) gap = 3.0 * link_width;
     floor_z = (all.empty() ? 0.0 : all.min.z) - gap;
     surfaces.push_back({core::Vec3::UnitZ(), floor_z});
   }
-  const glm::vec3 centre = all.empty() ? glm::vec3(0.0f) : all.centre();
-  const float half = std::max(20.0f, 8.0f * (all.empty() ? 1.0f : all.radius()));
+  const Bounds& around = focus.empty() ? all : focus;
+  const glm::vec3 centre = around.empty() ? glm::vec3(0.0f) : around.centre();
+  const float half = std::max(20.0f, 8.0f * (around.empty() ? 1.0f : around.radius()));
   for (const auto& s : surfaces) {
     core::Vec3 t1, t2;
     tangents(s.normal, t1, t2);
@@ -337,12 +416,17 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
     item.material.checker_size = checker;
     item.material.grid_spacing = static_cast<float>(grid);
     item.material.local_scale = half;
-    item.material.local_offset = glm::vec2(static_cast<float>(a), static_cast<float>(b));
+    // The pattern repeats every 10 checker squares (2 per checker period, 5 per grid line):
+    // an offset reduced modulo that keeps the shader's coordinates small, hence precise.
+    const double period = 2.0 * grid;
+    item.material.local_offset = glm::vec2(static_cast<float>(a - period * std::floor(a / period)),
+                                           static_cast<float>(b - period * std::floor(b / period)));
     item.material.specular = 0.05f;
     item.casts_shadow = false;
     items.push_back(item);
   }
 
+  int links = 0;  // jointed rigid bodies so far: their colours alternate as an arm's links
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyVisual& b = scene.bodies[i];
     const int index = static_cast<int>(i);
@@ -367,6 +451,7 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
                      to_glm(poses.orientation(index, t)) *
                      glm::scale(glm::mat4(1.0f), 0.5f * to_glm(b.size));
         item.material.colour = kBoxColour;
+        if (is_link(scene, index) && links++ % 2 == 1) item.material.colour = kLinkColour2;
         items.push_back(item);
         break;
       }
@@ -405,7 +490,7 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
                        glm::rotate(glm::mat4(1.0f), static_cast<float>(pose.phi[k]), glm::vec3(0, 0, 1)) *
                        glm::scale(glm::mat4(1.0f),
                                   glm::vec3(0.5f * static_cast<float>(b.lengths[k]), 0.5f * w, 0.5f * w));
-          link.material.colour = k % 2 == 0 ? kBoxColour : glm::vec3(0.15f, 0.50f, 0.75f);
+          link.material.colour = k % 2 == 0 ? kBoxColour : kLinkColour2;
           items.push_back(link);
           DrawItem joint;
           joint.shape = Shape::cylinder;
@@ -424,6 +509,46 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
         items.push_back(tip);
         break;
       }
+    }
+  }
+
+  // Penalty joints, drawn as an arm's: a dark cylinder along the joint axis at the
+  // articulation point, a post from the floor to a joint held by the ground, and a small
+  // sphere at the free end of a chain's last link.
+  for (const auto& j : scene.joints) {
+    const float w = static_cast<float>(j.width);
+    if (j.parent < 0 && scene.surfaces.empty()) {
+      const float z0 = static_cast<float>(floor_z), z1 = static_cast<float>(j.parent_point.z());
+      const glm::vec3 base = to_glm(j.parent_point);
+      DrawItem post;
+      post.shape = Shape::cylinder;
+      post.model = glm::translate(glm::mat4(1.0f), glm::vec3(base.x, base.y, 0.5f * (z0 + z1))) *
+                   glm::scale(glm::mat4(1.0f), glm::vec3(0.7f * w, 0.7f * w, 0.5f * (z1 - z0)));
+      post.material.colour = glm::vec3(0.35f);
+      items.push_back(post);
+    }
+    DrawItem joint;
+    joint.shape = Shape::cylinder;
+    joint.model = glm::translate(glm::mat4(1.0f), to_glm(joint_point(j, poses, t))) *
+                  align_z(joint_axis(j, poses, t)) *
+                  glm::scale(glm::mat4(1.0f), glm::vec3(0.95f * w, 0.95f * w, 0.85f * w));
+    joint.material.colour = kJointColour;
+    joint.material.specular = 0.5f;
+    items.push_back(joint);
+    // The tip: the child's point mirrored through its centre, if the child is a box jointed
+    // near one end and carries no further joint.
+    const BodyVisual& child = scene.bodies[static_cast<std::size_t>(j.child)];
+    const bool parent_of_another = std::any_of(scene.joints.begin(), scene.joints.end(),
+                                               [&](const JointVisual& o) { return o.parent == j.child; });
+    if (child.kind == BodyVisual::Kind::box && !parent_of_another &&
+        j.point.norm() > 0.25 * child.size.maxCoeff()) {
+      const core::Vec3 end = poses.position(j.child, t) - poses.orientation(j.child, t) * j.point;
+      DrawItem tip;
+      tip.shape = Shape::sphere;
+      tip.model = glm::translate(glm::mat4(1.0f), to_glm(end)) *
+                  glm::scale(glm::mat4(1.0f), glm::vec3(0.6f * w));
+      tip.material.colour = kJointColour;
+      items.push_back(tip);
     }
   }
   return items;

@@ -45,14 +45,30 @@ struct ContactVisual {
   core::Vec3 normal{0.0, 0.0, 1.0};
 };
 
+// A revolute joint between two rigid bodies (penalty_joint), drawn like a planar arm's joint:
+// a dark cylinder along the joint axis at the articulation point, and a post down to the
+// floor when the parent is the ground.
+struct JointVisual {
+  std::string name;                             // impedance name
+  int child = -1;                               // index into SceneDescription::bodies
+  int parent = -1;                              // -1: the ground
+  core::Vec3 point = core::Vec3::Zero();        // articulation point in the child's frame
+  core::Vec3 parent_point = core::Vec3::Zero(); // in the parent's frame (world for the ground)
+  core::Vec3 axis{0.0, 0.0, 1.0};               // joint axis in the child's frame (unit)
+  double width = 0.02;                          // the child's thickness (as an arm link's width)
+};
+
 struct SceneDescription {
   std::vector<BodyVisual> bodies;
   std::vector<SurfaceVisual> surfaces;  // empty: a floor is put under the scene
   std::vector<ContactVisual> contacts;
+  std::vector<JointVisual> joints;
 };
 
 // Shapes from the network's components (dynamic_cast) and the body tables of the document
-// (shape, radius, size, link widths); surfaces from kikuuwe_contact impedances.
+// (shape, radius, size, link widths); surfaces from kikuuwe_contact impedances; joints from
+// penalty_joint impedances (bodies from their maps, axes from their params, articulation
+// points from the document's `point` and `parent_point`).
 SceneDescription describe_scene(const core::Network& network, const toml::table& document);
 
 enum class Shape { sphere, box, cylinder, plane, trail };
@@ -126,8 +142,13 @@ class PoseTrack {
   std::vector<Columns> columns_;
 };
 
-// Everything to draw at time t: surfaces, bodies (arms as boxes plus joint cylinders).
-std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t);
+// Everything to draw at time t: surfaces, bodies (arms as boxes plus joint cylinders; box
+// links of penalty joints likewise, with their joints' cylinders and the base post).
+// `focus`, if not empty, is the region a camera following a body along all three axes shows:
+// the ground square is then centred on it (not on the whole run, which may span kilometres
+// and would leave the checker without float precision near the body).
+std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t,
+                                  const Bounds& focus = Bounds{});
 
 // Axis-aligned bounds of the bodies (not the surfaces) at time t.
 Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double t);

@@ -104,6 +104,63 @@ inline core::Trajectory two_link_trajectory() {
   return tr;
 }
 
+// Simulation III's arm: the links of two_link as two rigid boxes held by penalty joints (the
+// first to the ground at the origin), drawn like the planar arm.
+inline const char* two_link_penalty_toml() {
+  return R"(
+name = "two_link_penalty"
+gravity = [0.0, 0.0, 0.0]
+[bodies.link0]
+type = "rigid_body"
+mass = 0.2
+shape = "box"
+size = [0.2, 0.02, 0.02]
+position = [0.1, 0.0, 0.0]
+[bodies.link1]
+type = "rigid_body"
+mass = 0.2
+shape = "box"
+size = [0.2, 0.02, 0.02]
+position = [0.3, 0.0, 0.0]
+[impedances.joint0]
+type = "penalty_joint"
+body = "link0"
+point = [-0.1, 0.0, 0.0]
+[impedances.joint1]
+type = "penalty_joint"
+body = "link1"
+parent = "link0"
+point = [-0.1, 0.0, 0.0]
+parent_point = [0.1, 0.0, 0.0]
+[overlay]
+signal = "joint1.theta"
+label = "joint 1"
+unit = "rad"
+)";
+}
+
+// The joint angles of two_link_trajectory, as the two links' poses (centres and rotations
+// about z), so the golden shows the same arm as render_two_link.
+inline core::Trajectory two_link_penalty_trajectory() {
+  core::Trajectory tr({"t", "link0.p.x", "link0.p.y", "link0.p.z", "link0.q.w", "link0.q.x",
+                       "link0.q.y", "link0.q.z", "link1.p.x", "link1.p.y", "link1.p.z", "link1.q.w",
+                       "link1.q.x", "link1.q.y", "link1.q.z", "joint0.theta", "joint1.theta"});
+  for (int i = 0; i <= 1000; ++i) {
+    const double t = i * 1e-3;
+    const double theta0 = 0.3 + 1.2 * t, theta1 = 0.4 + 0.9 * t;
+    const double phi0 = theta0, phi1 = theta0 + theta1;
+    const double ex = 0.2 * std::cos(phi0), ey = 0.2 * std::sin(phi0);  // the elbow
+    const double row[] = {t,
+                          0.5 * ex, 0.5 * ey, 0.0,
+                          std::cos(0.5 * phi0), 0.0, 0.0, std::sin(0.5 * phi0),
+                          ex + 0.1 * std::cos(phi1), ey + 0.1 * std::sin(phi1), 0.0,
+                          std::cos(0.5 * phi1), 0.0, 0.0, std::sin(0.5 * phi1),
+                          theta0, theta1};
+    tr.append(row);
+  }
+  return tr;
+}
+
 // A point mass at rest on a 20 degree slope (normal tilted towards +x: downhill is +x).
 inline std::string slope_hold_toml() {
   const double a = 20.0 * std::numbers::pi / 180.0;

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "image/compare.hpp"
+#include "render/camera.hpp"
 #include "image/png.hpp"
 #include "render/gl_context.hpp"
 #include "render/render_outputs.hpp"
@@ -62,11 +63,64 @@ TEST_CASE("golden: two_link arm", "[render][golden]") {
   check_golden("render_two_link", renderer.render(0.5));
 }
 
+TEST_CASE("golden: two_link_penalty arm of rigid bodies and penalty joints", "[render][golden]") {
+  const scene::Scene s = testing::make_scene(testing::two_link_penalty_toml(), "two_link_penalty");
+  const core::Trajectory tr = testing::two_link_penalty_trajectory();
+  const SceneDescription scene = describe_scene(*s.network, s.document);
+  // Both joints, with their articulation points and axes from the scene.
+  REQUIRE(scene.joints.size() == 2);
+  CHECK(scene.joints[0].parent == -1);
+  CHECK(scene.joints[1].parent == 0);
+  CHECK(scene.joints[1].child == 1);
+  CHECK(scene.joints[1].parent_point.x() == 0.1);
+  CHECK(scene.joints[1].point.x() == -0.1);
+  CHECK(scene.joints[0].axis.z() == 1.0);
+  CHECK(scene.joints[0].width == 0.02);
+  FrameRenderer renderer(scene, tr, golden_settings(s));
+  check_golden("render_two_link_penalty", renderer.render(0.5));
+}
+
 TEST_CASE("golden: slope_hold block on its slope", "[render][golden]") {
   const scene::Scene s = testing::make_scene(testing::slope_hold_toml(), "slope_hold");
   const core::Trajectory tr = testing::slope_hold_trajectory();
   FrameRenderer renderer(describe_scene(*s.network, s.document), tr, golden_settings(s));
   check_golden("render_slope_hold", renderer.render(0.5));
+}
+
+TEST_CASE("follow camera: horizontal by default, all three axes with follow_vertical", "[render]") {
+  // A block sliding down the 20 degree slope of slope_hold's scene: it moves along x and z.
+  const scene::Scene s = testing::make_scene(testing::slope_hold_toml(), "slope_hold");
+  core::Trajectory tr({"t", "block.p.x", "block.p.y", "block.p.z"});
+  const double a = 20.0 * std::numbers::pi / 180.0;
+  for (int i = 0; i <= 100; ++i) {
+    const double t = i * 0.1, d = 0.5 * 1.5 * t * t;  // 75 m along the slope at t = 10 s
+    const double row[] = {t, d * std::cos(a), 0.0, -d * std::sin(a)};
+    tr.append(row);
+  }
+  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const PoseTrack poses(tr, scene);
+  CameraSettings settings;
+  settings.follow = "block";
+  const glm::vec3 moved = to_glm(poses.position(0, 10.0) - poses.position(0, 0.0));
+  {
+    const CameraRig rig(settings, scene, poses, 16.0f / 9.0f);
+    const glm::vec3 shift = rig.at(10.0).target - rig.at(0.0).target;
+    CHECK(shift.x == Approx(moved.x).margin(1e-3));
+    CHECK(shift.z == 0.0f);  // a bounce (or a descent) does not move the camera
+    CHECK_FALSE(rig.follows_vertically());
+  }
+  settings.follow_vertical = true;
+  const CameraRig rig(settings, scene, poses, 16.0f / 9.0f);
+  CHECK(rig.follows_vertically());
+  const Camera c0 = rig.at(0.0), c1 = rig.at(10.0);
+  CHECK(c1.target.x - c0.target.x == Approx(moved.x).margin(1e-3));
+  CHECK(c1.target.z - c0.target.z == Approx(moved.z).margin(1e-3));
+  CHECK(c1.eye.z - c0.eye.z == Approx(moved.z).margin(1e-3));
+  // The framed region (ground square and shadow map) moves with the block.
+  const Bounds b = rig.follow_bounds(10.0);
+  const glm::vec3 p = to_glm(poses.position(0, 10.0));
+  CHECK(glm::all(glm::lessThan(b.min, p)));
+  CHECK(glm::all(glm::greaterThan(b.max, p)));
 }
 
 TEST_CASE("rendering is repeatable frame to frame", "[render]") {

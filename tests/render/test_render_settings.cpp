@@ -38,6 +38,8 @@ TEST_CASE("render settings: defaults and values", "[render][settings]") {
   CHECK(s.camera.position->y() == -3.0);
   CHECK(s.camera.fov_degrees == 30.0);
   CHECK(s.camera.follow == "sphere");
+  CHECK_FALSE(s.camera.follow_vertical);
+  CHECK(read("[camera]\nfollow = \"sphere\"\nfollow_vertical = true\n").camera.follow_vertical);
   CHECK(s.overlay.signal == "contact.slip");
   CHECK(s.overlay.label == "contact.slip");
   CHECK(s.overlay.trail);
@@ -55,6 +57,10 @@ TEST_CASE("render settings: bad input is an InputError at FILE:LINE:COL", "[rend
   CHECK_THROWS_WITH(read("[render]\nfps = 0\n"), Contains("render.fps"));
   CHECK_THROWS_WITH(read("[camera]\nfollow = \"ball\"\n"), Contains("no body named 'ball'"));
   CHECK_THROWS_WITH(read("[camera]\nzoom = 2\n"), Contains("unknown key 'camera.zoom'"));
+  CHECK_THROWS_WITH(read("[camera]\nfollow_vertical = true\n"),
+                    Contains("scene.toml:2:") && Contains("camera.follow_vertical") && Contains("needs `follow`"));
+  CHECK_THROWS_WITH(read("[camera]\nfollow = \"sphere\"\nfollow_vertical = 1\n"),
+                    Contains("camera.follow_vertical"));
   CHECK_THROWS_WITH(read("[overlay]\nsignal = \"contact.slp\"\n"), Contains("no signal named"));
   CHECK_THROWS_WITH(read("[overlay]\nsignal = \"contact\"\n"), Contains("no signal named"));
   CHECK_THROWS_AS(read("render = 3\n"), scene::InputError);
