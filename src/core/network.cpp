@@ -50,6 +50,7 @@ void Network::finalize() {
   for (const auto& i : impedances_) {
     impedance_slots_.push_back({state, i->state_size(), motion, i->input_size()});
     output_offsets_.push_back(output);
+    output_sizes_.push_back(i->output_size());
     state += i->state_size();
     motion += i->input_size();
     output += i->output_size();
@@ -126,7 +127,7 @@ void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_
   for (std::size_t i = 0; i < impedances_.size(); ++i) {
     const Slot& s = impedance_slots_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
-    auto u = u_.segment(output_offsets_[i], impedances_[i]->output_size());
+    auto u = u_.segment(output_offsets_[i], output_sizes_[i]);
     maps_[i]->motion(x, x_hat);
     impedances_[i]->evaluate(t, x_hat, x.segment(s.state_offset, s.state_size), tau, u,
                              x_dot.segment(s.state_offset, s.state_size));

@@ -82,6 +82,7 @@ class Network {
   std::vector<Slot> admittance_slots_;
   std::vector<Slot> impedance_slots_;  // state slice; input_offset/size index x_hat, u
   std::vector<int> output_offsets_;    // where each impedance's u lives in u_
+  std::vector<int> output_sizes_;
   std::vector<int> admittance_signal_sizes_;
   std::vector<int> impedance_signal_sizes_;
   int state_dim_ = 0;

@@ -22,6 +22,8 @@ RigidBody::RigidBody(std::string name, const RigidBodyParams& params)
     throw std::invalid_argument("rigid body: inertia must be positive definite");
   }
   inertia_inverse_ = params_.inertia.inverse();
+  inertia_diagonal_ = params_.inertia.diagonal();
+  diagonal_inertia_ = params_.inertia.isDiagonal(0.0);
   params_.orientation.normalize();
 }
 
@@ -47,8 +49,13 @@ void RigidBody::derivative(ConstVecRef x, ConstVecRef u_hat, VecRef x_dot) const
   x_dot.segment<3>(3) = u_hat.segment<3>(0) / params_.mass + params_.gravity;
   x_dot[6] = -0.5 * qv.dot(w);
   x_dot.segment<3>(7) = 0.5 * (qw * w + qv.cross(w));
-  x_dot.segment<3>(10) =
-      inertia_inverse_ * (u_hat.segment<3>(3) - w.cross(params_.inertia * w));
+  if (diagonal_inertia_) {
+    const Vec3 Jw = inertia_diagonal_.cwiseProduct(w);
+    x_dot.segment<3>(10) = (u_hat.segment<3>(3) - w.cross(Jw)).cwiseQuotient(inertia_diagonal_);
+  } else {
+    x_dot.segment<3>(10) =
+        inertia_inverse_ * (u_hat.segment<3>(3) - w.cross(params_.inertia * w));
+  }
 }
 
 void RigidBody::project(VecRef x) const { x.segment<4>(6).normalize(); }

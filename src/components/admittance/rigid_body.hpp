@@ -42,6 +42,9 @@ class RigidBody final : public core::Body {
  private:
   RigidBodyParams params_;
   core::Mat3 inertia_inverse_;
+  // Principal-axis bodies (spheres, boxes) skip the 3x3 products in the hot path.
+  bool diagonal_inertia_ = false;
+  core::Vec3 inertia_diagonal_;
 };
 
 }  // namespace stiction::components
