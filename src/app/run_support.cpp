@@ -6,7 +6,6 @@
 #include <unistd.h>
 
 #include "app/progress.hpp"
-#include "core/integrator.hpp"
 #include "core/stability.hpp"
 
 namespace stiction::app {
@@ -69,9 +68,7 @@ std::map<std::string, double> event_times(const core::RunResult& result) {
 double suggested_dt(scene::Scene& scene) {
   const core::RunOptions& run = scene.run;
   const double quarter = run.dt / 4.0;
-  if (core::find_tableau(run.integrator) == nullptr && run.integrator != "symplectic_euler") {
-    return quarter;  // adaptive: the tolerance is what to change
-  }
+  if (run.integrator == "rk4_adaptive") return quarter;  // its tolerance is what to change
   core::RunOptions pilot = run;
   pilot.dt = quarter;
   const auto states = core::sample_states(*scene.network, pilot, 40);

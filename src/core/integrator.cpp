@@ -28,8 +28,7 @@ const Tableau& rk4_tableau() {
                          {1.0 / 6, 2.0 / 6, 2.0 / 6, 1.0 / 6},
                          {0.0, 0.5, 0.5, 1.0},
                          {0.5, 0.5, 1.0, 1.0},
-                         4,
-                         2.8284271247461903};
+                         4};
   return t;
 }
 
@@ -176,7 +175,6 @@ double AdaptiveRk4Stepper::advance(Network& network, double t, double limit, Vec
       if (h >= h_) h_ = h * factor;
       return h;
     }
-    ++rejected_;
     h_ = h * factor;
     if (h_ < 1e-14 * std::max(1.0, std::abs(t))) {
       throw std::runtime_error("rk4_adaptive: step size underflow");

@@ -32,9 +32,6 @@ struct Tableau {
   std::vector<double> c;  // stage times
   std::vector<double> d;  // stage step sizes tau_r / T handed to the impedances
   int order = 0;
-  // Stability interval on the imaginary axis (|lambda T| below this is stable for an
-  // undamped oscillator); 0 when the method is unstable there (forward Euler, Heun).
-  double imaginary_stability = 0.0;
 };
 
 const Tableau& euler_tableau();
@@ -107,15 +104,12 @@ class AdaptiveRk4Stepper final : public Stepper {
   const std::string& name() const override { return name_; }
   int order() const override { return 4; }
   double advance(Network& network, double t, double limit, Vec& x) override;
-  double current_step() const { return h_; }
-  long rejected() const { return rejected_; }
 
  private:
   std::string name_ = "rk4_adaptive";
   RungeKuttaStepper rk4_;
   double h_;
   double tolerance_;
-  long rejected_ = 0;
   Vec full_, half_;
 };
 

@@ -69,8 +69,6 @@ class Network {
   const std::vector<std::unique_ptr<Admittance>>& admittances() const { return admittances_; }
   const std::vector<std::unique_ptr<Impedance>>& impedances() const { return impedances_; }
   const CoordinateMap& map_of(int impedance) const { return *maps_[impedance]; }
-  // Offset and size of an impedance's state in the system vector.
-  Slot impedance_slot(int impedance) const { return impedance_slots_[impedance]; }
   Slot admittance_slot(int admittance) const { return admittance_slots_[admittance]; }
 
  private:

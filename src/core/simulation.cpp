@@ -177,7 +177,6 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   }
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.final_state = x;
   return result;
 }
 

@@ -49,7 +49,6 @@ struct RunResult {
   double wall_seconds = 0.0;
   std::optional<Instability> instability;
   std::vector<SlipHistory> slip_events;  // one per impedance with a slip speed
-  Vec final_state;
 };
 
 using ProgressCallback = std::function<void(double fraction_done)>;

@@ -147,8 +147,7 @@ Scene build_scene(toml::table document, const fs::path& path) {
   if (scene.network->admittances().empty()) {
     throw InputError::at(scene.document.source(), "the scene has no [bodies]");
   }
-  scene.stick_thresholds = builder.stick_thresholds();
-  scene.run.stick_thresholds = scene.stick_thresholds;
+  scene.run.stick_thresholds = builder.stick_thresholds();  // per contact or joint
   scene.network->finalize();
   return scene;
 }

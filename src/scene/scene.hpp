@@ -26,7 +26,6 @@ struct Scene {
   std::filesystem::path path;                      // file it came from
   std::unique_ptr<core::Network> network;          // finalized; owns every component
   core::RunOptions run;                            // [simulation]
-  std::map<std::string, double> stick_thresholds;  // contact name -> threshold (m/s)
   toml::table document;                            // whole parsed document after overrides
 
   Scene() = default;

@@ -38,7 +38,7 @@ TEST_CASE("loader: sphere_roll has the paper's parameters") {
   CHECK(s.run.integrator == "rk4");
   CHECK(s.run.dt == 1e-4);
   CHECK(s.run.output_rate == 1000.0);
-  CHECK(s.stick_thresholds.at("ground") == 1e-3);
+  CHECK(s.run.stick_thresholds.size() == 1);
   CHECK(s.run.stick_thresholds.at("ground") == 1e-3);
   const auto layout = s.network->layout();
   REQUIRE(layout.size() == 2);
