@@ -71,7 +71,7 @@ double suggested_dt(scene::Scene& scene) {
   if (run.integrator == "rk4_adaptive") return quarter;  // its tolerance is what to change
   core::RunOptions pilot = run;
   pilot.dt = quarter;
-  const auto states = core::sample_states(*scene.network, pilot, 40);
+  const auto states = core::sample_states(*scene.network, pilot, 10);
   const core::StepLimit limit =
       core::predict_step_limit(*scene.network, run.integrator, states, 1e-9, run.dt);
   if (!limit.unbounded && limit.max_step > 0.0 && 0.8 * limit.max_step < run.dt) {

@@ -348,7 +348,8 @@ class Study {
   }
 
   void stability_limits() {
-    say("stability: sampling " + std::to_string(options_.stability_samples) + " states (" +
+    say("stability: sampling " + std::to_string(options_.stability_samples) +
+        " states per regime (" +
         scene_.run.integrator + ", dt = " + format_g(scene_.run.dt) + ")");
     const auto states =
         core::sample_states(*scene_.network, scene_.run, options_.stability_samples);
@@ -360,6 +361,7 @@ class Study {
       limit.predicted = predicted.max_step;
       limit.predicted_unbounded = predicted.unbounded;
       limit.predicted_time = predicted.limiting_time;
+      limit.chatter_free = predicted.chatter_free_step;
       bisect(integrator, limit);
       say("stability " + integrator + ": predicted " + format_g(limit.predicted, 4) +
           " s, bisected " + format_g(limit.bisected, 4) + " s (" + std::to_string(limit.runs) +

@@ -41,7 +41,7 @@ struct StudyOptions {
   // Timing repeats are cut so that one grid point takes at most about this long.
   double repeat_budget_seconds = 2.0;
   bool bisect = true;                   // stability limits (fixed-step integrators)
-  int stability_samples = 40;           // states for core::predict_step_limit (as check)
+  int stability_samples = 10;           // states per regime for core::predict_step_limit (as check)
   double bisection_precision = 0.01;    // relative width of the final bracket
 };
 
@@ -83,6 +83,7 @@ struct StabilityLimit {
   double predicted = 0.0;       // core::predict_step_limit (0: none found)
   bool predicted_unbounded = false;
   double predicted_time = 0.0;  // time of the sampled state that limits it
+  double chatter_free = 0.0;    // largest step at which no stuck friction chatters either
   double bisected = 0.0;        // largest step found stable by whole runs (0: none)
   double unstable_above = 0.0;  // smallest step found unstable (the bracket's top)
   int runs = 0;                 // runs spent by the bisection

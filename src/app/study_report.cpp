@@ -143,17 +143,21 @@ std::string study_markdown(const StudyResult& r) {
 
   if (!r.limits.empty()) {
     md += "\n## Stability limits\n\nPredicted: `core::predict_step_limit`, spectral radius of "
-          "the linearized step map at states sampled along a run at the scene's own options. "
-          "Bisected: whole runs of the scene (its full duration), unstable when the run's "
-          "monitor stops it (non-finite state or energy growth); the largest stable step "
-          "found, the bracket closed to 1%.\n\n";
-    md += "| integrator | predicted [s] | limiting state t [s] | bisected [s] | first unstable [s] "
-          "| predicted / bisected | runs | note |\n|---|---:|---:|---:|---:|---:|---:|---|\n";
+          "the step map linearized at states sampled along a run at the scene's own options "
+          "(every regime the run passes through), each element held in its regime. "
+          "Chatter-free: below this step no stuck friction spring oscillates either; between "
+          "it and the predicted limit such an oscillation is bounded by the friction limit "
+          "and too small for the energy monitor. Bisected: whole runs of the scene (its full "
+          "duration), unstable when the run's monitor stops it (non-finite state or energy "
+          "growth); the largest stable step found, the bracket closed to 1%.\n\n";
+    md += "| integrator | predicted [s] | limiting state t [s] | chatter-free [s] | bisected [s] "
+          "| first unstable [s] | predicted / bisected | runs | note |\n"
+          "|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const auto& l : r.limits) {
       const std::string predicted = l.predicted_unbounded ? ">= " + num(l.predicted, 4) : cell(l.predicted, 4);
       const double ratio = l.bisected > 0.0 && l.predicted > 0.0 ? l.predicted / l.bisected : NAN;
       md += "| " + l.integrator + " | " + predicted + " | " + cell(l.predicted_time, 4) + " | " +
-            cell(l.bisected > 0.0 ? l.bisected : NAN, 4) + " | " +
+            cell(l.chatter_free, 4) + " | " + cell(l.bisected > 0.0 ? l.bisected : NAN, 4) + " | " +
             cell(l.unstable_above > 0.0 ? l.unstable_above : NAN, 4) + " | " + cell(ratio, 3) +
             " | " + std::to_string(l.runs) + " | " + l.note + " |\n";
     }

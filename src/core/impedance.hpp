@@ -44,6 +44,23 @@ class Impedance {
   // element changes regime during a step; smooth elements return 0.
   virtual int regime(ConstVecRef /*x_hat*/, ConstVecRef /*y*/, double /*tau*/) const { return 0; }
 
+  // Friction clamped at a limit force (Kikuuwe's model). While such an element sticks, its
+  // spring can carry a numerical oscillation, but that one cannot run away: it ends where
+  // the force reaches the limit and the element slides. Stability analysis tells these
+  // modes apart by linearizing once more with the friction held:
+  // - evaluate_friction_held(): evaluate() with the friction force and the friction-state
+  //   rate taken from a reference evaluation (u_ref, y_dot_ref), the rest (a contact's
+  //   normal force) live;
+  // - friction_cap_energy(): the most energy such a bounded oscillation holds, taken as
+  //   twice the spring's energy at the limit force, F^2 / K (spring plus motion).
+  virtual bool clamps_friction() const { return false; }
+  virtual void evaluate_friction_held(double t, ConstVecRef x_hat, ConstVecRef y, double tau,
+                                      ConstVecRef /*u_ref*/, ConstVecRef /*y_dot_ref*/, VecRef u,
+                                      VecRef y_dot) const {
+    evaluate(t, x_hat, y, tau, u, y_dot);
+  }
+  virtual double friction_cap_energy(ConstVecRef /*x_hat*/) const { return 0.0; }
+
   // Power this element feeds into the admittances at (x_hat, u), for elements that are
   // energy sources (prescribed torques); passive elements return 0. The energy monitor
   // allows the network energy to grow by what the sources put in, and no more.

@@ -135,8 +135,7 @@ void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_
   }
 }
 
-void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
-  evaluate_impedances(t, x, tau, x_dot);
+void Network::evaluate_admittances(ConstVecRef x, VecRef x_dot) {
   // (13g) admittances.
   for (std::size_t j = 0; j < admittances_.size(); ++j) {
     const Slot& s = admittance_slots_[j];
@@ -144,6 +143,49 @@ void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
                                 u_hat_.segment(s.input_offset, s.input_size),
                                 x_dot.segment(s.state_offset, s.state_size));
   }
+}
+
+void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
+  evaluate_impedances(t, x, tau, x_dot);
+  evaluate_admittances(x, x_dot);
+}
+
+void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
+                                       ConstVecRef reference) {
+  u_hat_.setZero();
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const Slot& s = impedance_slots_[i];
+    auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+    auto u = u_.segment(output_offsets_[i], output_sizes_[i]);
+    auto y_dot = x_dot.segment(s.state_offset, s.state_size);
+    const Impedance& imp = *impedances_[i];
+    if (imp.clamps_friction()) {
+      Vec u_ref(output_sizes_[i]), y_dot_ref(s.state_size);
+      maps_[i]->motion(reference, x_hat);
+      imp.evaluate(t, x_hat, reference.segment(s.state_offset, s.state_size), tau, u_ref,
+                   y_dot_ref);
+      maps_[i]->motion(x, x_hat);
+      imp.evaluate_friction_held(t, x_hat, x.segment(s.state_offset, s.state_size), tau, u_ref,
+                                 y_dot_ref, u, y_dot);
+    } else {
+      maps_[i]->motion(x, x_hat);
+      imp.evaluate(t, x_hat, x.segment(s.state_offset, s.state_size), tau, u, y_dot);
+    }
+    maps_[i]->apply(x, u, u_hat_);
+  }
+  evaluate_admittances(x, x_dot);
+}
+
+double Network::friction_cap_energy(ConstVecRef x) {
+  double total = 0.0;
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    if (!impedances_[i]->clamps_friction()) continue;
+    const Slot& s = impedance_slots_[i];
+    auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+    maps_[i]->motion(x, x_hat);
+    total += impedances_[i]->friction_cap_energy(x_hat);
+  }
+  return total;
 }
 
 void Network::kinematics(ConstVecRef x, VecRef x_dot) const {

@@ -35,6 +35,12 @@ class Network {
 
   // x_dot = F(x, t; tau): (13b)-(13g) with (22).
   void derivative(double t, ConstVecRef x, double tau, VecRef x_dot);
+  // F(x, t; tau) with the friction of every friction-clamping element held at what it is at
+  // `reference` (see Impedance::clamps_friction): for stability analysis only.
+  void derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
+                                ConstVecRef reference);
+  // Most energy the friction-clamping elements' bounded oscillations can hold at x.
+  double friction_cap_energy(ConstVecRef x);
   void project(VecRef x) const;
   // Admittance derivatives with no forces applied: the position rates (p_dot = v,
   // q_dot = Q(w, q), theta_dot = omega) of a state, for partitioned integrators.
@@ -73,6 +79,7 @@ class Network {
 
  private:
   void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot);
+  void evaluate_admittances(ConstVecRef x, VecRef x_dot);
 
   std::vector<std::unique_ptr<Admittance>> admittances_;
   std::vector<std::unique_ptr<Impedance>> impedances_;

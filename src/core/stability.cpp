@@ -3,7 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <map>
+#include <optional>
 
 #include "core/integrator.hpp"
 
@@ -12,48 +13,56 @@ namespace {
 
 // A step is called unstable where it amplifies some mode by more than 5% per step: such
 // growth runs away within tens of steps. Weaker growth is left out on purpose: a rolling
-// contact linearized about a point of its orbit grows at a few 1/s (physics, not the step),
-// and RK4 on the stiff stuck-friction spring of sphere_roll has a window near
-// dt = 2.3e-4 s where that mode grows by ~3% per step; friction saturation bounds it (the
-// contact slips a little), so runs there stay bounded, as `stiction study` confirms.
+// contact linearized about a point of its orbit grows at a few 1/s (physics, not the step).
 constexpr double kUnstableGrowth = 0.05;
 
-}  // namespace
-
-std::vector<TimedState> sample_states(Network& network, const RunOptions& options, int count) {
-  auto stepper = make_stepper(options.integrator, network.state_dim(), options.dt,
-                              options.tolerance);
-  std::vector<TimedState> states;
-  Vec x = network.initial_state();
-  double t = 0.0;
-  const double every = options.duration / std::max(1, count);
-  double next = 0.0;
-  while (t < options.duration) {
-    if (t >= next) {
-      states.push_back({t, x});
-      next += every;
-    }
-    t += stepper->advance(network, t, options.duration - t, x);
-    if (!x.allFinite()) break;
-  }
-  return states;
+// Headroom of the energy monitor (simulation.cpp) at a state of energy `energy`, with
+// `work` done by sources so far.
+double headroom(const RunOptions& options, double initial_energy, double energy, double work) {
+  if (!std::isfinite(initial_energy) || !std::isfinite(energy)) return INFINITY;  // unmonitored
+  const double margin =
+      work + options.energy_growth_limit * (std::abs(initial_energy) + work) + 1e-9;
+  return margin - (energy - initial_energy);
 }
 
-double step_spectral_radius(Network& network, const std::string& integrator, double t,
-                            const Vec& x, double h) {
-  const int n = static_cast<int>(x.size());
-  auto stepper = make_stepper(integrator, n, h);
-  Eigen::MatrixXd jacobian(n, n);
-  Vec center = x, plus(n), minus(n);
-  // Linearization holds only if no element switches regime (contact closing, friction
-  // sticking) within the step: compare the regimes at the start, middle and end.
-  const std::size_t regime = network.regime_signature(x, h);
-  Vec half = x;
-  make_stepper(integrator, n, h / 2)->advance(network, t, h / 2, half);
-  stepper->advance(network, t, h, center);
-  if (network.regime_signature(half, h) != regime || network.regime_signature(center, h) != regime) {
-    return std::numeric_limits<double>::quiet_NaN();
+// Runs the scene at its options and calls visit(step, t, x, work) before every step.
+template <typename Visit>
+void walk_run(Network& network, const RunOptions& options, Visit visit) {
+  auto stepper = make_stepper(options.integrator, network.state_dim(), options.dt,
+                              options.tolerance);
+  Vec x = network.initial_state();
+  double t = 0.0, work = 0.0;
+  const bool sources = network.has_sources();
+  double power = sources ? std::abs(network.source_power(0.0, x)) : 0.0;
+  for (long k = 0; t < options.duration; ++k) {
+    visit(k, t, x, work);
+    const double h = stepper->advance(network, t, options.duration - t, x);
+    t += h;
+    if (!x.allFinite()) break;
+    if (sources) {
+      const double p = std::abs(network.source_power(t, x));
+      work += 0.5 * (power + p) * h;
+      power = p;
+    }
   }
+}
+
+// J = dF/dx at (t, x; tau) by central differences, with clamping friction held at its value
+// at x if asked. Empty where x lies on a switching surface of some element (the one-sided
+// differences disagree at every perturbation size tried).
+std::optional<Eigen::MatrixXd> jacobian(Network& network, double t, const Vec& x, double tau,
+                                        bool friction_held) {
+  const int n = static_cast<int>(x.size());
+  auto F = [&](const Vec& at, Vec& out) {
+    if (friction_held) {
+      network.derivative_friction_held(t, at, tau, out, x);
+    } else {
+      network.derivative(t, at, tau, out);
+    }
+  };
+  Eigen::MatrixXd J(n, n);
+  Vec center(n), plus(n), minus(n), f_plus(n), f_minus(n);
+  F(x, center);
   for (int i = 0; i < n; ++i) {
     // A state near a switching surface (a contact barely closed, friction near its limit)
     // needs a perturbation smaller than its distance to the surface: try finer ones before
@@ -65,68 +74,192 @@ double step_spectral_radius(Network& network, const std::string& integrator, dou
       plus[i] += delta;
       minus = x;
       minus[i] -= delta;
-      stepper->advance(network, t, h, plus);
-      stepper->advance(network, t, h, minus);
-      const Vec forward = (plus - center) / delta;
-      const Vec backward = (center - minus) / delta;
-      // On a switching surface the one-sided differences disagree.
+      F(plus, f_plus);
+      F(minus, f_minus);
+      const Vec forward = (f_plus - center) / delta;
+      const Vec backward = (center - f_minus) / delta;
       const double scale =
           1.0 + forward.lpNorm<Eigen::Infinity>() + backward.lpNorm<Eigen::Infinity>();
       if ((forward - backward).lpNorm<Eigen::Infinity>() <= 1e-4 * scale) {
-        jacobian.col(i) = 0.5 * (forward + backward);
+        J.col(i) = 0.5 * (forward + backward);
         smooth = true;
         break;
       }
     }
-    // No Jacobian here: such a state says nothing about linear stability; the caller skips it.
-    if (!smooth) return std::numeric_limits<double>::quiet_NaN();
+    if (!smooth) return std::nullopt;
   }
-  if (!jacobian.allFinite()) return std::numeric_limits<double>::infinity();
-  return Eigen::EigenSolver<Eigen::MatrixXd>(jacobian, false).eigenvalues().cwiseAbs().maxCoeff();
+  return J;
+}
+
+// Linear step map of a Runge-Kutta tableau from the Jacobians at its stage sizes.
+std::optional<Eigen::MatrixXd> rk_step_map(Network& network, const Tableau& tab, double t,
+                                           const Vec& x, double h, bool friction_held) {
+  const int n = static_cast<int>(x.size());
+  const int s = tab.stages;
+  std::map<double, Eigen::MatrixXd> by_tau;  // one Jacobian per distinct stage size
+  std::vector<Eigen::MatrixXd> K(s);
+  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd phi = I;
+  for (int r = 0; r < s; ++r) {
+    const double tau = h * tab.d[r];
+    auto it = by_tau.find(tau);
+    if (it == by_tau.end()) {
+      auto J = jacobian(network, t, x, tau, friction_held);
+      if (!J) return std::nullopt;
+      it = by_tau.emplace(tau, std::move(*J)).first;
+    }
+    Eigen::MatrixXd stage = I;
+    for (int j = 0; j < r; ++j) {
+      if (tab.a[r * s + j] != 0.0) stage += h * tab.a[r * s + j] * K[j];
+    }
+    K[r] = it->second * stage;
+    phi += h * tab.b[r] * K[r];
+  }
+  return phi;
+}
+
+// Symplectic Euler: x' = x + h F(x; h), then the positions move with the new velocities,
+// p(k+1) = p(k) + h G(x'), G the admittances' kinematics.
+std::optional<Eigen::MatrixXd> symplectic_step_map(Network& network, double t, const Vec& x,
+                                                   double h, bool friction_held) {
+  const int n = static_cast<int>(x.size());
+  auto J = jacobian(network, t, x, h, friction_held);
+  if (!J) return std::nullopt;
+  const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) + h * *J;
+  // G's Jacobian: the kinematics are smooth (p_dot = v, q_dot = Q(w) q).
+  Eigen::MatrixXd G(n, n);
+  Vec plus(n), minus(n), g_plus(n), g_minus(n);
+  for (int i = 0; i < n; ++i) {
+    const double delta = 1e-7 * std::max(std::abs(x[i]), 1e-3);
+    plus = x;
+    plus[i] += delta;
+    minus = x;
+    minus[i] -= delta;
+    network.kinematics(plus, g_plus);
+    network.kinematics(minus, g_minus);
+    G.col(i) = (g_plus - g_minus) / (2.0 * delta);
+  }
+  Eigen::MatrixXd phi = A;
+  const Eigen::MatrixXd moved = h * G * A;
+  const auto& positions = network.position_slots();
+  for (int i = 0; i < n; ++i) {
+    if (!positions[i]) continue;
+    phi.row(i) = moved.row(i);
+    phi(i, i) += 1.0;
+  }
+  return phi;
+}
+
+double spectral_radius(const Eigen::MatrixXd& phi) {
+  if (!phi.allFinite()) return INFINITY;
+  return Eigen::EigenSolver<Eigen::MatrixXd>(phi, false).eigenvalues().cwiseAbs().maxCoeff();
+}
+
+}  // namespace
+
+std::vector<TimedState> sample_states(Network& network, const RunOptions& options,
+                                      int per_regime) {
+  // Pass 1: how many steps each regime lasts. Pass 2 (the same deterministic run): take
+  // per_regime of them, evenly spread.
+  std::map<std::size_t, long> steps_in;
+  walk_run(network, options, [&](long, double, const Vec& x, double) {
+    ++steps_in[network.regime_signature(x, options.dt)];
+  });
+  std::map<std::size_t, long> seen;
+  std::vector<TimedState> states;
+  const double initial_energy = network.energy(network.initial_state());
+  walk_run(network, options, [&](long, double t, const Vec& x, double work) {
+    const std::size_t regime = network.regime_signature(x, options.dt);
+    const long total = steps_in[regime];
+    const long index = seen[regime]++;
+    // Index i of `total` is taken when it is the first at or past a multiple of the spacing.
+    const double spacing = static_cast<double>(total) / std::max(1, per_regime);
+    const long slot = static_cast<long>(std::floor(index / spacing));
+    if (index == static_cast<long>(std::ceil(slot * spacing)) && slot < per_regime) {
+      states.push_back({t, x, headroom(options, initial_energy, network.energy(x), work)});
+    }
+  });
+  std::sort(states.begin(), states.end(),
+            [](const TimedState& a, const TimedState& b) { return a.t < b.t; });
+  return states;
+}
+
+StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
+                       double h) {
+  auto map = [&](bool held) -> std::optional<Eigen::MatrixXd> {
+    if (integrator == "symplectic_euler") return symplectic_step_map(network, t, x, h, held);
+    return rk_step_map(network, tableau_by_name(integrator), t, x, h, held);
+  };
+  StepRadius r;
+  const auto full = map(false);
+  if (!full) return r;
+  r.full = spectral_radius(*full);
+  r.friction_held = r.full;
+  if (r.full > 1.0 + kUnstableGrowth && network.friction_cap_energy(x) > 0.0) {
+    const auto held = map(true);
+    if (!held) return r;
+    r.friction_held = spectral_radius(*held);
+  }
+  r.smooth = true;
+  return r;
 }
 
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
                              const std::vector<TimedState>& states, double h_min,
                              double h_max) {
+  // stable(h, chatter_counts): no sampled state has a mode growing faster than allowed; a
+  // mode only stuck friction carries counts where the monitor would see it, or always if
+  // chatter_counts.
   double limiting_time = 0.0;
-  auto stable = [&](double h) {
-    std::size_t smooth = 0;
+  auto stable = [&](double h, bool chatter_counts) {
     for (const auto& s : states) {
-      const double radius = step_spectral_radius(network, integrator, s.t, s.x, h);
-      if (std::isnan(radius)) continue;  // an element switches regime within the step
-      ++smooth;
-      if (radius > 1.0 + kUnstableGrowth) {
+      const StepRadius r = step_radius(network, integrator, s.t, s.x, h);
+      if (!r.smooth || r.full <= 1.0 + kUnstableGrowth) continue;
+      const bool runaway = r.friction_held > 1.0 + kUnstableGrowth;
+      if (runaway || chatter_counts || network.friction_cap_energy(s.x) > s.energy_headroom) {
         limiting_time = s.t;
         return false;
       }
     }
-    // A step so long that every state switches regime within it is not predicted stable:
-    // the linearization has nothing left to say about it.
-    return smooth > 0;
+    return true;
+  };
+  // The smallest unstable step on a grid of ratio 10^0.1 from h_min up, then bisection below
+  // it: stability can come back above a window of instability (a stuck friction spring
+  // under RK4), and the first window is the one that matters.
+  auto first_limit = [&](bool chatter_counts, double& time) -> std::optional<double> {
+    const double ratio = std::pow(10.0, 0.1);
+    double lo = 0.0;
+    for (double h = h_min; h <= h_max * (1.0 + 1e-12); h *= ratio) {
+      if (stable(h, chatter_counts)) {
+        lo = h;
+        continue;
+      }
+      if (lo == 0.0) {
+        time = limiting_time;
+        return 0.0;  // unstable at every step size tried
+      }
+      double hi = h;
+      time = limiting_time;
+      while (hi / lo > 1.001) {
+        const double mid = std::sqrt(lo * hi);
+        if (stable(mid, chatter_counts)) {
+          lo = mid;
+        } else {
+          hi = mid;
+          time = limiting_time;
+        }
+      }
+      return lo;
+    }
+    return std::nullopt;  // stable up to h_max
   };
   StepLimit limit;
-  if (stable(h_max)) {
-    limit.max_step = h_max;
-    limit.unbounded = true;
-    return limit;
-  }
-  double time_at_hi = limiting_time;
-  if (!stable(h_min)) {
-    limit.limiting_time = limiting_time;
-    return limit;  // unstable at every step size tried
-  }
-  double lo = h_min, hi = h_max;
-  while (hi / lo > 1.001) {
-    const double mid = std::sqrt(lo * hi);
-    if (stable(mid)) {
-      lo = mid;
-    } else {
-      hi = mid;
-      time_at_hi = limiting_time;
-    }
-  }
-  limit.max_step = lo;
-  limit.limiting_time = time_at_hi;
+  double chatter_time = 0.0;
+  const auto runaway = first_limit(false, limit.limiting_time);
+  const auto chatter = first_limit(true, chatter_time);
+  limit.unbounded = !runaway.has_value();
+  limit.max_step = runaway.value_or(h_max);
+  limit.chatter_free_step = chatter.value_or(h_max);
   return limit;
 }
 

@@ -1,13 +1,21 @@
-// Linear stability of the integrators on a scene. The step map x(k) -> x(k+1) of a stepper
-// (with the impedances' stage sizes included, so Kikuuwe friction is priced as it really
-// runs) is linearized by central differences at states sampled from a run; a step size is
-// stable there when the spectral radius of that Jacobian does not exceed 1. The largest
-// stable step is found by bisection. This sees the stiffest element whatever it is (contact
-// normal, friction spring, penalty joint) with its real effective mass and damping.
+// Linear stability of the integrators on a scene. At states sampled from a run, the system
+// derivative F(x; tau) is linearized by central differences, once for each stage size the
+// method passes (so Kikuuwe friction is priced as it really runs), and the method's linear
+// step map is built from those Jacobians: for a Runge-Kutta tableau
+//   K_r = J(tau_r) (I + h sum_j a_rj K_j),   Phi = I + h sum_r b_r K_r,
+// with the regime of every element frozen at the state (the standard analysis; a contact
+// that closes for less than a step is still analysed as closed). A step size is stable at
+// a state when the spectral radius of Phi does not exceed 1 (plus a small allowance).
+//
+// Friction that clamps its force at a limit (Impedance::clamps_friction) is linearized a
+// second time with its force held. A mode that only the first linearization shows lives
+// in a stuck friction spring: it cannot run away, since it ends where the force reaches the
+// limit and the element slides. It holds at most friction_cap_energy(), so the run's energy
+// monitor sees it only where that exceeds the monitor's headroom at that state; there it
+// counts as an instability, elsewhere it is reported as friction chatter.
 #pragma once
 
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "core/network.hpp"
@@ -18,19 +26,35 @@ namespace stiction::core {
 struct TimedState {
   double t = 0.0;
   Vec x;
+  // How much more the network energy may grow at t before the run's energy monitor calls
+  // the run unstable.
+  double energy_headroom = 0.0;
 };
 
-// States along a run of the scene (at its own options), `count` of them evenly in time.
-std::vector<TimedState> sample_states(Network& network, const RunOptions& options, int count);
+// States along a run of the scene at its own options: up to `per_regime` of the steps of
+// each smooth piece (regime signature) the run passes through, evenly spread over them, so
+// brief regimes (a contact closed for a few steps) are sampled as surely as long ones.
+std::vector<TimedState> sample_states(Network& network, const RunOptions& options,
+                                      int per_regime);
 
-// Spectral radius of the linearized step map of `integrator` with step h at (t, x).
-double step_spectral_radius(Network& network, const std::string& integrator, double t,
-                            const Vec& x, double h);
+struct StepRadius {
+  double full = 0.0;           // spectral radius of the linear step map
+  double friction_held = 0.0;  // same, with clamping friction held
+  bool smooth = false;         // false: the state lies on a switching surface; no answer
+};
+
+// Spectral radii of the linearized step map of `integrator` with step h at (t, x).
+// Fixed-step integrators only (euler, symplectic_euler, heun, rk4).
+StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
+                       double h);
 
 struct StepLimit {
-  double max_step = 0.0;        // largest stable step found (0: none above h_min)
-  double limiting_time = 0.0;   // time of the sampled state that limits it
-  bool unbounded = false;       // stable up to h_max
+  double max_step = 0.0;       // largest stable step found (0: none above h_min)
+  double limiting_time = 0.0;  // time of the sampled state that limits it
+  bool unbounded = false;      // stable up to h_max
+  // Largest step at which no stuck friction chatters either (== max_step when friction
+  // never limits less than the rest).
+  double chatter_free_step = 0.0;
 };
 
 // Bisection (in log h) between h_min and h_max for the largest h that is stable at every

@@ -289,17 +289,25 @@ TEST_CASE("cli: rows come at the output rate whatever dt") {
 
 TEST_CASE("cli: an unstable run exits 3, keeps its rows and says what to do") {
   const fs::path dir = scratch("unstable");
-  // The contact is stable below ~2.6e-4 s with RK4; 2e-3 s diverges within a few steps.
+  // The contact's normal mode limits RK4 to ~4.6e-4 s; 2e-3 s diverges within a few steps.
   const Outcome o = run_cli({"run", "sphere_roll", "--out", "o", "--dt", "2e-3"}, dir);
   INFO(o.out);
   CHECK(o.code == 3);
   CHECK_THAT(o.out, Contains("instability at t = "));
-  CHECK_THAT(o.out, Contains("--dt 0.0005"));
   const nlohmann::json s = read_json(dir / "o" / "summary.json");
   CHECK(s["status"] == "unstable");
-  CHECK(s["instability"]["suggested_dt"] == 5e-4);
+  const double suggested = s["instability"]["suggested_dt"];
+  char shown[64];
+  std::snprintf(shown, sizeof shown, "--dt %g", suggested);
+  CHECK_THAT(o.out, Contains(shown));
   CHECK_THAT(o.out, Contains(std::string("'") + s["instability"]["component"].get<std::string>() + "'"));
   const Csv csv = read_csv(dir / "o" / "trajectory.csv");
   CHECK(csv.rows.size() >= 1);
   CHECK(csv.rows.size() < 2001);
+  // The advice works: the suggested step runs clean.
+  REQUIRE(suggested < 2e-3);
+  const Outcome again = run_cli({"run", "sphere_roll", "--out", "again", "--dt",
+                                 std::to_string(suggested), "--no-video", "--no-plots"}, dir);
+  INFO(again.out);
+  CHECK(again.code == 0);
 }

@@ -131,7 +131,7 @@ TEST_CASE("slope_hold for 1000 s: drift after settling below 1e-9 m", "[extremes
 TEST_CASE("two_link at 0.8x and 1.25x of the predicted limit: clean, then caught", "[extremes]") {
   for (const std::string integrator : {"euler", "heun"}) {
     auto probe = scene::load_scene("two_link", {"simulation.integrator=\"" + integrator + "\""});
-    const auto states = core::sample_states(*probe.network, probe.run, 40);
+    const auto states = core::sample_states(*probe.network, probe.run, 10);
     const auto limit = core::predict_step_limit(*probe.network, integrator, states);
     REQUIRE(limit.max_step > 0.0);
     REQUIRE_FALSE(limit.unbounded);

@@ -25,15 +25,18 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
   bt_ = params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
 }
 
+double KikuuweContact::normal_force(ConstVecRef x_hat) const {
+  // (23a) with the clamp of DESIGN section 1: no adhesion, so mu N is never negative.
+  const double depth = params_.offset - n_.dot(Vec3(x_hat.segment<3>(0)));
+  return depth > 0.0 ? std::max(0.0, params_.stiffness * depth -
+                                         params_.damping * n_.dot(Vec3(x_hat.segment<3>(3))))
+                     : 0.0;
+}
+
 void KikuuweContact::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, double tau,
                               VecRef u, VecRef y_dot) const {
-  const Vec3 p_c = x_hat.segment<3>(0);
   const Vec3 v_c = x_hat.segment<3>(3);
-  // (23a) with the clamp of DESIGN section 1: no adhesion, so mu N is never negative.
-  const double depth = params_.offset - n_.dot(p_c);
-  const double normal_force =
-      depth > 0.0 ? std::max(0.0, params_.stiffness * depth - params_.damping * n_.dot(v_c))
-                  : 0.0;
+  const double normal_force = this->normal_force(x_hat);
   // (23b)-(23d): eq. (19) in the tangent plane with F = mu N.
   const Eigen::Vector2d v_t(t1_.dot(v_c), t2_.dot(v_c));
   const Eigen::Vector2d e = y.head<2>();
@@ -56,9 +59,24 @@ int KikuuweContact::regime(ConstVecRef x_hat, ConstVecRef y, double tau) const {
   Eigen::Vector3d u;
   Eigen::Vector2d y_dot;
   evaluate(0.0, x_hat, y, tau, u, y_dot);
-  if (u.isZero(0.0)) return 0;  // open
+  // Open when the normal force is zero. Not "when u is zero": a friction state decayed to
+  // ~1e-170 during a flight makes |f| underflow to 0 <= mu N = 0, which reads as stuck.
+  if (n_.dot(u) == 0.0) return 0;
   const Eigen::Vector2d v_t(t1_.dot(Vec3(x_hat.segment<3>(3))), t2_.dot(Vec3(x_hat.segment<3>(3))));
   return y_dot == v_t ? 1 : 2;  // stuck (eps == v exactly) or sliding
+}
+
+void KikuuweContact::evaluate_friction_held(double /*t*/, ConstVecRef x_hat, ConstVecRef /*y*/,
+                                            double /*tau*/, ConstVecRef u_ref,
+                                            ConstVecRef y_dot_ref, VecRef u, VecRef y_dot) const {
+  const Vec3 held = u_ref.head<3>();
+  u.head<3>() = held - n_.dot(held) * n_ - normal_force(x_hat) * n_;
+  y_dot.head<2>() = y_dot_ref.head<2>();
+}
+
+double KikuuweContact::friction_cap_energy(ConstVecRef x_hat) const {
+  const double limit = params_.mu * normal_force(x_hat);
+  return limit * limit / kt_;
 }
 
 Vec3 KikuuweContact::slip_velocity(ConstVecRef x_hat) const {

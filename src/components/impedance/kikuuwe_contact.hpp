@@ -44,11 +44,19 @@ class KikuuweContact final : public core::Impedance {
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   bool has_slip() const override { return true; }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
+  bool clamps_friction() const override { return true; }
+  // The tangential force and e's rate held, the normal force live.
+  void evaluate_friction_held(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
+                              core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref, core::VecRef u,
+                              core::VecRef y_dot) const override;
+  double friction_cap_energy(core::ConstVecRef x_hat) const override;
   const KikuuweContactParams& params() const { return params_; }
   const core::Vec3& tangent1() const { return t1_; }
   const core::Vec3& tangent2() const { return t2_; }
 
  private:
+  double normal_force(core::ConstVecRef x_hat) const;
+
   KikuuweContactParams params_;
   core::Vec3 n_, t1_, t2_;
   double kt_, bt_;

@@ -46,6 +46,17 @@ class KikuuweFriction final : public core::Impedance {
     return 0.5 * params_.stiffness * y.squaredNorm();
   }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
+  bool clamps_friction() const override { return true; }
+  // The whole output is friction: held entirely.
+  void evaluate_friction_held(double /*t*/, core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,
+                              double /*tau*/, core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref,
+                              core::VecRef u, core::VecRef y_dot) const override {
+    u = u_ref;
+    y_dot = y_dot_ref;
+  }
+  double friction_cap_energy(core::ConstVecRef /*x_hat*/) const override {
+    return params_.force_limit * params_.force_limit / params_.stiffness;
+  }
   const KikuuweFrictionParams& params() const { return params_; }
 
  private:
