@@ -18,8 +18,12 @@ void SlipMonitor::observe(double t, const Vec3& slip) {
     } else if (sliding_ && !above) {
       double t_stick = t1_ + (s1_ - threshold_) / (s1_ - speed) * (t - t1_);
       if (seen_ >= 2 && s2_ > s1_) {
-        const double zero = t1_ + s1_ * (t1_ - t2_) / (s2_ - s1_);
-        if (std::isfinite(zero) && zero >= t1_ && zero <= t + (t - t1_)) t_stick = zero;
+        // The line through the last two sliding steps. Its zero is the stick time if the
+        // line itself falls below the threshold within this step, i.e. the slip is
+        // decelerating steadily however far below the threshold zero lies; a drop faster
+        // than the line (an impact) keeps the threshold crossing.
+        const double slope = (s2_ - s1_) / (t1_ - t2_);
+        if (s1_ - slope * (t - t1_) <= threshold_) t_stick = t1_ + s1_ / slope;
       }
       events_.push_back({"stick", t_stick});
     } else if (!sliding_ && above) {

@@ -5,8 +5,9 @@
 // lands again, a joint pushed past its limit).
 // A stick time is the zero crossing of the straight line through the last two sliding
 // steps: while a contact slides, friction is saturated and the slip speed falls linearly,
-// so this removes the bias of the threshold (about threshold / slope). Where the line does
-// not cross zero within a step of the detection (an impact), the threshold crossing is used.
+// so this removes the bias of the threshold (about threshold / slope), whatever the step.
+// Where the line does not reach the threshold within the step of the detection (the speed
+// dropped faster: an impact), the threshold crossing is used.
 #pragma once
 
 #include <string>
