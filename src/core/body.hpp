@@ -22,10 +22,11 @@ class Body : public Admittance {
   using Admittance::Admittance;
   virtual BodyMotion motion(ConstVecRef x) const = 0;
   // Add a world-frame force applied at `lever` from the body origin (world frame), plus a
-  // free world-frame torque. A lever rather than a point: (p + a) - p is not a in floating
-  // point, and the maps know the lever already.
-  virtual void add_wrench(ConstVecRef x, const Vec3& lever, const Vec3& force, const Vec3& torque,
-                          VecRef u_hat) const = 0;
+  // free world-frame torque, to the body in the configuration `at` (its motion() at the
+  // state in question: Phi reuses what Psi computed). A lever rather than a point:
+  // (p + a) - p is not a in floating point, and the maps know the lever already.
+  virtual void add_wrench(const BodyMotion& at, const Vec3& lever, const Vec3& force,
+                          const Vec3& torque, VecRef u_hat) const = 0;
   virtual bool can_rotate() const = 0;
 };
 

@@ -3,13 +3,16 @@
 // A map knows the admittances it touches; the network tells it where their slices are.
 #pragma once
 
+#include <memory>
 #include <vector>
 
+#include "core/coupling.hpp"
 #include "core/types.hpp"
 
 namespace stiction::core {
 
 class Admittance;
+class Impedance;
 
 // Where one admittance's slices live in the system vectors.
 struct Slot {
@@ -35,6 +38,14 @@ class CoordinateMap {
   // Phi: accumulate the effect of u into u_hat (whole input vector); x is the state the
   // motion was taken at (lever arms, frames).
   virtual void apply(ConstVecRef x, ConstVecRef u, VecRef u_hat) const = 0;
+
+  // A fused motion-evaluate-apply for `impedance` (whose state is the slice `state` of x),
+  // if this map knows its type and its bodies' (see coupling.hpp); nullptr otherwise. Called
+  // after bind().
+  virtual std::unique_ptr<Coupling> direct_coupling(const Impedance& /*impedance*/,
+                                                    const Slot& /*state*/) const {
+    return nullptr;
+  }
 };
 
 }  // namespace stiction::core

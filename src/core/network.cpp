@@ -5,6 +5,31 @@
 #include <stdexcept>
 
 namespace stiction::core {
+namespace {
+
+// Psi, the impedance and Phi through their interfaces, x_hat and u handed over in the
+// network's vectors.
+class GenericCoupling final : public Coupling {
+ public:
+  GenericCoupling(const CoordinateMap& map, const Impedance& impedance, const Slot& state,
+                  VecRef x_hat, VecRef u)
+      : map_(map), impedance_(impedance), state_(state), x_hat_(x_hat), u_(u) {}
+  void exchange(double t, ConstVecRef x, double tau, VecRef x_dot, VecRef u_hat) override {
+    map_.motion(x, x_hat_);
+    impedance_.evaluate(t, x_hat_, x.segment(state_.state_offset, state_.state_size), tau, u_,
+                        x_dot.segment(state_.state_offset, state_.state_size));
+    map_.apply(x, u_, u_hat);
+  }
+
+ private:
+  const CoordinateMap& map_;
+  const Impedance& impedance_;
+  Slot state_;
+  VecRef x_hat_;
+  VecRef u_;
+};
+
+}  // namespace
 
 double Admittance::energy(ConstVecRef /*x*/) const {
   return std::numeric_limits<double>::quiet_NaN();
@@ -90,6 +115,21 @@ void Network::finalize() {
   u_ = Vec::Zero(output);
   u_hat_ = Vec::Zero(input);
   scratch_dot_ = Vec::Zero(state_dim_);
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const Slot& s = impedance_slots_[i];
+    auto coupling = maps_[i]->direct_coupling(*impedances_[i], s);
+    if (!coupling) {
+      coupling = std::make_unique<GenericCoupling>(
+          *maps_[i], *impedances_[i], s, x_hat_.segment(s.input_offset, s.input_size),
+          u_.segment(output_offsets_[i], output_sizes_[i]));
+    }
+    couplings_.push_back(std::move(coupling));
+  }
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const Slot& s = admittance_slots_[j];
+    admittance_wires_.push_back({admittances_[j].get(), s.state_offset, s.state_size,
+                                 u_hat_.segment(s.input_offset, s.input_size)});
+  }
   finalized_ = true;
 }
 
@@ -137,16 +177,16 @@ void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_
 
 void Network::evaluate_admittances(ConstVecRef x, VecRef x_dot) {
   // (13g) admittances.
-  for (std::size_t j = 0; j < admittances_.size(); ++j) {
-    const Slot& s = admittance_slots_[j];
-    admittances_[j]->derivative(x.segment(s.state_offset, s.state_size),
-                                u_hat_.segment(s.input_offset, s.input_size),
-                                x_dot.segment(s.state_offset, s.state_size));
+  for (const AdmittanceWire& w : admittance_wires_) {
+    w.admittance->derivative(x.segment(w.state_offset, w.state_size), w.u_hat,
+                             x_dot.segment(w.state_offset, w.state_size));
   }
 }
 
 void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
-  evaluate_impedances(t, x, tau, x_dot);
+  // (13d) Psi, (22) impedances, (13f) Phi.
+  u_hat_.setZero();
+  for (auto& coupling : couplings_) coupling->exchange(t, x, tau, x_dot, u_hat_);
   evaluate_admittances(x, x_dot);
 }
 

@@ -78,12 +78,25 @@ class Network {
   Slot admittance_slot(int admittance) const { return admittance_slots_[admittance]; }
 
  private:
+  // Psi, impedances, Phi through the maps' and impedances' interfaces, leaving every
+  // impedance's x_hat and u in x_hat_ and u_ (for signals); derivative() goes through the
+  // couplings instead, which compute the same.
   void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot);
   void evaluate_admittances(ConstVecRef x, VecRef x_dot);
 
   std::vector<std::unique_ptr<Admittance>> admittances_;
   std::vector<std::unique_ptr<Impedance>> impedances_;
   std::vector<std::unique_ptr<CoordinateMap>> maps_;
+  std::vector<std::unique_ptr<Coupling>> couplings_;  // one per impedance, built by finalize()
+  // Each admittance with its state slice and a view of its input: what an evaluation needs,
+  // in one record.
+  struct AdmittanceWire {
+    const Admittance* admittance;
+    int state_offset;
+    int state_size;
+    ConstVecRef u_hat;
+  };
+  std::vector<AdmittanceWire> admittance_wires_;
   std::vector<Slot> admittance_slots_;
   std::vector<Slot> impedance_slots_;  // state slice; input_offset/size index x_hat, u
   std::vector<int> output_offsets_;    // where each impedance's u lives in u_

@@ -32,14 +32,13 @@ void AxisTorqueMap::motion(core::ConstVecRef x, core::VecRef x_hat) const {
 }
 
 void AxisTorqueMap::apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const {
-  const auto xc = x.segment(child_slot_.state_offset, child_slot_.state_size);
-  const auto mc = child_.motion(xc);
+  const auto mc = child_.motion(x.segment(child_slot_.state_offset, child_slot_.state_size));
   const Vec3 torque = -u[0] * (mc.q * axis_);
-  child_.add_wrench(xc, Vec3::Zero(), Vec3::Zero(), torque,
+  child_.add_wrench(mc, Vec3::Zero(), Vec3::Zero(), torque,
                     u_hat.segment(child_slot_.input_offset, child_slot_.input_size));
   if (parent_ != nullptr) {
-    const auto xp = x.segment(parent_slot_.state_offset, parent_slot_.state_size);
-    parent_->add_wrench(xp, Vec3::Zero(), Vec3::Zero(), -torque,
+    const auto mp = parent_->motion(x.segment(parent_slot_.state_offset, parent_slot_.state_size));
+    parent_->add_wrench(mp, Vec3::Zero(), Vec3::Zero(), -torque,
                         u_hat.segment(parent_slot_.input_offset, parent_slot_.input_size));
   }
 }

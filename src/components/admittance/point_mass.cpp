@@ -38,18 +38,4 @@ double PointMass::energy(ConstVecRef x) const {
   return 0.5 * params_.mass * v.squaredNorm() - params_.mass * params_.gravity.dot(x.segment<3>(0));
 }
 
-core::BodyMotion PointMass::motion(ConstVecRef x) const {
-  core::BodyMotion m;
-  m.p = x.segment<3>(0);
-  m.v = x.segment<3>(3);
-  return m;
-}
-
-void PointMass::add_wrench(ConstVecRef /*x*/, const Vec3& /*lever*/, const Vec3& force,
-                           const Vec3& /*torque*/, VecRef u_hat) const {
-  // A point has no rotational inertia: a force acts at the point itself whatever the
-  // lever arm, and a free torque has nothing to turn. Maps only attach at the origin.
-  u_hat.segment<3>(0) += force;
-}
-
 }  // namespace stiction::components

@@ -27,9 +27,20 @@ class PointMass final : public core::Body {
   void write_signals(core::ConstVecRef x, core::VecRef out) const override;
   double energy(core::ConstVecRef x) const override;
 
-  core::BodyMotion motion(core::ConstVecRef x) const override;
-  void add_wrench(core::ConstVecRef x, const core::Vec3& lever, const core::Vec3& force,
-                  const core::Vec3& torque, core::VecRef u_hat) const override;
+  // Inline: contact couplings fuse them into their straight code (core/coupling.hpp).
+  core::BodyMotion motion(core::ConstVecRef x) const override {
+    core::BodyMotion m;
+    m.p = x.segment<3>(0);
+    m.v = x.segment<3>(3);
+    return m;
+  }
+  // A point has no rotational inertia: a force acts at the point itself whatever the lever
+  // arm, and a free torque has nothing to turn. Maps only attach at the origin.
+  void add_wrench(const core::BodyMotion& /*at*/, const core::Vec3& /*lever*/,
+                  const core::Vec3& force, const core::Vec3& /*torque*/,
+                  core::VecRef u_hat) const override {
+    u_hat.segment<3>(0) += force;
+  }
   bool can_rotate() const override { return false; }
   const PointMassParams& params() const { return params_; }
 

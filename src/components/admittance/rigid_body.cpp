@@ -10,10 +10,6 @@ using core::Quat;
 using core::Vec3;
 using core::VecRef;
 
-namespace {
-Quat quat_of(ConstVecRef x) { return Quat(x[6], x[7], x[8], x[9]); }
-}  // namespace
-
 RigidBody::RigidBody(std::string name, const RigidBodyParams& params)
     : Body(std::move(name)), params_(params) {
   if (!(params_.mass > 0.0)) throw std::invalid_argument("rigid body: mass must be > 0");
@@ -74,24 +70,6 @@ double RigidBody::energy(ConstVecRef x) const {
   const Vec3 w = x.segment<3>(10);
   return 0.5 * params_.mass * v.squaredNorm() + 0.5 * w.dot(params_.inertia * w) -
          params_.mass * params_.gravity.dot(x.segment<3>(0));
-}
-
-core::BodyMotion RigidBody::motion(ConstVecRef x) const {
-  core::BodyMotion m;
-  m.p = x.segment<3>(0);
-  m.v = x.segment<3>(3);
-  // Stage states are not renormalized (the derivative must stay plain vector arithmetic),
-  // so use the normalized rotation for kinematics.
-  m.q = quat_of(x).normalized();
-  m.w_world = m.q * Vec3(x.segment<3>(10));
-  return m;
-}
-
-void RigidBody::add_wrench(ConstVecRef x, const Vec3& lever, const Vec3& force,
-                           const Vec3& torque, VecRef u_hat) const {
-  const Quat q = quat_of(x).normalized();
-  u_hat.segment<3>(0) += force;
-  u_hat.segment<3>(3) += q.conjugate() * (lever.cross(force) + torque);
 }
 
 }  // namespace stiction::components

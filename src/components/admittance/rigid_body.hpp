@@ -33,13 +33,30 @@ class RigidBody final : public core::Body {
   void write_signals(core::ConstVecRef x, core::VecRef out) const override;
   double energy(core::ConstVecRef x) const override;
 
-  core::BodyMotion motion(core::ConstVecRef x) const override;
-  void add_wrench(core::ConstVecRef x, const core::Vec3& lever, const core::Vec3& force,
-                  const core::Vec3& torque, core::VecRef u_hat) const override;
+  // Inline: contact couplings fuse them into their straight code (core/coupling.hpp).
+  core::BodyMotion motion(core::ConstVecRef x) const override {
+    core::BodyMotion m;
+    m.p = x.segment<3>(0);
+    m.v = x.segment<3>(3);
+    // Stage states are not renormalized (the derivative must stay plain vector
+    // arithmetic), so use the normalized rotation for kinematics.
+    m.q = orientation(x);
+    m.w_world = m.q * core::Vec3(x.segment<3>(10));
+    return m;
+  }
+  void add_wrench(const core::BodyMotion& at, const core::Vec3& lever, const core::Vec3& force,
+                  const core::Vec3& torque, core::VecRef u_hat) const override {
+    u_hat.segment<3>(0) += force;
+    u_hat.segment<3>(3) += at.q.conjugate() * (lever.cross(force) + torque);
+  }
   bool can_rotate() const override { return true; }
   const RigidBodyParams& params() const { return params_; }
 
  private:
+  static core::Quat orientation(core::ConstVecRef x) {
+    return core::Quat(x[6], x[7], x[8], x[9]).normalized();
+  }
+
   RigidBodyParams params_;
   core::Mat3 inertia_inverse_;
   // Principal-axis bodies (spheres, boxes) skip the 3x3 products in the hot path.

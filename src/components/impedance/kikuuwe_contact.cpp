@@ -25,36 +25,6 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
   bt_ = params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
 }
 
-double KikuuweContact::normal_force(ConstVecRef x_hat) const {
-  // (23a) with the clamp of DESIGN section 1: no adhesion, so mu N is never negative.
-  const double depth = params_.offset - n_.dot(Vec3(x_hat.segment<3>(0)));
-  return depth > 0.0 ? std::max(0.0, params_.stiffness * depth -
-                                         params_.damping * n_.dot(Vec3(x_hat.segment<3>(3))))
-                     : 0.0;
-}
-
-void KikuuweContact::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, double tau,
-                              VecRef u, VecRef y_dot) const {
-  const Vec3 v_c = x_hat.segment<3>(3);
-  const double normal_force = this->normal_force(x_hat);
-  // (23b)-(23d): eq. (19) in the tangent plane with F = mu N.
-  const Eigen::Vector2d v_t(t1_.dot(v_c), t2_.dot(v_c));
-  const Eigen::Vector2d e = y.head<2>();
-  const double BtK = bt_ + tau * kt_;
-  Eigen::Vector2d f = BtK * v_t + kt_ * e;
-  const double limit = params_.mu * normal_force;
-  const double norm = f.norm();
-  if (norm <= limit) {
-    y_dot.head<2>() = v_t;  // exactly v while stuck (see kikuuwe_friction.cpp)
-  } else {
-    f *= norm > 0.0 ? limit / norm : 0.0;
-    y_dot.head<2>() = (f - kt_ * e) / BtK;
-  }
-  // Force on the body: normal push minus friction; u is its negative.
-  const Vec3 on_body = normal_force * n_ - (f.x() * t1_ + f.y() * t2_);
-  u.head<3>() = -on_body;
-}
-
 int KikuuweContact::regime(ConstVecRef x_hat, ConstVecRef y, double tau) const {
   Eigen::Vector3d u;
   Eigen::Vector2d y_dot;

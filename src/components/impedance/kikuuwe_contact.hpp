@@ -10,6 +10,8 @@
 // e (axes 0 1 along t1, t2), and the normal force n_force.
 #pragma once
 
+#include <algorithm>
+
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -34,8 +36,28 @@ class KikuuweContact final : public core::Impedance {
   int output_size() const override { return 3; }
   int state_size() const override { return 2; }
   std::vector<std::string> state_labels() const override { return {"e.0", "e.1"}; }
-  void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
-                core::VecRef y_dot) const override;
+  // Inline: contact couplings fuse it into their straight code (core/coupling.hpp).
+  void evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
+                core::VecRef u, core::VecRef y_dot) const override {
+    const core::Vec3 v_c = x_hat.segment<3>(3);
+    const double normal_force = this->normal_force(x_hat);
+    // (23b)-(23d): eq. (19) in the tangent plane with F = mu N.
+    const Eigen::Vector2d v_t(t1_.dot(v_c), t2_.dot(v_c));
+    const Eigen::Vector2d e = y.head<2>();
+    const double BtK = bt_ + tau * kt_;
+    Eigen::Vector2d f = BtK * v_t + kt_ * e;
+    const double limit = params_.mu * normal_force;
+    const double norm = f.norm();
+    if (norm <= limit) {
+      y_dot.head<2>() = v_t;  // exactly v while stuck (see kikuuwe_friction.cpp)
+    } else {
+      f *= norm > 0.0 ? limit / norm : 0.0;
+      y_dot.head<2>() = (f - kt_ * e) / BtK;
+    }
+    // Force on the body: normal push minus friction; u is its negative.
+    const core::Vec3 on_body = normal_force * n_ - (f.x() * t1_ + f.y() * t2_);
+    u.head<3>() = -on_body;
+  }
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
@@ -55,7 +77,13 @@ class KikuuweContact final : public core::Impedance {
   const core::Vec3& tangent2() const { return t2_; }
 
  private:
-  double normal_force(core::ConstVecRef x_hat) const;
+  double normal_force(core::ConstVecRef x_hat) const {
+    // (23a) with the clamp of DESIGN section 1: no adhesion, so mu N is never negative.
+    const double depth = params_.offset - n_.dot(core::Vec3(x_hat.segment<3>(0)));
+    return depth > 0.0 ? std::max(0.0, params_.stiffness * depth -
+                                           params_.damping * n_.dot(core::Vec3(x_hat.segment<3>(3))))
+                       : 0.0;
+  }
 
   KikuuweContactParams params_;
   core::Vec3 n_, t1_, t2_;

@@ -1,23 +1,54 @@
 #include "components/maps/contact_point_map.hpp"
 
+#include "components/admittance/point_mass.hpp"
+#include "components/admittance/rigid_body.hpp"
+#include "components/impedance/kikuuwe_contact.hpp"
+
 namespace stiction::components {
+namespace {
 
-using core::Vec3;
+// Psi, Kikuuwe's contact law and Phi with every call direct (final classes, inline hot
+// paths): the compiler keeps x_hat and u in registers (core/coupling.hpp).
+template <typename BodyType>
+class KikuuweContactCoupling final : public core::Coupling {
+ public:
+  KikuuweContactCoupling(const ContactPointMap& map, const BodyType& body,
+                         const KikuuweContact& contact, const core::Slot& state)
+      : map_(map), body_(body), contact_(contact), state_(state) {}
 
-ContactPointMap::ContactPointMap(const core::Body& body, double radius, const Vec3& normal)
+  void exchange(double t, core::ConstVecRef x, double tau, core::VecRef x_dot,
+                core::VecRef u_hat) override {
+    Eigen::Matrix<double, 6, 1> x_hat;
+    Eigen::Vector3d u;
+    const core::BodyMotion at = map_.motion_of(body_, x, x_hat);
+    contact_.evaluate(t, x_hat, x.segment(state_.state_offset, state_.state_size), tau, u,
+                      x_dot.segment(state_.state_offset, state_.state_size));
+    map_.apply_to(body_, at, u, u_hat);
+  }
+
+ private:
+  const ContactPointMap& map_;
+  const BodyType& body_;
+  const KikuuweContact& contact_;
+  core::Slot state_;
+};
+
+}  // namespace
+
+ContactPointMap::ContactPointMap(const core::Body& body, double radius, const core::Vec3& normal)
     : body_(body), offset_(-radius * normal.normalized()) {}
 
-void ContactPointMap::motion(core::ConstVecRef x, core::VecRef x_hat) const {
-  const auto m = body_.motion(x.segment(slot_.state_offset, slot_.state_size));
-  // (27d): contact point velocity v + w x a, with a the lever arm in world coordinates.
-  x_hat.segment<3>(0) = m.p + offset_;
-  x_hat.segment<3>(3) = m.v + m.w_world.cross(offset_);
-}
-
-void ContactPointMap::apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const {
-  const auto xs = x.segment(slot_.state_offset, slot_.state_size);
-  body_.add_wrench(xs, offset_, -Vec3(u.head<3>()), Vec3::Zero(),
-                   u_hat.segment(slot_.input_offset, slot_.input_size));
+std::unique_ptr<core::Coupling> ContactPointMap::direct_coupling(const core::Impedance& impedance,
+                                                                 const core::Slot& state) const {
+  const auto* contact = dynamic_cast<const KikuuweContact*>(&impedance);
+  if (contact == nullptr) return nullptr;
+  if (const auto* body = dynamic_cast<const RigidBody*>(&body_)) {
+    return std::make_unique<KikuuweContactCoupling<RigidBody>>(*this, *body, *contact, state);
+  }
+  if (const auto* body = dynamic_cast<const PointMass*>(&body_)) {
+    return std::make_unique<KikuuweContactCoupling<PointMass>>(*this, *body, *contact, state);
+  }
+  return nullptr;
 }
 
 }  // namespace stiction::components

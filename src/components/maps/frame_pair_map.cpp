@@ -56,12 +56,12 @@ void FramePairMap::motion(core::ConstVecRef x, core::VecRef x_hat) const {
 void FramePairMap::apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const {
   const Vec3 f = u.head<3>();
   const Vec3 torque = u.tail<3>();
-  const auto xc = x.segment(child_slot_.state_offset, child_slot_.state_size);
-  child_.add_wrench(xc, child_.motion(xc).q * child_local_, -f, -torque,
+  const auto mc = child_.motion(x.segment(child_slot_.state_offset, child_slot_.state_size));
+  child_.add_wrench(mc, mc.q * child_local_, -f, -torque,
                     u_hat.segment(child_slot_.input_offset, child_slot_.input_size));
   if (parent_ != nullptr) {
-    const auto xp = x.segment(parent_slot_.state_offset, parent_slot_.state_size);
-    parent_->add_wrench(xp, parent_->motion(xp).q * parent_local_, f, torque,
+    const auto mp = parent_->motion(x.segment(parent_slot_.state_offset, parent_slot_.state_size));
+    parent_->add_wrench(mp, mp.q * parent_local_, f, torque,
                         u_hat.segment(parent_slot_.input_offset, parent_slot_.input_size));
   }
 }

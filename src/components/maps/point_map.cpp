@@ -36,12 +36,12 @@ void PointMap::motion(core::ConstVecRef x, core::VecRef x_hat) const {
 
 void PointMap::apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const {
   const Vec3 f = u.head<3>();
-  const auto xa = x.segment(slot_a_.state_offset, slot_a_.state_size);
-  a_.add_wrench(xa, a_.motion(xa).q * local_a_, -f, Vec3::Zero(),
+  const auto ma = a_.motion(x.segment(slot_a_.state_offset, slot_a_.state_size));
+  a_.add_wrench(ma, ma.q * local_a_, -f, Vec3::Zero(),
                 u_hat.segment(slot_a_.input_offset, slot_a_.input_size));
   if (b_ != nullptr) {
-    const auto xb = x.segment(slot_b_.state_offset, slot_b_.state_size);
-    b_->add_wrench(xb, b_->motion(xb).q * local_b_, f, Vec3::Zero(),
+    const auto mb = b_->motion(x.segment(slot_b_.state_offset, slot_b_.state_size));
+    b_->add_wrench(mb, mb.q * local_b_, f, Vec3::Zero(),
                    u_hat.segment(slot_b_.input_offset, slot_b_.input_size));
   }
 }
