@@ -172,10 +172,10 @@ std::vector<TimedState> sample_states(Network& network, const RunOptions& option
     const std::size_t regime = network.regime_signature(x, options.dt);
     const long total = steps_in[regime];
     const long index = seen[regime]++;
-    // Index i of `total` is taken when it is the first at or past a multiple of the spacing.
-    const double spacing = static_cast<double>(total) / std::max(1, per_regime);
-    const long slot = static_cast<long>(std::floor(index / spacing));
-    if (index == static_cast<long>(std::ceil(slot * spacing)) && slot < per_regime) {
+    // Taken where index * per_regime / total (integer division) moves on: per_regime steps
+    // evenly spread, or every step of a regime shorter than that.
+    const long n = std::max(1, per_regime);
+    if (index == 0 || (index * n) / total != ((index - 1) * n) / total) {
       states.push_back({t, x, headroom(options, initial_energy, network.energy(x), work)});
     }
   });

@@ -26,12 +26,12 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
 }
 
 int KikuuweContact::regime(ConstVecRef x_hat, ConstVecRef y, double tau) const {
+  // Open when the normal force is zero. Not "when u is zero": a friction state decayed to
+  // ~1e-170 during a flight makes |f| underflow to 0 <= mu N = 0, which reads as stuck.
+  if (normal_force(x_hat) == 0.0) return 0;
   Eigen::Vector3d u;
   Eigen::Vector2d y_dot;
   evaluate(0.0, x_hat, y, tau, u, y_dot);
-  // Open when the normal force is zero. Not "when u is zero": a friction state decayed to
-  // ~1e-170 during a flight makes |f| underflow to 0 <= mu N = 0, which reads as stuck.
-  if (n_.dot(u) == 0.0) return 0;
   const Eigen::Vector2d v_t(t1_.dot(Vec3(x_hat.segment<3>(3))), t2_.dot(Vec3(x_hat.segment<3>(3))));
   return y_dot == v_t ? 1 : 2;  // stuck (eps == v exactly) or sliding
 }
