@@ -52,13 +52,14 @@ struct StepLimit {
   double max_step = 0.0;       // largest stable step found (0: none above h_min)
   double limiting_time = 0.0;  // time of the sampled state that limits it
   bool unbounded = false;      // stable up to h_max
-  // Largest step at which no stuck friction chatters either (== max_step when friction
-  // never limits less than the rest).
+  // Same, with modes of stuck friction counted everywhere (<= max_step: from here up to
+  // max_step stuck friction chatters, bounded by its limit force).
   double chatter_free_step = 0.0;
 };
 
-// Bisection (in log h) between h_min and h_max for the largest h that is stable at every
-// sampled state. Fixed-step integrators only.
+// The largest h in [h_min, h_max] below which every step is stable at every sampled state:
+// the first unstable step on a grid of ratio 10^0.1, then bisection in log h to 0.1%.
+// Fixed-step integrators only.
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
                              const std::vector<TimedState>& states, double h_min = 1e-9,
                              double h_max = 1.0);
