@@ -6,6 +6,7 @@
 // time, used by source elements whose output is a function of time.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -60,6 +61,12 @@ class Impedance {
     evaluate(t, x_hat, y, tau, u, y_dot);
   }
   virtual double friction_cap_energy(ConstVecRef /*x_hat*/) const { return 0.0; }
+
+  // The largest |y| (max over the entries) the exact model keeps from an initial state within
+  // it, where it has one (LuGre and Dahl bristles: |e| <= F / K); infinity otherwise. A
+  // numerical instability whose error dissipates does not grow the energy, but it drives
+  // such a state past its bound, so the run's monitor checks it too.
+  virtual double state_bound() const { return std::numeric_limits<double>::infinity(); }
 
   // Power this element feeds into the admittances at (x_hat, u), for elements that are
   // energy sources (prescribed torques); passive elements return 0. The energy monitor

@@ -93,6 +93,32 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     result.slip_events.back().monitor.observe(0.0, network.slip_velocity(i, x));
   }
 
+  // States with a bound the exact model keeps (Impedance::state_bound), checked with the
+  // energy: twice the bound (or the initial value, if larger) is past any rounding.
+  struct BoundedState {
+    std::string component;
+    int offset, size;
+    double limit;
+  };
+  std::vector<BoundedState> bounded;
+  {
+    const auto layout = network.layout();  // admittances first, then impedances
+    const std::size_t first = network.admittances().size();
+    for (std::size_t i = 0; i < network.impedances().size(); ++i) {
+      const double bound = network.impedances()[i]->state_bound();
+      const LayoutEntry& e = layout[first + i];
+      if (!std::isfinite(bound) || e.size == 0) continue;
+      const double start = x.segment(e.offset, e.size).lpNorm<Eigen::Infinity>();
+      bounded.push_back({e.component, e.offset, e.size, 2.0 * std::max(bound, start)});
+    }
+  }
+  auto beyond_bound = [&]() -> const BoundedState* {
+    for (const auto& b : bounded) {
+      if (x.segment(b.offset, b.size).lpNorm<Eigen::Infinity>() > b.limit) return &b;
+    }
+    return nullptr;
+  };
+
   const double initial_energy = network.energy(x);
   const bool has_sources = network.has_sources();
   double work_in = 0.0;  // |work| done by sources so far
@@ -142,6 +168,11 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
           energy - initial_energy > margin) {
         result.instability = Instability{t_now, fastest_growing(network, x_prev, x),
                                          "energy grew beyond what the sources put in"};
+        break;
+      }
+      if (const BoundedState* b = beyond_bound()) {
+        result.instability = Instability{t_now, b->component,
+                                         "state past twice the bound its model keeps"};
         break;
       }
     }

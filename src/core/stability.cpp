@@ -229,8 +229,9 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
   auto first_limit = [&](bool chatter_counts, double& time) -> std::optional<double> {
     const double ratio = std::pow(10.0, 0.1);
     double lo = 0.0;
-    for (double h = h_min; h <= h_max * (1.0 + 1e-12); h *= ratio) {
+    for (double h = h_min;; h = std::min(h * ratio, h_max)) {  // the last point is h_max
       if (stable(h, chatter_counts)) {
+        if (h >= h_max) break;
         lo = h;
         continue;
       }

@@ -64,3 +64,18 @@ TEST_CASE("sphere_roll rk4: stuck contact friction chatters below the runaway li
   CHECK(limit.chatter_free_step < 0.6 * limit.max_step);
   CHECK(runs_clean("sphere_roll", "rk4", 0.5 * (limit.chatter_free_step + limit.max_step)));
 }
+
+TEST_CASE("two_link_lugre at 1e-4 s: the unstable bristle state is caught by its bound, though "
+          "the energy does not grow", "[stability]") {
+  auto scene = scene::load_scene("two_link_lugre");
+  core::RunOptions options = scene.run;
+  options.dt = 1e-4;
+  const auto r = core::simulate(*scene.network, options);
+  REQUIRE(r.instability);
+  std::printf("two_link_lugre at 1e-4 s: stopped at t = %.4g s in %s (%s)\n", r.instability->time,
+              r.instability->component.c_str(), r.instability->reason.c_str());
+  CHECK(r.instability->component.find("friction") != std::string::npos);
+  CHECK(r.instability->reason.find("bound") != std::string::npos);
+  // The prediction from the scene's own (converged) run puts the limit below 1e-4 s.
+  CHECK(predict("two_link_lugre", "rk4", 10).max_step < 1e-4);
+}

@@ -44,6 +44,8 @@ class Dahl final : public core::Impedance {
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override {
     return core::Vec3(x_hat[1], 0.0, 0.0);
   }
+  // e_dot <= 0 at e = F / K while v > 0 (and the mirror for v < 0).
+  double state_bound() const override { return params_.force_limit / params_.stiffness; }
   const DahlParams& params() const { return params_; }
 
  private:

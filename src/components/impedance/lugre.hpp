@@ -12,6 +12,8 @@
 // Signals: tau = -u (on the driven side), e.
 #pragma once
 
+#include <algorithm>
+
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -50,6 +52,14 @@ class LuGre final : public core::Impedance {
   bool has_slip() const override { return true; }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override {
     return core::Vec3(x_hat[1], 0.0, 0.0);
+  }
+  // e_dot <= 0 at e = max g: the bristle never bends further than the highest steady
+  // deflection.
+  double state_bound() const override {
+    const double top = params_.stribeck_velocity > 0.0
+                           ? std::max(params_.force_limit, params_.static_limit)
+                           : params_.force_limit;
+    return top / params_.stiffness;
   }
   const LuGreParams& params() const { return params_; }
 
