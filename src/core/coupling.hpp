@@ -17,8 +17,10 @@ class Coupling {
  public:
   virtual ~Coupling() = default;
   // Writes the impedance's state rate into its slice of x_dot and adds the force it puts
-  // on the admittances to u_hat.
-  virtual void exchange(double t, ConstVecRef x, double tau, VecRef x_dot, VecRef u_hat) = 0;
+  // on the admittances to u_hat. Plain pointers to the network's whole vectors (state,
+  // state rate, admittance inputs; the coupling knows its slices): views passed by value
+  // live on the stack, and every call would read them back from there first.
+  virtual void exchange(double t, const double* x, double tau, double* x_dot, double* u_hat) = 0;
 };
 
 }  // namespace stiction::core

@@ -12,19 +12,22 @@ namespace {
 class GenericCoupling final : public Coupling {
  public:
   GenericCoupling(const CoordinateMap& map, const Impedance& impedance, const Slot& state,
-                  VecRef x_hat, VecRef u)
-      : map_(map), impedance_(impedance), state_(state), x_hat_(x_hat), u_(u) {}
-  void exchange(double t, ConstVecRef x, double tau, VecRef x_dot, VecRef u_hat) override {
+                  int state_dim, int input_dim, VecRef x_hat, VecRef u)
+      : map_(map), impedance_(impedance), state_(state), state_dim_(state_dim),
+        input_dim_(input_dim), x_hat_(x_hat), u_(u) {}
+  void exchange(double t, const double* x_data, double tau, double* x_dot, double* u_hat) override {
+    const Eigen::Map<const Vec> x(x_data, state_dim_);
     map_.motion(x, x_hat_);
     impedance_.evaluate(t, x_hat_, x.segment(state_.state_offset, state_.state_size), tau, u_,
-                        x_dot.segment(state_.state_offset, state_.state_size));
-    map_.apply(x, u_, u_hat);
+                        Eigen::Map<Vec>(x_dot + state_.state_offset, state_.state_size));
+    map_.apply(x, u_, Eigen::Map<Vec>(u_hat, input_dim_));
   }
 
  private:
   const CoordinateMap& map_;
   const Impedance& impedance_;
   Slot state_;
+  int state_dim_, input_dim_;
   VecRef x_hat_;
   VecRef u_;
 };
@@ -120,7 +123,8 @@ void Network::finalize() {
     auto coupling = maps_[i]->direct_coupling(*impedances_[i], s);
     if (!coupling) {
       coupling = std::make_unique<GenericCoupling>(
-          *maps_[i], *impedances_[i], s, x_hat_.segment(s.input_offset, s.input_size),
+          *maps_[i], *impedances_[i], s, state_dim_, input,
+          x_hat_.segment(s.input_offset, s.input_size),
           u_.segment(output_offsets_[i], output_sizes_[i]));
     }
     couplings_.push_back(std::move(coupling));
@@ -186,7 +190,7 @@ void Network::evaluate_admittances(ConstVecRef x, VecRef x_dot) {
 void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
   // (13d) Psi, (22) impedances, (13f) Phi.
   u_hat_.setZero();
-  for (auto& coupling : couplings_) coupling->exchange(t, x, tau, x_dot, u_hat_);
+  for (auto& coupling : couplings_) coupling->exchange(t, x.data(), tau, x_dot.data(), u_hat_.data());
   evaluate_admittances(x, x_dot);
 }
 

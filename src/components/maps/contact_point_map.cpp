@@ -16,13 +16,13 @@ class KikuuweContactCoupling final : public core::Coupling {
                          const KikuuweContact& contact, const core::Slot& state)
       : map_(map), body_(body), contact_(contact), state_(state) {}
 
-  void exchange(double t, core::ConstVecRef x, double tau, core::VecRef x_dot,
-                core::VecRef u_hat) override {
+  void exchange(double t, const double* x, double tau, double* x_dot, double* u_hat) override {
     Eigen::Matrix<double, 6, 1> x_hat;
     Eigen::Vector3d u;
     const core::BodyMotion at = map_.motion_of(body_, x, x_hat);
-    contact_.evaluate(t, x_hat, x.segment(state_.state_offset, state_.state_size), tau, u,
-                      x_dot.segment(state_.state_offset, state_.state_size));
+    contact_.evaluate(t, x_hat,
+                      Eigen::Map<const core::Vec>(x + state_.state_offset, state_.state_size), tau,
+                      u, Eigen::Map<core::Vec>(x_dot + state_.state_offset, state_.state_size));
     map_.apply_to(body_, at, u, u_hat);
   }
 

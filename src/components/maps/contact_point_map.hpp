@@ -29,7 +29,12 @@ class ContactPointMap final : public core::CoordinateMap {
   // apply_to.
   template <typename BodyType>
   core::BodyMotion motion_of(const BodyType& body, core::ConstVecRef x, core::VecRef x_hat) const {
-    const core::BodyMotion m = body.motion(x.segment(slot_.state_offset, slot_.state_size));
+    return motion_of(body, x.data(), x_hat);
+  }
+  template <typename BodyType>
+  core::BodyMotion motion_of(const BodyType& body, const double* x, core::VecRef x_hat) const {
+    const core::BodyMotion m =
+        body.motion(Eigen::Map<const core::Vec>(x + slot_.state_offset, slot_.state_size));
     // (27d): contact point velocity v + w x a, with a the lever arm in world coordinates.
     x_hat.segment<3>(0) = m.p + offset_;
     x_hat.segment<3>(3) = m.v + m.w_world.cross(offset_);
@@ -38,8 +43,13 @@ class ContactPointMap final : public core::CoordinateMap {
   template <typename BodyType>
   void apply_to(const BodyType& body, const core::BodyMotion& at, core::ConstVecRef u,
                 core::VecRef u_hat) const {
+    apply_to(body, at, u, u_hat.data());
+  }
+  template <typename BodyType>
+  void apply_to(const BodyType& body, const core::BodyMotion& at, core::ConstVecRef u,
+                double* u_hat) const {
     body.add_wrench(at, offset_, -core::Vec3(u.head<3>()), core::Vec3::Zero(),
-                    u_hat.segment(slot_.input_offset, slot_.input_size));
+                    Eigen::Map<core::Vec>(u_hat + slot_.input_offset, slot_.input_size));
   }
 
  private:
