@@ -34,6 +34,13 @@ class Admittance {
 
   virtual void initial_state(VecRef x) const = 0;
   virtual void derivative(ConstVecRef x, ConstVecRef u_hat, VecRef x_dot) const = 0;
+  // The same on plain pointers to the slices, for the network's hot loop: views passed by
+  // value go through the stack, where they can alias the heap stores around them. The
+  // default wraps the pointers in views.
+  virtual void derivative_at(const double* x, const double* u_hat, double* x_dot) const {
+    derivative(Eigen::Map<const Vec>(x, state_size()), Eigen::Map<const Vec>(u_hat, input_size()),
+               Eigen::Map<Vec>(x_dot, state_size()));
+  }
   // Called once after every full step: bring the state back to its manifold (unit
   // quaternions). Never inside a derivative, so RK stages see plain vector arithmetic.
   virtual void project(VecRef /*x*/) const {}

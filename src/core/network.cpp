@@ -131,8 +131,7 @@ void Network::finalize() {
   }
   for (std::size_t j = 0; j < admittances_.size(); ++j) {
     const Slot& s = admittance_slots_[j];
-    admittance_wires_.push_back({admittances_[j].get(), s.state_offset, s.state_size,
-                                 u_hat_.segment(s.input_offset, s.input_size)});
+    admittance_wires_.push_back({admittances_[j].get(), s.state_offset, s.input_offset});
   }
   finalized_ = true;
 }
@@ -182,8 +181,8 @@ void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_
 void Network::evaluate_admittances(ConstVecRef x, VecRef x_dot) {
   // (13g) admittances.
   for (const AdmittanceWire& w : admittance_wires_) {
-    w.admittance->derivative(x.segment(w.state_offset, w.state_size), w.u_hat,
-                             x_dot.segment(w.state_offset, w.state_size));
+    w.admittance->derivative_at(x.data() + w.state_offset, u_hat_.data() + w.input_offset,
+                                x_dot.data() + w.state_offset);
   }
 }
 

@@ -88,13 +88,12 @@ class Network {
   std::vector<std::unique_ptr<Impedance>> impedances_;
   std::vector<std::unique_ptr<CoordinateMap>> maps_;
   std::vector<std::unique_ptr<Coupling>> couplings_;  // one per impedance, built by finalize()
-  // Each admittance with its state slice and a view of its input: what an evaluation needs,
-  // in one record.
+  // Each admittance with where its state and input start: what an evaluation needs, in one
+  // record.
   struct AdmittanceWire {
     const Admittance* admittance;
     int state_offset;
-    int state_size;
-    ConstVecRef u_hat;
+    int input_offset;
   };
   std::vector<AdmittanceWire> admittance_wires_;
   std::vector<Slot> admittance_slots_;

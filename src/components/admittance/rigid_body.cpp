@@ -36,8 +36,11 @@ void RigidBody::initial_state(VecRef x) const {
   x.segment<3>(10) = params_.angular_velocity;
 }
 
-void RigidBody::derivative(ConstVecRef x, ConstVecRef u_hat, VecRef x_dot) const {
+void RigidBody::derivative_at(const double* x_data, const double* u_data, double* x_dot_data) const {
   // (26): p_dot = v, v_dot = f/M (+ g), q_dot = 0.5 q (x) (0, w), w_dot = J^-1 (tau - w x Jw).
+  const Eigen::Map<const Eigen::Matrix<double, 13, 1>> x(x_data);
+  const Eigen::Map<const Eigen::Matrix<double, 6, 1>> u_hat(u_data);
+  Eigen::Map<Eigen::Matrix<double, 13, 1>> x_dot(x_dot_data);
   const Vec3 w = x.segment<3>(10);
   const double qw = x[6];
   const Vec3 qv = x.segment<3>(7);

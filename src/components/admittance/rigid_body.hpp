@@ -27,7 +27,10 @@ class RigidBody final : public core::Body {
   int input_size() const override { return 6; }
   std::vector<std::string> state_labels() const override;
   void initial_state(core::VecRef x) const override;
-  void derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::VecRef x_dot) const override;
+  void derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::VecRef x_dot) const override {
+    derivative_at(x.data(), u_hat.data(), x_dot.data());
+  }
+  void derivative_at(const double* x, const double* u_hat, double* x_dot) const override;
   void project(core::VecRef x) const override;
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x, core::VecRef out) const override;
