@@ -26,18 +26,13 @@ double largest_mobility(core::Network& network, int i) {
   const int n = map.force_size();
   if (map.motion_size() != 2 * n) return std::nan("");
   const core::Vec x0 = network.initial_state();
-  int input_dim = 0;
-  for (std::size_t a = 0; a < network.admittances().size(); ++a) {
-    const core::Slot s = network.admittance_slot(static_cast<int>(a));
-    input_dim = std::max(input_dim, s.input_offset + s.input_size);
-  }
   core::Vec base_hat(map.motion_size()), pushed_hat(map.motion_size());
   map.motion(x0, base_hat);
   double largest = 0.0;
   for (int k = 0; k < n; ++k) {
     core::Vec u = core::Vec::Zero(n);
     u[k] = 1.0;
-    core::Vec u_hat = core::Vec::Zero(input_dim);
+    core::Vec u_hat = core::Vec::Zero(network.input_dim());
     map.apply(x0, u, u_hat);
     core::Vec x1 = x0;
     for (std::size_t a = 0; a < network.admittances().size(); ++a) {

@@ -129,10 +129,6 @@ void Network::finalize() {
     }
     couplings_.push_back(std::move(coupling));
   }
-  for (std::size_t j = 0; j < admittances_.size(); ++j) {
-    const Slot& s = admittance_slots_[j];
-    admittance_wires_.push_back({admittances_[j].get(), s.state_offset, s.input_offset});
-  }
   finalized_ = true;
 }
 
@@ -164,45 +160,18 @@ std::vector<LayoutEntry> Network::layout() const {
   return entries;
 }
 
-void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot) {
+void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot,
+                                  const Vec* friction_reference) {
   // (13d) Psi, (22) impedances, (13f) Phi.
   u_hat_.setZero();
   for (std::size_t i = 0; i < impedances_.size(); ++i) {
     const Slot& s = impedance_slots_[i];
-    auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
-    auto u = u_.segment(output_offsets_[i], output_sizes_[i]);
-    maps_[i]->motion(x, x_hat);
-    impedances_[i]->evaluate(t, x_hat, x.segment(s.state_offset, s.state_size), tau, u,
-                             x_dot.segment(s.state_offset, s.state_size));
-    maps_[i]->apply(x, u, u_hat_);
-  }
-}
-
-void Network::evaluate_admittances(ConstVecRef x, VecRef x_dot) {
-  // (13g) admittances.
-  for (const AdmittanceWire& w : admittance_wires_) {
-    w.admittance->derivative_at(x.data() + w.state_offset, u_hat_.data() + w.input_offset,
-                                x_dot.data() + w.state_offset);
-  }
-}
-
-void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
-  // (13d) Psi, (22) impedances, (13f) Phi.
-  u_hat_.setZero();
-  for (auto& coupling : couplings_) coupling->exchange(t, x.data(), tau, x_dot.data(), u_hat_.data());
-  evaluate_admittances(x, x_dot);
-}
-
-void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
-                                       ConstVecRef reference) {
-  u_hat_.setZero();
-  for (std::size_t i = 0; i < impedances_.size(); ++i) {
-    const Slot& s = impedance_slots_[i];
+    const Impedance& imp = *impedances_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
     auto u = u_.segment(output_offsets_[i], output_sizes_[i]);
     auto y_dot = x_dot.segment(s.state_offset, s.state_size);
-    const Impedance& imp = *impedances_[i];
-    if (imp.clamps_friction()) {
+    if (friction_reference != nullptr && imp.clamps_friction()) {
+      const Vec& reference = *friction_reference;
       Vec u_ref(output_sizes_[i]), y_dot_ref(s.state_size);
       maps_[i]->motion(reference, x_hat);
       imp.evaluate(t, x_hat, reference.segment(s.state_offset, s.state_size), tau, u_ref,
@@ -216,6 +185,27 @@ void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecR
     }
     maps_[i]->apply(x, u, u_hat_);
   }
+}
+
+void Network::evaluate_admittances(ConstVecRef x, VecRef x_dot) {
+  // (13g) admittances.
+  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+    const Slot& s = admittance_slots_[j];
+    admittances_[j]->derivative_at(x.data() + s.state_offset, u_hat_.data() + s.input_offset,
+                                   x_dot.data() + s.state_offset);
+  }
+}
+
+void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
+  // (13d) Psi, (22) impedances, (13f) Phi.
+  u_hat_.setZero();
+  for (auto& coupling : couplings_) coupling->exchange(t, x.data(), tau, x_dot.data(), u_hat_.data());
+  evaluate_admittances(x, x_dot);
+}
+
+void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
+                                       const Vec& reference) {
+  evaluate_impedances(t, x, tau, x_dot, &reference);
   evaluate_admittances(x, x_dot);
 }
 

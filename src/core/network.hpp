@@ -38,7 +38,7 @@ class Network {
   // F(x, t; tau) with the friction of every friction-clamping element held at what it is at
   // `reference` (see Impedance::clamps_friction): for stability analysis only.
   void derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
-                                ConstVecRef reference);
+                                const Vec& reference);
   // Most energy the friction-clamping elements' bounded oscillations can hold at x.
   double friction_cap_energy(ConstVecRef x);
   void project(VecRef x) const;
@@ -76,26 +76,24 @@ class Network {
   const std::vector<std::unique_ptr<Impedance>>& impedances() const { return impedances_; }
   const CoordinateMap& map_of(int impedance) const { return *maps_[impedance]; }
   Slot admittance_slot(int admittance) const { return admittance_slots_[admittance]; }
+  // Impedance i's state slice (state_offset, state_size) and where its x_hat starts in the
+  // network's motion vector (input_offset, input_size).
+  Slot impedance_slot(int impedance) const { return impedance_slots_[impedance]; }
+  int input_dim() const { return static_cast<int>(u_hat_.size()); }  // size of all u_hat
 
  private:
   // Psi, impedances, Phi through the maps' and impedances' interfaces, leaving every
   // impedance's x_hat and u in x_hat_ and u_ (for signals); derivative() goes through the
-  // couplings instead, which compute the same.
-  void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot);
+  // couplings instead, which compute the same. With a friction reference, clamping friction
+  // is held at its value there (derivative_friction_held).
+  void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot,
+                           const Vec* friction_reference = nullptr);
   void evaluate_admittances(ConstVecRef x, VecRef x_dot);
 
   std::vector<std::unique_ptr<Admittance>> admittances_;
   std::vector<std::unique_ptr<Impedance>> impedances_;
   std::vector<std::unique_ptr<CoordinateMap>> maps_;
   std::vector<std::unique_ptr<Coupling>> couplings_;  // one per impedance, built by finalize()
-  // Each admittance with where its state and input start: what an evaluation needs, in one
-  // record.
-  struct AdmittanceWire {
-    const Admittance* admittance;
-    int state_offset;
-    int input_offset;
-  };
-  std::vector<AdmittanceWire> admittance_wires_;
   std::vector<Slot> admittance_slots_;
   std::vector<Slot> impedance_slots_;  // state slice; input_offset/size index x_hat, u
   std::vector<int> output_offsets_;    // where each impedance's u lives in u_

@@ -101,16 +101,13 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     double limit;
   };
   std::vector<BoundedState> bounded;
-  {
-    const auto layout = network.layout();  // admittances first, then impedances
-    const std::size_t first = network.admittances().size();
-    for (std::size_t i = 0; i < network.impedances().size(); ++i) {
-      const double bound = network.impedances()[i]->state_bound();
-      const LayoutEntry& e = layout[first + i];
-      if (!std::isfinite(bound) || e.size == 0) continue;
-      const double start = x.segment(e.offset, e.size).lpNorm<Eigen::Infinity>();
-      bounded.push_back({e.component, e.offset, e.size, 2.0 * std::max(bound, start)});
-    }
+  for (std::size_t i = 0; i < network.impedances().size(); ++i) {
+    const Impedance& imp = *network.impedances()[i];
+    const Slot s = network.impedance_slot(static_cast<int>(i));
+    if (!std::isfinite(imp.state_bound()) || s.state_size == 0) continue;
+    const double start = x.segment(s.state_offset, s.state_size).lpNorm<Eigen::Infinity>();
+    bounded.push_back({imp.name(), s.state_offset, s.state_size,
+                       2.0 * std::max(imp.state_bound(), start)});
   }
   auto beyond_bound = [&]() -> const BoundedState* {
     for (const auto& b : bounded) {
@@ -162,10 +159,8 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
         t_checked = t_now;
       }
       const double energy = network.energy(x);
-      const double margin =
-          work_in + options.energy_growth_limit * (std::abs(initial_energy) + work_in) + 1e-9;
       if (std::isfinite(initial_energy) && std::isfinite(energy) &&
-          energy - initial_energy > margin) {
+          energy - initial_energy > energy_margin(options, initial_energy, work_in)) {
         result.instability = Instability{t_now, fastest_growing(network, x_prev, x),
                                          "energy grew beyond what the sources put in"};
         break;

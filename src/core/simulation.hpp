@@ -3,6 +3,7 @@
 // time), and stops at the first sign of numerical instability.
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <map>
 #include <optional>
@@ -52,6 +53,12 @@ struct RunResult {
 };
 
 using ProgressCallback = std::function<void(double fraction_done)>;
+
+// How far the network energy may rise above its initial value, with `work` done by the
+// sources so far, before the monitor calls the run unstable (RunOptions::energy_growth_limit).
+inline double energy_margin(const RunOptions& options, double initial_energy, double work) {
+  return work + options.energy_growth_limit * (std::abs(initial_energy) + work) + 1e-9;
+}
 
 RunResult simulate(Network& network, const RunOptions& options,
                    const ProgressCallback& progress = {});

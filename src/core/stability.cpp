@@ -20,9 +20,7 @@ constexpr double kUnstableGrowth = 0.05;
 // `work` done by sources so far.
 double headroom(const RunOptions& options, double initial_energy, double energy, double work) {
   if (!std::isfinite(initial_energy) || !std::isfinite(energy)) return INFINITY;  // unmonitored
-  const double margin =
-      work + options.energy_growth_limit * (std::abs(initial_energy) + work) + 1e-9;
-  return margin - (energy - initial_energy);
+  return energy_margin(options, initial_energy, work) - (energy - initial_energy);
 }
 
 // Runs the scene at its options and calls visit(step, t, x, work) before every step.
@@ -195,7 +193,8 @@ StepRadius step_radius(Network& network, const std::string& integrator, double t
   if (!full) return r;
   r.full = spectral_radius(*full);
   r.friction_held = r.full;
-  if (r.full > 1.0 + kUnstableGrowth && network.friction_cap_energy(x) > 0.0) {
+  r.friction_cap = network.friction_cap_energy(x);
+  if (r.full > 1.0 + kUnstableGrowth && r.friction_cap > 0.0) {
     const auto held = map(true);
     if (!held) return r;
     r.friction_held = spectral_radius(*held);
@@ -216,7 +215,7 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
       const StepRadius r = step_radius(network, integrator, s.t, s.x, h);
       if (!r.smooth || r.full <= 1.0 + kUnstableGrowth) continue;
       const bool runaway = r.friction_held > 1.0 + kUnstableGrowth;
-      if (runaway || chatter_counts || network.friction_cap_energy(s.x) > s.energy_headroom) {
+      if (runaway || chatter_counts || r.friction_cap > s.energy_headroom) {
         limiting_time = s.t;
         return false;
       }

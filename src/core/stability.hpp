@@ -40,6 +40,7 @@ std::vector<TimedState> sample_states(Network& network, const RunOptions& option
 struct StepRadius {
   double full = 0.0;           // spectral radius of the linear step map
   double friction_held = 0.0;  // same, with clamping friction held
+  double friction_cap = 0.0;   // Network::friction_cap_energy at the state
   bool smooth = false;         // false: the state lies on a switching surface; no answer
 };
 

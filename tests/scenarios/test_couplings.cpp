@@ -15,22 +15,15 @@ namespace {
 // x_dot through the public interfaces: Psi, the impedance, Phi, then the admittances.
 core::Vec generic_derivative(core::Network& net, double t, const core::Vec& x, double tau) {
   core::Vec x_dot = core::Vec::Zero(net.state_dim());
-  int inputs = 0;
-  for (std::size_t j = 0; j < net.admittances().size(); ++j) {
-    const core::Slot s = net.admittance_slot(static_cast<int>(j));
-    inputs = std::max(inputs, s.input_offset + s.input_size);
-  }
-  core::Vec u_hat = core::Vec::Zero(inputs);
-  const auto layout = net.layout();  // admittances first, then impedances, in order
-  const std::size_t first_impedance = net.admittances().size();
+  core::Vec u_hat = core::Vec::Zero(net.input_dim());
   for (std::size_t i = 0; i < net.impedances().size(); ++i) {
     const core::Impedance& imp = *net.impedances()[i];
     const core::CoordinateMap& map = net.map_of(static_cast<int>(i));
-    const core::LayoutEntry& state = layout[first_impedance + i];
+    const core::Slot state = net.impedance_slot(static_cast<int>(i));
     core::Vec x_hat(map.motion_size()), u(map.force_size());
     map.motion(x, x_hat);
-    imp.evaluate(t, x_hat, x.segment(state.offset, state.size), tau, u,
-                 x_dot.segment(state.offset, state.size));
+    imp.evaluate(t, x_hat, x.segment(state.state_offset, state.state_size), tau, u,
+                 x_dot.segment(state.state_offset, state.state_size));
     map.apply(x, u, u_hat);
   }
   for (std::size_t j = 0; j < net.admittances().size(); ++j) {

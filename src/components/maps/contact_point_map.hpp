@@ -16,21 +16,20 @@ class ContactPointMap final : public core::CoordinateMap {
   int force_size() const override { return 3; }
   std::vector<const core::Admittance*> admittances() const override { return {&body_}; }
   void bind(const std::vector<core::Slot>& slots) override { slot_ = slots.at(0); }
-  void motion(core::ConstVecRef x, core::VecRef x_hat) const override { motion_of(body_, x, x_hat); }
+  void motion(core::ConstVecRef x, core::VecRef x_hat) const override {
+    motion_of(body_, x.data(), x_hat);
+  }
   void apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const override {
-    apply_to(body_, body_.motion(x.segment(slot_.state_offset, slot_.state_size)), u, u_hat);
+    apply_to(body_, body_.motion(x.segment(slot_.state_offset, slot_.state_size)), u,
+             u_hat.data());
   }
   // Kikuuwe contacts on rigid bodies and point masses.
   std::unique_ptr<core::Coupling> direct_coupling(const core::Impedance& impedance,
                                                   const core::Slot& state) const override;
 
   // Psi and Phi for `body` (this map's body, as its own type: a final body class makes the
-  // calls direct, which direct couplings rely on). motion_of returns the body's motion for
-  // apply_to.
-  template <typename BodyType>
-  core::BodyMotion motion_of(const BodyType& body, core::ConstVecRef x, core::VecRef x_hat) const {
-    return motion_of(body, x.data(), x_hat);
-  }
+  // calls direct, which direct couplings rely on), on the network's whole state and input
+  // vectors. motion_of returns the body's motion for apply_to.
   template <typename BodyType>
   core::BodyMotion motion_of(const BodyType& body, const double* x, core::VecRef x_hat) const {
     const core::BodyMotion m =
@@ -39,11 +38,6 @@ class ContactPointMap final : public core::CoordinateMap {
     x_hat.segment<3>(0) = m.p + offset_;
     x_hat.segment<3>(3) = m.v + m.w_world.cross(offset_);
     return m;
-  }
-  template <typename BodyType>
-  void apply_to(const BodyType& body, const core::BodyMotion& at, core::ConstVecRef u,
-                core::VecRef u_hat) const {
-    apply_to(body, at, u, u_hat.data());
   }
   template <typename BodyType>
   void apply_to(const BodyType& body, const core::BodyMotion& at, core::ConstVecRef u,
