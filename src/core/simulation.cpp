@@ -1,5 +1,6 @@
 #include "core/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -32,6 +33,65 @@ std::string fastest_growing(Network& network, const Vec& before, const Vec& afte
   }
   return name;
 }
+
+constexpr long kMonitorEvery = 8;  // steps between two checks of the monitor
+
+// The run's monitor beyond finiteness: the network energy against its start plus what the
+// sources put in (energy_margin), and every state with a bound its model keeps
+// (Impedance::state_bound) against twice that bound, for instabilities whose error
+// dissipates and so does not show in the energy.
+class InstabilityMonitor {
+ public:
+  InstabilityMonitor(Network& network, const RunOptions& options, const Vec& x0)
+      : network_(network), options_(options), initial_energy_(network.energy(x0)),
+        has_sources_(network.has_sources()),
+        power_checked_(has_sources_ ? std::abs(network.source_power(0.0, x0)) : 0.0) {
+    for (std::size_t i = 0; i < network.impedances().size(); ++i) {
+      const Impedance& imp = *network.impedances()[i];
+      const Slot s = network.impedance_slot(static_cast<int>(i));
+      if (!std::isfinite(imp.state_bound()) || s.state_size == 0) continue;
+      // Twice the bound (or the initial value, if larger) is past any rounding.
+      const double start = x0.segment(s.state_offset, s.state_size).lpNorm<Eigen::Infinity>();
+      bounded_.push_back({imp.name(), s, 2.0 * std::max(imp.state_bound(), start)});
+    }
+  }
+
+  std::optional<Instability> check(double t, const Vec& x_prev, const Vec& x) {
+    if (has_sources_) {
+      const double power = std::abs(network_.source_power(t, x));
+      work_in_ += 0.5 * (power_checked_ + power) * (t - t_checked_);
+      power_checked_ = power;
+      t_checked_ = t;
+    }
+    const double energy = network_.energy(x);
+    if (std::isfinite(initial_energy_) && std::isfinite(energy) &&
+        energy - initial_energy_ > energy_margin(options_, initial_energy_, work_in_)) {
+      return Instability{t, fastest_growing(network_, x_prev, x),
+                         "energy grew beyond what the sources put in"};
+    }
+    for (const auto& b : bounded_) {
+      if (x.segment(b.slot.state_offset, b.slot.state_size).lpNorm<Eigen::Infinity>() > b.limit) {
+        return Instability{t, b.component, "state past twice the bound its model keeps"};
+      }
+    }
+    return std::nullopt;
+  }
+
+ private:
+  struct BoundedState {
+    std::string component;
+    Slot slot;
+    double limit;
+  };
+  Network& network_;
+  const RunOptions& options_;
+  double initial_energy_;
+  bool has_sources_;
+  double work_in_ = 0.0;  // |work| done by sources so far
+  double power_checked_;
+  double t_checked_ = 0.0;
+  std::vector<BoundedState> bounded_;
+};
 
 }  // namespace
 
@@ -93,35 +153,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     result.slip_events.back().monitor.observe(0.0, network.slip_velocity(i, x));
   }
 
-  // States with a bound the exact model keeps (Impedance::state_bound), checked with the
-  // energy: twice the bound (or the initial value, if larger) is past any rounding.
-  struct BoundedState {
-    std::string component;
-    int offset, size;
-    double limit;
-  };
-  std::vector<BoundedState> bounded;
-  for (std::size_t i = 0; i < network.impedances().size(); ++i) {
-    const Impedance& imp = *network.impedances()[i];
-    const Slot s = network.impedance_slot(static_cast<int>(i));
-    if (!std::isfinite(imp.state_bound()) || s.state_size == 0) continue;
-    const double start = x.segment(s.state_offset, s.state_size).lpNorm<Eigen::Infinity>();
-    bounded.push_back({imp.name(), s.state_offset, s.state_size,
-                       2.0 * std::max(imp.state_bound(), start)});
-  }
-  auto beyond_bound = [&]() -> const BoundedState* {
-    for (const auto& b : bounded) {
-      if (x.segment(b.offset, b.size).lpNorm<Eigen::Infinity>() > b.limit) return &b;
-    }
-    return nullptr;
-  };
-
-  const double initial_energy = network.energy(x);
-  const bool has_sources = network.has_sources();
-  double work_in = 0.0;  // |work| done by sources so far
-  double power_checked = has_sources ? std::abs(network.source_power(0.0, x)) : 0.0;
-  double t_checked = 0.0;
-  constexpr long kEnergyCheckEvery = 8;
+  InstabilityMonitor monitor(network, options, x);
 
   const auto start = std::chrono::steady_clock::now();
   long sample = 0;
@@ -149,25 +181,11 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
       result.instability = Instability{t_now, owner_of_non_finite(network, x), "state is not finite"};
       break;
     }
-    // Energy every few steps: a numerical instability grows geometrically, so a short
-    // delay in noticing it costs nothing, while checking every step would.
-    if ((k + 1) % kEnergyCheckEvery == 0 || t_now >= end) {
-      if (has_sources) {
-        const double power = std::abs(network.source_power(t_now, x));
-        work_in += 0.5 * (power_checked + power) * (t_now - t_checked);
-        power_checked = power;
-        t_checked = t_now;
-      }
-      const double energy = network.energy(x);
-      if (std::isfinite(initial_energy) && std::isfinite(energy) &&
-          energy - initial_energy > energy_margin(options, initial_energy, work_in)) {
-        result.instability = Instability{t_now, fastest_growing(network, x_prev, x),
-                                         "energy grew beyond what the sources put in"};
-        break;
-      }
-      if (const BoundedState* b = beyond_bound()) {
-        result.instability = Instability{t_now, b->component,
-                                         "state past twice the bound its model keeps"};
+    // Every few steps: a numerical instability grows geometrically, so a short delay in
+    // noticing it costs nothing, while checking every step would.
+    if ((k + 1) % kMonitorEvery == 0 || t_now >= end) {
+      if (auto found = monitor.check(t_now, x_prev, x)) {
+        result.instability = std::move(found);
         break;
       }
     }
