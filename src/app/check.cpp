@@ -4,10 +4,6 @@
 #include <string>
 
 #include "app/commands.hpp"
-#include "components/impedance/kikuuwe_contact.hpp"
-#include "components/impedance/kikuuwe_friction.hpp"
-#include "components/impedance/lugre.hpp"
-#include "components/impedance/spring_damper.hpp"
 #include "app/network_graph.hpp"
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
@@ -50,15 +46,6 @@ double largest_mobility(core::Network& network, int i) {
     largest = std::max(largest, -(pushed_hat[n + k] - base_hat[n + k]));
   }
   return largest;
-}
-
-// Damping the element puts beside its stiffness, when its type says so; NaN if unknown.
-double damping_of(const core::Impedance& imp) {
-  if (auto* c = dynamic_cast<const components::KikuuweContact*>(&imp)) return c->params().damping;
-  if (auto* f = dynamic_cast<const components::KikuuweFriction*>(&imp)) return f->params().damping;
-  if (auto* l = dynamic_cast<const components::LuGre*>(&imp)) return l->params().damping;
-  if (auto* s = dynamic_cast<const components::SpringDamper*>(&imp)) return s->params().damping;
-  return std::nan("");
 }
 
 std::string labels_of(const core::LayoutEntry& entry) {
@@ -104,7 +91,7 @@ int check_command(const std::string& scene_name, const std::string& graph_path) 
       continue;
     }
     const double omega = std::sqrt(K * mobility);
-    const double B = damping_of(imp);
+    const double B = imp.damping();
     const double zeta = std::isfinite(B) ? B * mobility / (2.0 * omega) : std::nan("");
     std::printf("  %s (%s): K = %g against an effective mass/inertia %g: omega = %.5g rad/s, "
                 "damping ratio %.3g; an undamped mode at this omega limits rk4 to dt < 2.83 / "

@@ -78,8 +78,10 @@ class Impedance {
   virtual double power_in(ConstVecRef /*x_hat*/, ConstVecRef /*u*/) const { return 0.0; }
 
   // Largest stiffness this element puts between its ports (N/m or Nm/rad), and the
-  // event signals it offers, for stability advice and event detection.
+  // damping beside it (NaN where the element has none to name), for stability advice; then
+  // the event signals it offers, for event detection.
   virtual double stiffness() const { return 0.0; }
+  virtual double damping() const { return std::numeric_limits<double>::quiet_NaN(); }
   // Whether this element has a slip speed (contacts, joint friction): stick/slip events
   // are detected on it at every step, not only at output samples.
   virtual bool has_slip() const { return false; }

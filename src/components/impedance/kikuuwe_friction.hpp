@@ -35,6 +35,7 @@ class KikuuweFriction final : public core::Impedance {
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
   double stiffness() const override { return params_.stiffness; }
+  double damping() const override { return params_.damping; }
   bool has_slip() const override { return params_.dimension <= 3; }
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override {
     const int n = params_.dimension;

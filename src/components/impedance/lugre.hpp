@@ -44,6 +44,7 @@ class LuGre final : public core::Impedance {
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
   double stiffness() const override { return params_.stiffness; }
+  double damping() const override { return params_.damping; }
   // The bristle spring 0.5 K e^2, for the energy monitor.
   double stored_energy(core::ConstVecRef /*x_hat*/, core::ConstVecRef y) const override {
     return 0.5 * params_.stiffness * y[0] * y[0];

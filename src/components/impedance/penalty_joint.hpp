@@ -59,6 +59,7 @@ class PenaltyJoint final : public core::Impedance {
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
   double stiffness() const override { return params_.separation_stiffness; }
+  double damping() const override { return params_.separation_damping; }
   // 0.5 (Ks |d|^2 + Kb phi^2 + Kf e^2): separation, bending and friction springs.
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   // Stick/slip events on the relative rate about the axis (in the x entry, as for joints).

@@ -33,6 +33,7 @@ class SpringDamper final : public core::Impedance {
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
   double stiffness() const override { return params_.stiffness; }
+  double damping() const override { return params_.damping; }
   // 0.5 K |p - rest|^2, for the energy monitor.
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   const SpringDamperParams& params() const { return params_; }
