@@ -189,22 +189,26 @@ TEST_CASE("dahl: sliding at constant speed reaches the force level F", "[dahl]")
   }
 }
 
+// A 1 kg body launched at 0.5 m/s against friction of level F = 1 N: while sliding the
+// force on it opposes v and is already close to -F; the Coulomb deceleration F/m = 1 m/s^2
+// stops it near t = 0.5 s, after v0^2 / (2 F/m), leaving only a small pre-sliding oscillation.
+static void check_slides_to_rest(Rig& rig) {
+  rig.run(0.05);
+  CHECK(rig.velocity() > 0.0);
+  CHECK(rig.velocity() < 0.5);
+  CHECK(rig.force_on_slider() < -0.99);
+  rig.run(0.95);
+  INFO("v(1 s) = " << rig.velocity() << ", x(1 s) = " << rig.position());
+  CHECK(std::abs(rig.velocity()) < 0.02);
+  CHECK(rig.position() == Approx(0.125).epsilon(0.02));
+}
+
 TEST_CASE("dahl: friction decelerates a sliding body to rest", "[dahl]") {
   components::DahlParams p;
   p.stiffness = 1e4;
   p.force_limit = 1.0;
   Rig rig(1.0, 0.5, false, std::make_unique<components::Dahl>("dahl", p));
-  rig.run(0.05);
-  // Sliding: the force on the body opposes v and is already close to -F.
-  CHECK(rig.velocity() > 0.0);
-  CHECK(rig.velocity() < 0.5);
-  CHECK(rig.force_on_slider() < -0.99);
-  // Coulomb deceleration F/m = 1 m/s^2 stops it near t = 0.5 s; Dahl then leaves only a
-  // small pre-sliding oscillation.
-  rig.run(0.95);
-  INFO("v(1 s) = " << rig.velocity() << ", x(1 s) = " << rig.position());
-  CHECK(std::abs(rig.velocity()) < 0.02);
-  CHECK(rig.position() == Approx(0.125).epsilon(0.02));  // v0^2 / (2 F/m)
+  check_slides_to_rest(rig);
 }
 
 TEST_CASE("lugre: sliding at constant speed gives F + D v, and the Stribeck curve", "[lugre]") {
@@ -242,14 +246,7 @@ TEST_CASE("lugre: friction decelerates a sliding body", "[lugre]") {
   p.damping = 20.0;
   p.force_limit = 1.0;
   Rig rig(1.0, 0.5, false, std::make_unique<components::LuGre>("lugre", p));
-  rig.run(0.05);
-  CHECK(rig.velocity() > 0.0);
-  CHECK(rig.velocity() < 0.5);
-  CHECK(rig.force_on_slider() < -0.99);
-  rig.run(0.95);
-  INFO("v(1 s) = " << rig.velocity() << ", x(1 s) = " << rig.position());
-  CHECK(std::abs(rig.velocity()) < 0.02);
-  CHECK(rig.position() == Approx(0.125).epsilon(0.02));
+  check_slides_to_rest(rig);
 }
 
 TEST_CASE("lugre: drifts under a sub-Coulomb dithering force, e keeps changing", "[lugre]") {
