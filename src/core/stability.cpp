@@ -45,19 +45,12 @@ void walk_run(Network& network, const RunOptions& options, Visit visit) {
   }
 }
 
-// J = dF/dx at (t, x; tau) by central differences, with clamping friction held at its value
-// at x if asked. Empty where x lies on a switching surface of some element (the one-sided
-// differences disagree at every perturbation size tried).
-std::optional<Eigen::MatrixXd> jacobian(Network& network, double t, const Vec& x, double tau,
-                                        bool friction_held) {
+// dF/dx at x by central differences, F(at, out) any map of the state. Empty where x lies on
+// a switching surface of some element (the one-sided differences disagree at every
+// perturbation size tried).
+template <typename Function>
+std::optional<Eigen::MatrixXd> central_jacobian(const Function& F, const Vec& x) {
   const int n = static_cast<int>(x.size());
-  auto F = [&](const Vec& at, Vec& out) {
-    if (friction_held) {
-      network.derivative_friction_held(t, at, tau, out, x);
-    } else {
-      network.derivative(t, at, tau, out);
-    }
-  };
   Eigen::MatrixXd J(n, n);
   Vec center(n), plus(n), minus(n), f_plus(n), f_minus(n);
   F(x, center);
@@ -87,6 +80,20 @@ std::optional<Eigen::MatrixXd> jacobian(Network& network, double t, const Vec& x
     if (!smooth) return std::nullopt;
   }
   return J;
+}
+
+// J = dF/dx at (t, x; tau), with clamping friction held at its value at x if asked.
+std::optional<Eigen::MatrixXd> jacobian(Network& network, double t, const Vec& x, double tau,
+                                        bool friction_held) {
+  return central_jacobian(
+      [&](const Vec& at, Vec& out) {
+        if (friction_held) {
+          network.derivative_friction_held(t, at, tau, out, x);
+        } else {
+          network.derivative(t, at, tau, out);
+        }
+      },
+      x);
 }
 
 // Linear step map of a Runge-Kutta tableau from the Jacobians at its stage sizes.
@@ -125,20 +132,11 @@ std::optional<Eigen::MatrixXd> symplectic_step_map(Network& network, double t, c
   if (!J) return std::nullopt;
   const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) + h * *J;
   // G's Jacobian: the kinematics are smooth (p_dot = v, q_dot = Q(w) q).
-  Eigen::MatrixXd G(n, n);
-  Vec plus(n), minus(n), g_plus(n), g_minus(n);
-  for (int i = 0; i < n; ++i) {
-    const double delta = 1e-7 * std::max(std::abs(x[i]), 1e-3);
-    plus = x;
-    plus[i] += delta;
-    minus = x;
-    minus[i] -= delta;
-    network.kinematics(plus, g_plus);
-    network.kinematics(minus, g_minus);
-    G.col(i) = (g_plus - g_minus) / (2.0 * delta);
-  }
+  const auto G = central_jacobian(
+      [&](const Vec& at, Vec& out) { network.kinematics(at, out); }, x);
+  if (!G) return std::nullopt;
   Eigen::MatrixXd phi = A;
-  const Eigen::MatrixXd moved = h * G * A;
+  const Eigen::MatrixXd moved = h * *G * A;
   const auto& positions = network.position_slots();
   for (int i = 0; i < n; ++i) {
     if (!positions[i]) continue;
