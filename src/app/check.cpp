@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "app/network_graph.hpp"
+#include "app/pilot.hpp"
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
 #include "scene/scene.hpp"
@@ -106,7 +107,12 @@ int check_command(const std::string& scene_name, const std::string& graph_path) 
   std::printf("\npredicted largest stable step (step map linearized at up to 10 states of each "
               "regime of a run at the scene's settings; a mode growing > 5%% per step counts as "
               "unstable):\n");
-  const auto states = core::sample_states(network, run, 10);
+  const Pilot pilot = bounded_pilot(network, run);
+  if (pilot.shortened) {
+    std::printf("  (pilot run bounded to its first %g s of %g s, see docs/limits.md)\n",
+                pilot.options.duration, run.duration);
+  }
+  const auto states = core::sample_states(network, pilot.options, 10);
   for (const std::string name : {"euler", "symplectic_euler", "heun", "rk4"}) {
     const core::StepLimit limit = core::predict_step_limit(network, name, states);
     if (limit.unbounded) {

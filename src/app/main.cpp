@@ -1,20 +1,34 @@
 // `stiction`: the command line of DESIGN section 3. Typed exceptions from the libraries
 // become exit codes here and only here: 2 bad input, 3 instability (returned by run),
 // 1 anything else.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "app/cli_checks.hpp"
 #include "app/commands.hpp"
 #include "core/integrator.hpp"
 #include "io/atomic_file.hpp"
 #include "scene/toml_reader.hpp"
+#include "sys/interrupt.hpp"
 
 namespace {
 
 using namespace stiction;
+
+// A report lost to a full disk or a closed pipe is a failure, not a success: stdout is
+// flushed and checked before the exit code is final.
+int finish_stdout(int code) {
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "error: cannot write to standard output: %s\n", std::strerror(errno));
+    return code == app::kExitOk ? app::kExitFailure : code;
+  }
+  return code;
+}
 
 int dispatch(int argc, char** argv) {
   CLI::App cli{"stiction: simulator of mechanical systems with Coulomb friction "
@@ -33,15 +47,15 @@ int dispatch(int argc, char** argv) {
       run->add_option("--integrator", integrator, "integrator, overrides simulation.integrator")
           ->check(CLI::IsMember(core::integrator_names()));
   CLI::Option* dt_opt =
-      run->add_option("--dt", dt, "step size in s, overrides simulation.dt")->check(CLI::PositiveNumber);
+      run->add_option("--dt", dt, "step size in s, overrides simulation.dt")->check(app::finite_positive());
   CLI::Option* duration_opt = run->add_option("--duration", duration,
                                               "simulated time in s, overrides simulation.duration")
-                                  ->check(CLI::PositiveNumber);
+                                  ->check(app::finite_positive());
   double tolerance = 0.0;
   CLI::Option* tolerance_opt =
       run->add_option("--tolerance", tolerance,
                       "local error bound per state entry; selects the integrator rk4_adaptive")
-          ->check(CLI::PositiveNumber);
+          ->check(app::finite_positive());
   run->add_option("--set", run_args.overrides,
                   "KEY=VALUE: set a dotted key of the scene to a TOML value (repeatable)")
       ->allow_extra_args(false);
@@ -71,14 +85,14 @@ int dispatch(int argc, char** argv) {
   study->add_option("--dts", study_args.dts,
                     "comma-separated step sizes in s (default: scene dt x 8, 4, 2, 1, 1/2, ... pruned)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(app::finite_positive());
   study->add_option("--tolerances", study_args.tolerances,
                     "comma-separated tolerances for rk4_adaptive (default 1e-4 .. 1e-10)")
       ->delimiter(',')
-      ->check(CLI::PositiveNumber);
+      ->check(app::finite_positive());
   CLI::Option* reference_dt_opt =
       study->add_option("--reference-dt", reference_dt, "step of the rk4 reference (default scene dt / 16)")
-          ->check(CLI::PositiveNumber);
+          ->check(app::finite_positive());
   study->add_option("--repeats", study_args.repeats, "timing repeats per run, median kept (default 3)")
       ->check(CLI::Range(1, 100));
   study->add_option("--out", study_args.out, "output directory (default out/<scene name>/study/)");
@@ -126,8 +140,10 @@ int dispatch(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  stiction::sys::install_interrupt_handlers();
   try {
-    return dispatch(argc, argv);
+    const int code = finish_stdout(dispatch(argc, argv));
+    return code;
   } catch (const scene::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return app::kExitBadInput;

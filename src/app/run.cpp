@@ -5,11 +5,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/interrupted_run.hpp"
+#include "app/output_dir.hpp"
 #include "app/progress.hpp"
 #include "app/run_support.hpp"
 #include "core/simulation.hpp"
@@ -24,30 +25,20 @@
 #include "render/scene_view.hpp"
 #include "render/video_encoder.hpp"
 #include "scene/scene.hpp"
+#include "sys/interrupt.hpp"
 #include "text/font.hpp"
 
 namespace stiction::app {
 namespace fs = std::filesystem;
 namespace {
 
-// Frames of an earlier, longer run would sit beside the new ones and look like part of it.
-void remove_old_frames(const fs::path& frames_dir) {
-  std::error_code ec;
-  if (!fs::is_directory(frames_dir, ec)) return;
-  static const std::regex frame_name("[0-9]{6}\\.png");
-  std::vector<fs::path> old;
-  for (const auto& entry : fs::directory_iterator(frames_dir, ec)) {
-    if (std::regex_match(entry.path().filename().string(), frame_name)) old.push_back(entry.path());
-  }
-  for (const fs::path& p : old) fs::remove(p, ec);
-}
-
-// Writes every plot; returns the files written.
+// Writes every plot; returns the files written. Stops between two plots on an interrupt.
 std::vector<fs::path> write_plots(const std::vector<plot::PlotSpec>& specs,
                                   const core::RunResult& result, const fs::path& dir) {
   const std::map<std::string, double> events = event_times(result);
   std::vector<fs::path> written;
   for (const plot::PlotSpec& spec : specs) {
+    if (sys::interrupted()) break;
     const fs::path png = dir / (spec.name + ".png");
     plot::write_plot(spec, result.trajectory, events, png);
     written.push_back(png);
@@ -58,21 +49,18 @@ std::vector<fs::path> write_plots(const std::vector<plot::PlotSpec>& specs,
 render::RenderResult write_video(const scene::Scene& scene, const core::RunResult& result,
                                  const render::RenderSettings& settings, const fs::path& out,
                                  bool video, bool frames, bool progress) {
-  std::atomic<bool> interrupted{false};
-  InterruptFlag on_ctrl_c(interrupted);
   std::unique_ptr<ProgressBar> bar;
   render::RenderRequest request;
   request.out_dir = out;
   request.video = video;
   request.frames = frames;
-  request.cancel = &interrupted;
+  request.cancel = &sys::interrupt_flag();
   if (progress) {
     bar = std::make_unique<ProgressBar>(video ? "render video" : "render frames");
     request.progress = [&bar](const render::RenderProgress& p) {
       bar->frames(p.frames_done, p.frame_count, p.frames_per_second, p.eta_seconds);
     };
   }
-  if (frames) remove_old_frames(out / "frames");
   return render::render_outputs(scene, result.trajectory, settings, request);
 }
 
@@ -85,18 +73,19 @@ int run_command(const RunArguments& args) {
 
   // Checked before the simulation: both fail with file:line:col on a bad table or signal.
   const render::RenderSettings render_settings = render::read_render_settings(scene);
+  if (!args.no_video || args.frames) render::check_frame_count(scene, render_settings);
   std::vector<std::string> columns = scene.network->signal_columns();
   columns.insert(columns.begin(), "t");
   std::vector<plot::PlotSpec> plot_specs =
       plot::read_plot_specs(scene.document, scene.path.string(), columns);
   if (plot_specs.empty()) plot_specs = plot::default_plot_specs(columns);
 
-  const fs::path out = args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out);
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec) throw io::IoError(out.string() + ": cannot create the output directory: " + ec.message());
+  // Interrupted while loading: nothing was written, nothing to keep.
+  if (sys::interrupted()) return interrupted_exit(args.quiet, "load", {});
+  OutputDirectory out(args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out));
 
   const bool progress = show_progress(args.quiet);
+  scene.run.stop = &sys::interrupt_flag();
   const core::RunResult result = simulate_scene(scene, progress);
 
   io::RunDescription description;
@@ -109,9 +98,21 @@ int run_command(const RunArguments& args) {
   if (run.tolerance > 0.0) description.tolerance = run.tolerance;
   if (result.instability) description.suggested_dt = suggested_dt(scene);
 
-  const auto summary = io::make_summary(description, result);
+  auto summary = io::make_summary(description, result);
   io::write_csv(result.trajectory, out / "trajectory.csv");
-  io::write_summary(summary, out / "summary.json");
+  out.wrote(out / "trajectory.csv");
+  const double time_reached =
+      result.trajectory.row_count() > 0 ? result.trajectory.at(result.trajectory.row_count() - 1, 0) : 0.0;
+  // summary.json lists the files written so far, itself included; it is written again
+  // after the plots and the video with the complete list.
+  const auto write_summary = [&](const char* interrupted_in) {
+    if (interrupted_in != nullptr) mark_interrupted(summary, interrupted_in, time_reached);
+    out.wrote(out / "summary.json");
+    summary["files"] = out.files();
+    io::write_summary(summary, out / "summary.json");
+  };
+  write_summary(result.interrupted ? "simulate" : nullptr);
+  if (result.interrupted) return interrupted_exit(args.quiet, "simulate", out.files(), time_reached);
 
   if (result.instability) {
     // The rows up to the instability are in the CSV; pictures of a diverging run are not
@@ -141,6 +142,11 @@ int run_command(const RunArguments& args) {
   if (!args.no_plots) {
     try {
       const std::vector<fs::path> plots = write_plots(plot_specs, result, out / "plots");
+      for (const fs::path& p : plots) out.wrote(p);
+      if (sys::interrupted()) {
+        write_summary("plots");
+        return interrupted_exit(args.quiet, "plots", out.files(), time_reached);
+      }
       if (!args.quiet) {
         for (const fs::path& p : plots) std::printf("  wrote %s\n", p.c_str());
         std::fflush(stdout);
@@ -157,7 +163,7 @@ int run_command(const RunArguments& args) {
   if (!args.no_video || args.frames) {
     render::RenderResult rendered;
     try {
-      rendered = write_video(scene, result, render_settings, out, !args.no_video, args.frames,
+      rendered = write_video(scene, result, render_settings, out.path(), !args.no_video, args.frames,
                              progress);
     } catch (const scene::InputError&) {
       throw;  // exit 2, message already located
@@ -178,14 +184,16 @@ int run_command(const RunArguments& args) {
       return kExitFailure;
     }
     const double fps = rendered.wall_seconds > 0.0 ? rendered.frames / rendered.wall_seconds : 0.0;
+    if (args.frames) {
+      for (int i = 0; i < rendered.frames; ++i) out.wrote(out / "frames" / frame_name(i));
+    }
+    if (!rendered.video.empty()) out.wrote(rendered.video);
     if (rendered.interrupted) {
       std::fprintf(stderr, "interrupted: rendered %d frames", rendered.frames);
       if (!rendered.video.empty()) std::fprintf(stderr, "; the partial video is %s", rendered.video.c_str());
       std::fprintf(stderr, "\n");
-      return kExitInterrupted;
-    }
-    if (!rendered.video.empty()) {
-      fs::remove(out / "video.partial.mp4", ec);  // left by an earlier, interrupted run
+      write_summary("render");
+      return interrupted_exit(args.quiet, "render", out.files(), time_reached);
     }
     if (!args.quiet) {
       if (!rendered.video.empty()) {
@@ -199,6 +207,7 @@ int run_command(const RunArguments& args) {
       }
     }
   }
+  if (!args.no_plots || !args.no_video || args.frames) write_summary(nullptr);  // the full list
   return kExitOk;
 }
 

@@ -5,23 +5,12 @@
 
 #include <unistd.h>
 
+#include "app/pilot.hpp"
 #include "app/progress.hpp"
+#include "core/run_limits.hpp"
 #include "core/stability.hpp"
 
 namespace stiction::app {
-namespace {
-
-// The flag a SIGINT handler may touch must be reachable without arguments; it is set only
-// while an InterruptFlag lives. A lock-free atomic pointer is safe to read in a handler.
-std::atomic<std::atomic<bool>*> interrupt_target{nullptr};
-static_assert(std::atomic<std::atomic<bool>*>::is_always_lock_free);
-static_assert(std::atomic<bool>::is_always_lock_free);
-
-extern "C" void on_interrupt(int) {
-  if (std::atomic<bool>* flag = interrupt_target.load()) flag->store(true);
-}
-
-}  // namespace
 
 void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   core::RunOptions& run = scene.run;
@@ -40,6 +29,12 @@ void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   if (run.integrator == "rk4_adaptive" && !(run.tolerance > 0.0)) {
     throw scene::InputError("error: --integrator rk4_adaptive needs a tolerance: give --tolerance "
                             "TOL or set [simulation] tolerance in the scene");
+  }
+  // The scene's own values were checked where they were read; what fails here comes from the
+  // command line (or from it combined with the scene).
+  if (const auto violation = core::check_run_limits(run)) {
+    throw scene::InputError("error: " + scene.path.string() + " with --dt/--duration/--tolerance: simulation." +
+                            violation->key + ": " + violation->message);
   }
 }
 
@@ -71,7 +66,7 @@ double suggested_dt(scene::Scene& scene) {
   if (run.integrator == "rk4_adaptive") return quarter;  // its tolerance is what to change
   core::RunOptions pilot = run;
   pilot.dt = quarter;
-  const auto states = core::sample_states(*scene.network, pilot, 10);
+  const auto states = core::sample_states(*scene.network, bounded_pilot(*scene.network, pilot).options, 10);
   const core::StepLimit limit =
       core::predict_step_limit(*scene.network, run.integrator, states, 1e-9, run.dt);
   if (!limit.unbounded && limit.max_step > 0.0 && 0.8 * limit.max_step < run.dt) {
@@ -97,20 +92,6 @@ void print_instability(const std::string& scene_name, const core::RunOptions& ru
                "try a smaller step, e.g. --dt %g\n",
                scene_name.c_str(), inst.time, inst.component.c_str(), inst.reason.c_str(),
                run.integrator.c_str(), run.dt, suggested_dt);
-}
-
-InterruptFlag::InterruptFlag(std::atomic<bool>& flag) {
-  interrupt_target.store(&flag);
-  struct sigaction action {};
-  action.sa_handler = on_interrupt;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;  // a second Ctrl-C ends the process at once
-  installed_ = ::sigaction(SIGINT, &action, &previous_) == 0;
-}
-
-InterruptFlag::~InterruptFlag() {
-  if (installed_) ::sigaction(SIGINT, &previous_, nullptr);
-  interrupt_target.store(nullptr);
 }
 
 }  // namespace stiction::app

@@ -1,13 +1,11 @@
 // What `run` and `compare` share: applying command-line overrides to a scene's run options,
-// simulating with a progress bar, the events a plot marks, Ctrl-C handling while rendering.
+// simulating with a progress bar, the events a plot marks (signals: sys/interrupt.hpp).
 #pragma once
 
 #include <atomic>
 #include <map>
 #include <optional>
 #include <string>
-
-#include <signal.h>
 
 #include "core/simulation.hpp"
 #include "scene/scene.hpp"
@@ -43,19 +41,5 @@ double suggested_dt(scene::Scene& scene);
 // (for rk4_adaptive a tolerance instead).
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
                        const core::Instability& instability, double suggested_dt);
-
-// While alive, SIGINT sets `flag` instead of killing the process (a second Ctrl-C kills as
-// usual: the handler resets itself). The previous handler is restored on destruction.
-class InterruptFlag {
- public:
-  explicit InterruptFlag(std::atomic<bool>& flag);
-  ~InterruptFlag();
-  InterruptFlag(const InterruptFlag&) = delete;
-  InterruptFlag& operator=(const InterruptFlag&) = delete;
-
- private:
-  struct sigaction previous_ {};
-  bool installed_ = false;
-};
 
 }  // namespace stiction::app

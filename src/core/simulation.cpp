@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/run_limits.hpp"
+
 namespace stiction::core {
 namespace {
 
@@ -96,6 +98,9 @@ class InstabilityMonitor {
 }  // namespace
 
 RunResult simulate(Network& network, const RunOptions& options, const ProgressCallback& progress) {
+  if (const auto violation = check_run_limits(options)) {
+    throw std::invalid_argument(violation->key + ": " + violation->message);
+  }
   RunResult result;
   std::vector<std::string> columns{"t"};
   for (auto& c : network.signal_columns()) columns.push_back(std::move(c));
@@ -107,7 +112,9 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   const long total_steps = static_cast<long>(std::ceil(end / T - 1e-9));
   const double sample_period = 1.0 / options.output_rate;
   const long total_samples = static_cast<long>(std::floor(end / sample_period + 1e-9)) + 1;
-  result.trajectory.reserve_rows(static_cast<int>(total_samples));
+  // Reserved up to a bound: the rows actually produced may be far fewer (instability,
+  // interrupt), and a long run should grow rather than ask for everything up front.
+  result.trajectory.reserve_rows(static_cast<int>(std::min(total_samples, 1L << 20)));
 
   auto stepper = make_stepper(options.integrator, network.state_dim(), T, options.tolerance);
   Vec x = network.initial_state();
@@ -164,6 +171,10 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
 
   double t = 0.0;
   for (long k = 0; t < end; ++k) {
+    if (options.stop != nullptr && k % 64 == 0 && options.stop->load(std::memory_order_relaxed)) {
+      result.interrupted = true;
+      break;
+    }
     x_prev = x;
     double h = 0.0;
     try {

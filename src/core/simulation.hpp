@@ -3,6 +3,7 @@
 // time), and stops at the first sign of numerical instability.
 #pragma once
 
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -30,6 +31,9 @@ struct RunOptions {
   // Slip speed below which a contact or joint counts as stuck, per impedance name.
   std::map<std::string, double> stick_thresholds;
   double default_stick_threshold = 1e-3;  // m/s or rad/s
+  // When set and true, the run stops after the current step and
+  // reports itself interrupted (checked every few steps; see app/interrupt.hpp).
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct SlipHistory {
@@ -49,6 +53,7 @@ struct RunResult {
   long evaluations = 0;  // network evaluations (the integrator's cost)
   double wall_seconds = 0.0;
   std::optional<Instability> instability;
+  bool interrupted = false;  // stopped early through RunOptions::stop
   std::vector<SlipHistory> slip_events;  // one per impedance with a slip speed
 };
 
@@ -60,6 +65,8 @@ inline double energy_margin(const RunOptions& options, double initial_energy, do
   return work + options.energy_growth_limit * (std::abs(initial_energy) + work) + 1e-9;
 }
 
+// std::invalid_argument when the options break core/run_limits.hpp (checked before anything
+// is allocated).
 RunResult simulate(Network& network, const RunOptions& options,
                    const ProgressCallback& progress = {});
 

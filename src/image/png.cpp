@@ -12,6 +12,8 @@
 #include <system_error>
 #include <thread>
 
+#include "sys/temporaries.hpp"
+
 namespace stiction::image {
 namespace {
 
@@ -64,22 +66,27 @@ bool encode(std::FILE* file, const Image& image, PngSpeed speed, ErrorSink& sink
   return true;
 }
 
-std::filesystem::path temporary_name(const std::filesystem::path& path) {
-  const std::size_t thread = std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000;
-  return path.string() + ".tmp." + std::to_string(::getpid()) + "-" + std::to_string(thread);
-}
-
 }  // namespace
 
 void write_png(const std::filesystem::path& path, const Image& image, PngSpeed speed) {
   if (image.empty()) throw ImageError("cannot write an empty image to " + path.string());
-  const std::filesystem::path temp = temporary_name(path);
+  sys::Temporary created;
+  try {
+    created = sys::create_temporary(path);
+  } catch (const std::system_error& e) {
+    throw ImageError("cannot write " + path.string() + ": " + e.code().message());
+  }
+  const std::filesystem::path temp = created.path;
   ErrorSink sink;
   bool ok = false;
   {
-    File file(std::fopen(temp.c_str(), "wb"));
+    File file(::fdopen(created.fd, "wb"));
     if (!file) {
-      throw ImageError("cannot write " + path.string() + ": " + std::strerror(errno));
+      const std::string why = std::strerror(errno);
+      ::close(created.fd);
+      ::unlink(temp.c_str());
+      sys::forget_temporary(temp);
+      throw ImageError("cannot write " + path.string() + ": " + why);
     }
     ok = encode(file.get(), image, speed, sink);
     if (ok && (std::fflush(file.get()) != 0 || std::ferror(file.get()))) {
@@ -90,10 +97,12 @@ void write_png(const std::filesystem::path& path, const Image& image, PngSpeed s
   std::error_code ec;
   if (ok) {
     std::filesystem::rename(temp, path, ec);
+    sys::forget_temporary(temp);
     if (!ec) return;
     std::snprintf(sink.message, sizeof sink.message, "%s", ec.message().c_str());
   }
   std::filesystem::remove(temp, ec);
+  sys::forget_temporary(temp);
   throw ImageError("cannot write " + path.string() + ": " + sink.message);
 }
 

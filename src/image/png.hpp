@@ -1,4 +1,4 @@
-// PNG files through libpng. Writes are atomic: the data goes to "NAME.tmp.ID" first and is
+// PNG files through libpng. Writes are atomic: the data goes to a temporary (sys/temporaries.hpp) first and is
 // renamed over NAME only once complete, so a reader never sees a half-written file.
 #pragma once
 

@@ -3,12 +3,14 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
-#include <random>
+#include <system_error>
 #include <cstring>
 #include <vector>
 
 #include <fcntl.h>
 #include <unistd.h>
+
+#include "sys/temporaries.hpp"
 
 namespace stiction::io {
 namespace fs = std::filesystem;
@@ -18,30 +20,20 @@ std::string reason() { return std::strerror(errno); }
 }  // namespace
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
-  const fs::path dir = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
-  // open(O_EXCL) with mode 0666 rather than mkstemp: the file gets the permissions the
-  // umask allows, like any file the user creates, without touching the process umask.
-  std::random_device seed;
-  std::mt19937_64 random(seed() ^ static_cast<std::uint64_t>(::getpid()));
   int fd = -1;
-  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
-    char suffix[17];
-    std::snprintf(suffix, sizeof suffix, "%016llx", static_cast<unsigned long long>(random()));
-    // Appended piecewise: `"." + std::string` trips GCC 12's false -Wrestrict (PR 105329).
-    std::string name(1, '.');
-    name += target_.filename().string();
-    name += ".tmp-";
-    name += suffix;
-    temporary_ = dir / name;
-    fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0 && errno != EEXIST) break;
+  try {
+    sys::Temporary temporary = sys::create_temporary(target_);
+    fd = temporary.fd;
+    temporary_ = std::move(temporary.path);
+  } catch (const std::system_error& e) {
+    throw IoError(target_.string() + ": cannot create a temporary file: " + e.code().message());
   }
-  if (fd < 0) throw IoError(target_.string() + ": cannot create a temporary file: " + reason());
   file_ = ::fdopen(fd, "wb");
   if (file_ == nullptr) {
     const std::string why = reason();
     ::close(fd);
     ::unlink(temporary_.c_str());
+    sys::forget_temporary(temporary_);
     throw IoError(target_.string() + ": cannot open a temporary file: " + why);
   }
 }
@@ -49,6 +41,7 @@ AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
 AtomicFile::~AtomicFile() {
   if (file_ != nullptr) std::fclose(file_);
   if (!committed_) ::unlink(temporary_.c_str());
+  sys::forget_temporary(temporary_);
 }
 
 void AtomicFile::write(std::string_view data) {

@@ -1,5 +1,5 @@
 // Output files that are either complete or absent (DESIGN section 4): the content goes to a
-// hidden temporary file in the target's directory ("." + name + ".tmp-" + 16 hex digits) and is
+// hidden temporary file in the target's directory (sys/temporaries.hpp: O_EXCL, O_NOFOLLOW) and is
 // renamed over the target only by commit(). A crash or an exception before commit() leaves
 // the previous file (if any) untouched and no file with the target's name half-written.
 // rename() within one directory is atomic on POSIX; no fsync: this guards against partial

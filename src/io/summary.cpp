@@ -33,7 +33,7 @@ nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunRe
   s["evaluations"] = result.evaluations;
   s["state_dim"] = run.state_dim;
   s["wall_seconds"] = result.wall_seconds;
-  s["status"] = result.instability ? "unstable" : "ok";
+  s["status"] = result.instability ? "unstable" : result.interrupted ? "interrupted" : "ok";
   nlohmann::ordered_json final_row = nlohmann::ordered_json::object();
   const core::Trajectory& tr = result.trajectory;
   if (tr.row_count() > 0) {

@@ -1,6 +1,7 @@
 #include "render/render_settings.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "render/scene_view.hpp"
 #include "scene/scene.hpp"
@@ -43,7 +44,7 @@ void read_render(TableReader& r, RenderSettings& s) {
     s.height = static_cast<int>(size[1]);
   }
   s.fps = r.positive("fps", s.fps);
-  if (s.fps > 240.0) r.fail("fps", "must be at most 240");
+  if (s.fps < 1.0 || s.fps > 240.0) r.fail("fps", "must be in 1..240");
   const long crf = r.integer("crf", s.crf);
   if (crf < 0 || crf > 51) r.fail("crf", "must be in 0..51");
   s.crf = static_cast<int>(crf);
@@ -57,6 +58,7 @@ void read_render(TableReader& r, RenderSettings& s) {
     r.fail("preset", "unknown preset '" + s.preset + "' (one of: " + join(presets) + ")");
   }
   s.slow_motion = r.positive("slow_motion", s.slow_motion);
+  if (s.slow_motion < 1e-3 || s.slow_motion > 1e3) r.fail("slow_motion", "must be in 0.001..1000");
   const long msaa = r.integer("msaa", s.msaa);
   if (msaa != 1 && msaa != 2 && msaa != 4) r.fail("msaa", "must be 1, 2 or 4");
   s.msaa = static_cast<int>(msaa);
@@ -127,6 +129,22 @@ RenderSettings read_render_settings(const scene::Scene& scene) {
   std::vector<std::string> columns = scene.network->signal_columns();
   columns.insert(columns.begin(), "t");
   return read_render_settings(scene.document, bodies, columns);
+}
+
+void check_frame_count(const scene::Scene& scene, const RenderSettings& s) {
+  // The frame count, in floating point before anything is sized by it.
+  const double frames = std::floor(scene.run.duration * s.fps * s.slow_motion) + 1.0;
+  if (!(frames <= kMaxFrames)) {
+    TableReader root(scene.document, "");
+    auto render = root.subtable("render");
+    const std::string message = "duration * fps * slow_motion gives " + std::to_string(frames) +
+                                " frames, more than the limit of " + std::to_string(kMaxFrames) +
+                                " (docs/limits.md)";
+    if (render && render->has("slow_motion")) render->fail("slow_motion", message);
+    if (render && render->has("fps")) render->fail("fps", message);
+    throw scene::InputError("error: " + scene.path.string() + ": " + message +
+                            " (lower --duration, or skip the video with --no-video)");
+  }
 }
 
 }  // namespace stiction::render

@@ -61,6 +61,9 @@ struct OverlaySettings {
   double trail_seconds = 0.5;
 };
 
+// Frames of one video at most (about 4.6 hours at 60 fps); see docs/limits.md.
+inline constexpr double kMaxFrames = 1e6;
+
 struct RenderSettings {
   int width = 1280;
   int height = 720;
@@ -86,5 +89,9 @@ RenderSettings read_render_settings(const toml::table& document,
 // Same, with the names taken from the scene's network. Call before simulating so that a bad
 // [render] table fails fast.
 RenderSettings read_render_settings(const scene::Scene& scene);
+
+// InputError (at [render] slow_motion or fps when given) when the run's duration gives more
+// than kMaxFrames frames. Only for runs that render.
+void check_frame_count(const scene::Scene& scene, const RenderSettings& settings);
 
 }  // namespace stiction::render

@@ -12,6 +12,8 @@ extern "C" {
 
 #include <system_error>
 
+#include "sys/temporaries.hpp"
+
 namespace stiction::render {
 namespace {
 
@@ -60,9 +62,32 @@ VideoEncoder::VideoEncoder(std::filesystem::path path, const VideoOptions& optio
     throw VideoError("video size must be even and positive, got " + std::to_string(options.width) +
                      "x" + std::to_string(options.height));
   }
-  temp_ = path_.string() + ".tmp." + std::to_string(::getpid());
-  State& s = *state_;
+  // The temporary is created here, exclusively (sys/temporaries.hpp), and handed to libav as
+  // a "file:" URL of its absolute path: an output directory named "run:1" or "tcp://..."
+  // must stay a file name, never select another protocol.
+  try {
+    const sys::Temporary created = sys::create_temporary(path_);
+    ::close(created.fd);
+    temp_ = created.path;
+  } catch (const std::system_error& e) {
+    throw VideoError("cannot write " + path_.string() + ": " + e.code().message());
+  }
+  std::error_code absolute_error;
+  const std::string url = "file:" + std::filesystem::absolute(temp_, absolute_error).string();
 
+  try {
+    open(url, options);
+  } catch (...) {
+    state_.reset();  // closes the file, if libav opened it
+    std::error_code ec;
+    std::filesystem::remove(temp_, ec);
+    sys::forget_temporary(temp_);
+    throw;
+  }
+}
+
+void VideoEncoder::open(const std::string& url, const VideoOptions& options) {
+  State& s = *state_;
   // libx264 prints statistics at info level on stderr, which would garble the progress bar.
   // (The level is process-wide in FFmpeg; only errors are wanted from it anywhere here.)
   if (av_log_get_level() > AV_LOG_ERROR) av_log_set_level(AV_LOG_ERROR);
@@ -70,7 +95,7 @@ VideoEncoder::VideoEncoder(std::filesystem::path path, const VideoOptions& optio
   if (!codec) throw VideoError("libavcodec has no libx264 encoder (Debian: libavcodec-extra59 or libx264)");
 
   AVFormatContext* format = nullptr;
-  int rc = avformat_alloc_output_context2(&format, nullptr, "mp4", temp_.c_str());
+  int rc = avformat_alloc_output_context2(&format, nullptr, "mp4", url.c_str());
   if (rc < 0 || !format) throw VideoError("cannot create an MP4 muxer: " + av_message(rc));
   s.format.reset(format);
 
@@ -101,7 +126,7 @@ VideoEncoder::VideoEncoder(std::filesystem::path path, const VideoOptions& optio
   rc = avcodec_parameters_from_context(s.stream->codecpar, c);
   if (rc < 0) throw VideoError("cannot set stream parameters: " + av_message(rc));
 
-  rc = avio_open(&s.format->pb, temp_.c_str(), AVIO_FLAG_WRITE);
+  rc = avio_open(&s.format->pb, url.c_str(), AVIO_FLAG_WRITE);
   if (rc < 0) throw VideoError("cannot write " + path_.string() + ": " + av_message(rc));
   rc = avformat_write_header(s.format.get(), nullptr);
   if (rc < 0) {
@@ -138,6 +163,7 @@ VideoEncoder::~VideoEncoder() {
     std::error_code ec;
     std::filesystem::remove(temp_, ec);
   }
+  if (!temp_.empty()) sys::forget_temporary(temp_);
 }
 
 long VideoEncoder::frames_written() const { return state_->frames; }
@@ -187,6 +213,7 @@ std::filesystem::path VideoEncoder::finish(const std::filesystem::path& final_pa
   const std::filesystem::path target = final_path.empty() ? path_ : final_path;
   std::error_code ec;
   std::filesystem::rename(temp_, target, ec);
+  if (!ec) sys::forget_temporary(temp_);
   if (ec) throw VideoError("cannot rename " + temp_.string() + " to " + target.string() + ": " + ec.message());
   s.finished = true;
   return target;

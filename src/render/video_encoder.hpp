@@ -47,6 +47,7 @@ class VideoEncoder {
 
  private:
   struct State;
+  void open(const std::string& url, const VideoOptions& options);  // the rest of the constructor
   void drain(bool flush);
   std::filesystem::path path_;
   std::filesystem::path temp_;

@@ -74,7 +74,7 @@ components::TorqueSource::Profile profile(TableReader& table, std::string_view k
   const toml::node* node = table.node(key);
   if (node == nullptr) table.fail(key, "missing (a number or an expression of t is required)");
   if (node->is_number()) {
-    const double value = node->value<double>().value();
+    const double value = finite_number(*node, table.path() + "." + std::string(key));
     return [value](double) { return value; };
   }
   if (!node->is_string()) table.fail(key, "expected a number or an expression of t (a string)");
@@ -317,7 +317,7 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     if (table.has("rest")) {
       const toml::node* rest = table.node("rest");
       std::vector<double> v;
-      if (rest->is_number()) v.push_back(rest->value<double>().value());
+      if (rest->is_number()) v.push_back(finite_number(*rest, table.path() + ".rest"));
       else v = table.numbers("rest");
       if (static_cast<int>(v.size()) != p.dimension) {
         table.fail("rest", "expected " + std::to_string(p.dimension) + " number(s)");

@@ -9,6 +9,8 @@
 namespace stiction::scene {
 namespace {
 
+constexpr std::size_t kMaxIndex = 1'000'000'000;
+
 // One step of a key path: a table key, or an array index.
 struct Step {
   std::string key;  // empty for an index
@@ -50,6 +52,9 @@ std::vector<Step> parse_path(const std::string& key, const std::shared_ptr<const
       std::size_t index = 0;
       for (std::size_t k = i + 1; k < close; ++k) {
         if (!std::isdigit(static_cast<unsigned char>(key[k]))) throw bad(k, "array index must be a number");
+        // Stop before the index could wrap around (2^64 would become element 0): no scene
+        // array comes near this many elements, so a larger index is out of range anyway.
+        if (index > kMaxIndex / 10) throw bad(i + 1, "array index out of range in '" + key + "'");
         index = index * 10 + static_cast<std::size_t>(key[k] - '0');
       }
       path += key.substr(i, close + 1 - i);

@@ -10,6 +10,7 @@
 #include "components/admittance/point_mass.hpp"
 #include "components/admittance/rigid_body.hpp"
 #include "core/integrator.hpp"
+#include "core/run_limits.hpp"
 #include "scene/components.hpp"
 #include "scene/overrides.hpp"
 
@@ -37,6 +38,19 @@ std::string join(const std::vector<std::string>& items) {
   std::string out;
   for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
   return out;
+}
+
+// Why `name` cannot name a directory under out/, or empty if it can: no separators, not
+// "." or "..", no leading dot (hidden, and ".." in disguise), no control characters.
+std::string invalid_name_reason(const std::string& name) {
+  if (name.empty()) return "must not be empty";
+  if (name.size() > 200) return "must be at most 200 characters long";
+  if (name.front() == '.') return "must not start with '.'";
+  for (const char c : name) {
+    if (c == '/' || c == '\\') return "must not contain a path separator ('/' or '\\')";
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "must not contain control characters";
+  }
+  return {};
 }
 
 core::RunOptions read_simulation(TableReader& root) {
@@ -67,6 +81,7 @@ core::RunOptions read_simulation(TableReader& root) {
   run.duration = sim->positive("duration", run.duration);
   run.output_rate = sim->positive("output_rate", run.output_rate);
   run.energy_growth_limit = sim->positive("energy_growth_limit", run.energy_growth_limit);
+  if (const auto violation = core::check_run_limits(run)) sim->fail(violation->key, violation->message);
   sim->finish();
   return run;
 }
@@ -128,6 +143,12 @@ Scene build_scene(toml::table document, const fs::path& path) {
   scene.document = std::move(document);
   TableReader root(scene.document, "");
   scene.name = root.string("name", path.stem().string());
+  // The name becomes the default output directory out/<name>/: one plain path component.
+  if (const std::string why = invalid_name_reason(scene.name); !why.empty()) {
+    if (root.has("name")) root.fail("name", why);
+    throw InputError::at(scene.document.source(), "name: the file name '" + scene.name + "' " + why +
+                                                      "; give the scene a `name`");
+  }
   scene.description = root.string("description", "");
   for (const char* section : kForeignSections) root.node(section);
   const core::Vec3 gravity = root.vec3("gravity", core::Vec3(0.0, 0.0, -9.8));

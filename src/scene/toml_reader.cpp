@@ -1,6 +1,7 @@
 #include "scene/toml_reader.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 namespace stiction::scene {
@@ -26,6 +27,24 @@ std::string format_number(double v) {
 }
 
 }  // namespace
+
+double finite_number(const toml::node& node, const std::string& what) {
+  constexpr std::int64_t kExact = std::int64_t{1} << 53;
+  if (const auto* i = node.as_integer()) {
+    const std::int64_t v = i->get();
+    if (v > kExact || v < -kExact) {
+      throw InputError::at(node.source(), what + ": the integer " + std::to_string(v) +
+                                              " is beyond 2^53 = 9007199254740992, the largest "
+                                              "a number holds exactly (write it as a float, e.g. 1e16)");
+    }
+    return static_cast<double>(v);
+  }
+  const auto* f = node.as_floating_point();
+  if (f == nullptr) throw InputError::at(node.source(), what + ": expected a number, got " + describe(node));
+  const double v = f->get();
+  if (!std::isfinite(v)) throw InputError::at(node.source(), what + ": expected a finite number");
+  return v;
+}
 
 InputError InputError::at(const toml::source_region& where, const std::string& message) {
   std::ostringstream out;
@@ -74,9 +93,7 @@ double TableReader::number(std::string_view key, double fallback) {
   const toml::node* n = node(key);
   if (!n) return fallback;
   if (!n->is_number()) fail(key, "expected a number, got " + describe(*n));
-  const double v = n->value<double>().value();
-  if (!std::isfinite(v)) fail(key, "expected a finite number");
-  return v;
+  return finite_number(*n, path_.empty() ? std::string(key) : path_ + "." + std::string(key));
 }
 
 double TableReader::required_number(std::string_view key) {
@@ -143,12 +160,7 @@ std::vector<double> TableReader::numbers(std::string_view key) {
       throw InputError::at(e.source(), (path_.empty() ? "" : path_ + ".") + std::string(key) +
                                            ": expected a number, got " + describe(e));
     }
-    const double v = e.value<double>().value();
-    if (!std::isfinite(v)) {
-      throw InputError::at(e.source(), (path_.empty() ? "" : path_ + ".") + std::string(key) +
-                                           ": expected a finite number");
-    }
-    out.push_back(v);
+    out.push_back(finite_number(e, (path_.empty() ? "" : path_ + ".") + std::string(key)));
   }
   return out;
 }

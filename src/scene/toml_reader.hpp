@@ -25,6 +25,12 @@ class InputError : public std::runtime_error {
   static InputError at(const toml::source_region& where, const std::string& message);
 };
 
+// The value of a number node as a double: floats as they are, integers only up to 2^53 in
+// magnitude (beyond that a double no longer holds every integer, and toml++ refuses the
+// conversion). `what` names the key in the message. InputError at the node otherwise, also
+// for NaN and infinities.
+double finite_number(const toml::node& node, const std::string& what);
+
 class TableReader {
  public:
   // `path` is the dotted path of the table ("bodies.sphere"), used in messages.

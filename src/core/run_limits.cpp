@@ -1,0 +1,51 @@
+#include "core/run_limits.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace stiction::core {
+namespace {
+
+std::string format(double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
+
+}  // namespace
+
+std::optional<LimitViolation> check_run_limits(const RunOptions& o) {
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!positive(o.dt)) return LimitViolation{"dt", "must be a finite number > 0 (got " + format(o.dt) + ")"};
+  if (!positive(o.duration)) {
+    return LimitViolation{"duration", "must be a finite number > 0 (got " + format(o.duration) + ")"};
+  }
+  if (!positive(o.output_rate)) {
+    return LimitViolation{"output_rate",
+                          "must be a finite number > 0 (got " + format(o.output_rate) + ")"};
+  }
+  if (o.integrator == "rk4_adaptive" && !positive(o.tolerance)) {
+    return LimitViolation{"tolerance", "must be a finite number > 0 (got " + format(o.tolerance) + ")"};
+  }
+  // Computed in floating point: duration / dt may be far beyond any integer type.
+  const double steps = std::ceil(o.duration / o.dt);
+  if (o.integrator != "rk4_adaptive" && !(steps <= RunLimits::kMaxSteps)) {
+    return LimitViolation{"dt", "duration / dt = " + format(o.duration) + " / " + format(o.dt) +
+                                    " = " + format(steps) + " steps, more than the limit of " +
+                                    format(RunLimits::kMaxSteps) + " (docs/limits.md)"};
+  }
+  const double rows = std::floor(o.duration * o.output_rate) + 1.0;
+  if (!(rows <= RunLimits::kMaxRows)) {
+    return LimitViolation{"output_rate", "duration * output_rate = " + format(o.duration) + " * " +
+                                             format(o.output_rate) + " gives " + format(rows) +
+                                             " rows, more than the limit of " +
+                                             format(RunLimits::kMaxRows) + " (docs/limits.md)"};
+  }
+  return std::nullopt;
+}
+
+long expected_rows(const RunOptions& o) {
+  return static_cast<long>(std::floor(o.duration * o.output_rate + 1e-9)) + 1;
+}
+
+}  // namespace stiction::core

@@ -1,0 +1,29 @@
+// SIGINT and SIGTERM (DESIGN section 3): the first one asks the program to stop; every phase
+// polls interrupted() often enough to stop within a second, keeps what it has done as
+// partial output and the command exits 128 + the signal (130 / 143). A second signal exits
+// at once (_exit with the same code) after unlinking every registered temporary, so even an
+// impatient user is left with no half-written file.
+#pragma once
+
+#include <atomic>
+
+namespace stiction::sys {
+
+// Installs the handlers for the rest of the process (idempotent).
+void install_interrupt_handlers();
+
+// Set by the first signal. The flag the simulation and the renderer poll.
+const std::atomic<bool>& interrupt_flag();
+inline bool interrupted() { return interrupt_flag().load(std::memory_order_relaxed); }
+
+// The signal received (SIGINT or SIGTERM), 0 if none.
+int interrupt_signal();
+// 128 + interrupt_signal(): 130 for SIGINT, 143 for SIGTERM.
+int interrupt_exit_code();
+// "SIGINT" or "SIGTERM".
+const char* interrupt_signal_name();
+
+// Thrown by a phase that noticed the interrupt and has nothing of its own to keep.
+struct Interrupted {};
+
+}  // namespace stiction::sys
