@@ -55,8 +55,9 @@ int study_command(const StudyArguments& args);
 int compare_command(const CompareArguments& args);
 // Validates a scene, prints its state layout, the stiffest elements and the predicted
 // largest stable step of each fixed-step integrator; with a graph path, writes the network
-// as Graphviz DOT.
-int check_command(const std::string& scene, const std::string& graph_path = {});
+// as Graphviz DOT. Reads [render], [camera], [overlay], [[plots]] and [verify] as `run` does
+// (same errors, exit 2). With `json`, prints its findings (or the errors) as JSON on stdout.
+int check_command(const std::string& scene, const std::string& graph_path = {}, bool json = false);
 int scenes_command();
 
 }  // namespace stiction::app

@@ -56,6 +56,8 @@ int dispatch(int argc, char** argv) {
   std::string check_graph;
   check->add_option("--graph", check_graph,
                     "also write the scene's network (Fig. 2 of the paper) as Graphviz DOT");
+  bool check_json = false;
+  check->add_flag("--json", check_json, "print the findings (or the errors) as JSON on stdout");
 
   CLI::App* scenes = cli.add_subcommand("scenes", "list the bundled scenes");
 
@@ -118,7 +120,7 @@ int dispatch(int argc, char** argv) {
     if (reference_dt_opt->count() > 0) study_args.reference_dt = reference_dt;
     return app::study_command(study_args);
   }
-  if (*check) return app::check_command(check_scene, check_graph);
+  if (*check) return app::check_command(check_scene, check_graph, check_json);
   if (*scenes) return app::scenes_command();
   return app::kExitBadInput;
 }

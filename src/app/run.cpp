@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/progress.hpp"
 #include "app/run_support.hpp"
+#include "app/verify_settings.hpp"
 #include "core/simulation.hpp"
 #include "image/image.hpp"
 #include "io/atomic_file.hpp"
@@ -73,7 +74,9 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
     };
   }
   if (frames) remove_old_frames(out / "frames");
-  return render::render_outputs(scene, result.trajectory, settings, request);
+  render::RenderResult rendered = render::render_outputs(scene, result.trajectory, settings, request);
+  if (bar && !rendered.interrupted) bar->finish(std::to_string(rendered.frames) + " frames");
+  return rendered;
 }
 
 }  // namespace
@@ -90,6 +93,7 @@ int run_command(const RunArguments& args) {
   std::vector<plot::PlotSpec> plot_specs =
       plot::read_plot_specs(scene.document, scene.path.string(), columns);
   if (plot_specs.empty()) plot_specs = plot::default_plot_specs(columns);
+  read_verify_settings(scene.document, run.duration);  // [verify]: same errors as check/verify
 
   const fs::path out = args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out);
   std::error_code ec;

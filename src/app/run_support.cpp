@@ -43,7 +43,8 @@ void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   }
 }
 
-bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO) == 1; }
+// A bar on a terminal, plain lines in a log (ProgressBar decides); nothing with --quiet.
+bool show_progress(bool quiet) { return !quiet; }
 
 core::RunResult simulate_scene(scene::Scene& scene, bool progress) {
   std::unique_ptr<ProgressBar> bar;
@@ -53,7 +54,9 @@ core::RunResult simulate_scene(scene::Scene& scene, bool progress) {
     const double duration = scene.run.duration;
     callback = [&bar, duration](double fraction) { bar->simulation(fraction, duration); };
   }
-  return core::simulate(*scene.network, scene.run, callback);
+  core::RunResult result = core::simulate(*scene.network, scene.run, callback);
+  if (bar) bar->finish(result.instability ? "unstable" : std::to_string(result.steps) + " steps");
+  return result;
 }
 
 std::map<std::string, double> event_times(const core::RunResult& result) {

@@ -25,7 +25,8 @@ struct RunOverrides {
 // fixed-step --integrator, or rk4_adaptive ends up without a tolerance.
 void apply_overrides(scene::Scene& scene, const RunOverrides& overrides);
 
-// True when progress should be drawn: stderr is a terminal and --quiet was not given.
+// True when progress should be shown (a bar on a terminal, plain lines otherwise): unless
+// --quiet was given.
 bool show_progress(bool quiet);
 
 // core::simulate with a progress bar on stderr when `progress` is set.
