@@ -111,7 +111,11 @@ int run_command(const RunArguments& args) {
   description.output_rate = run.output_rate;
   description.state_dim = scene.network->state_dim();
   if (run.tolerance > 0.0) description.tolerance = run.tolerance;
-  if (result.instability) description.suggested_dt = suggested_dt(scene);
+  std::optional<StepSuggestion> suggestion;
+  if (result.instability) {
+    suggestion = suggested_dt(scene);
+    description.suggested_dt = suggestion->dt;
+  }
 
   const auto summary = io::make_summary(description, result);
   io::write_csv(result.trajectory, out / "trajectory.csv");
@@ -120,7 +124,7 @@ int run_command(const RunArguments& args) {
   if (result.instability) {
     // The rows up to the instability are in the CSV; pictures of a diverging run are not
     // worth the time, so the plots and the video are skipped.
-    print_instability(scene.name, run, *result.instability, *description.suggested_dt);
+    print_instability(scene.name, run, *result.instability, *suggestion);
     if (!args.quiet) {
       std::fprintf(stderr, "  wrote %s and %s (rows up to the instability); no plots or video\n",
                    (out / "trajectory.csv").c_str(), (out / "summary.json").c_str());

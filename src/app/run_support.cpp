@@ -68,25 +68,10 @@ std::map<std::string, double> event_times(const core::RunResult& result) {
   return events;
 }
 
-double suggested_dt(scene::Scene& scene) {
-  const core::RunOptions& run = scene.run;
-  const double quarter = run.dt / 4.0;
-  if (run.integrator == "rk4_adaptive") return quarter;  // its tolerance is what to change
-  core::RunOptions pilot = run;
-  pilot.dt = quarter;
-  const auto states = core::sample_states(*scene.network, pilot, 10);
-  const core::StepLimit limit =
-      core::predict_step_limit(*scene.network, run.integrator, states, 1e-9, run.dt);
-  if (!limit.unbounded && limit.max_step > 0.0 && 0.8 * limit.max_step < run.dt) {
-    return 0.8 * limit.max_step;
-  }
-  // The linearization sees nothing wrong at this step (a non-linear or impact-driven
-  // instability): fall back to a quarter of the step.
-  return quarter;
-}
+StepSuggestion suggested_dt(scene::Scene& scene) { return suggest_step(scene); }
 
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
-                       const core::Instability& inst, double suggested_dt) {
+                       const core::Instability& inst, const StepSuggestion& suggestion) {
   if (run.integrator == "rk4_adaptive") {
     std::fprintf(stderr,
                  "error: %s: numerical instability at t = %.6g s in '%s' (%s) with rk4_adaptive, "
@@ -97,9 +82,9 @@ void print_instability(const std::string& scene_name, const core::RunOptions& ru
   }
   std::fprintf(stderr,
                "error: %s: numerical instability at t = %.6g s in '%s' (%s) with %s, dt = %g s; "
-               "try a smaller step, e.g. --dt %g\n",
+               "try a smaller step, e.g. --dt %g\n  (that step is %s)\n",
                scene_name.c_str(), inst.time, inst.component.c_str(), inst.reason.c_str(),
-               run.integrator.c_str(), run.dt, suggested_dt);
+               run.integrator.c_str(), run.dt, suggestion.dt, suggestion.how.c_str());
 }
 
 InterruptFlag::InterruptFlag(std::atomic<bool>& flag) {

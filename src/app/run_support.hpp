@@ -9,6 +9,7 @@
 
 #include <signal.h>
 
+#include "app/suggest_step.hpp"
 #include "core/simulation.hpp"
 #include "scene/scene.hpp"
 
@@ -35,15 +36,13 @@ core::RunResult simulate_scene(scene::Scene& scene, bool progress);
 // "<impedance>.stick_time" -> first stick time, for every element that stuck.
 std::map<std::string, double> event_times(const core::RunResult& result);
 
-// The step to suggest after an instability: 0.8 times the largest stable step predicted by
-// linearizing the step map along a pilot run at a quarter of the step (core/stability.hpp),
-// when that is below the failed step; a quarter of the step otherwise.
-double suggested_dt(scene::Scene& scene);
+// The step to suggest after an instability, checked by a trial run (app/suggest_step.hpp).
+StepSuggestion suggested_dt(scene::Scene& scene);
 
 // The error line for an unstable run (stderr), naming the time, the component and a step
-// (for rk4_adaptive a tolerance instead).
+// with how it was obtained (for rk4_adaptive a tolerance instead).
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
-                       const core::Instability& instability, double suggested_dt);
+                       const core::Instability& instability, const StepSuggestion& suggestion);
 
 // While alive, SIGINT sets `flag` instead of killing the process (a second Ctrl-C kills as
 // usual: the handler resets itself). The previous handler is restored on destruction.
