@@ -34,7 +34,7 @@ void expect_plain_lines(const SplitOutcome& o, const std::string& start, const s
 
 }  // namespace
 
-TEST_CASE("progress: run writes start, 10% steps and end lines to a log; --quiet silences") {
+TEST_CASE("progress: run writes start, 10% steps and end lines to a log, and --quiet silences") {
   const fs::path dir = scratch_dir("stiction_test_ci_progress_", "run");
   write_text(dir / "ball.toml", ball_scene("ball"));
   const SplitOutcome o = run_split({"run", "ball.toml", "--out", "out", "--no-plots"}, dir);
