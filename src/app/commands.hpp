@@ -13,6 +13,8 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitUnstable = 3;
+// `verify` found a difference from the golden set.
+inline constexpr int kExitMismatch = 4;
 // Ctrl-C during the render: the video so far is kept as video.partial.mp4 (128 + SIGINT,
 // the shell's convention for a command ended by Ctrl-C).
 inline constexpr int kExitInterrupted = 130;
@@ -50,13 +52,28 @@ struct StudyArguments {
   bool quiet = false;
 };
 
+// `stiction verify SCENE... --golden DIR`: frames, figures and key numbers of each scene
+// against DIR/<scene>/ (src/app/verify_*.cpp, docs/ci.md).
+struct VerifyArguments {
+  std::vector<std::string> scenes;
+  std::string golden;
+  bool update = false;
+  std::vector<double> at;              // empty: [verify] at, or the golden's frame times
+  std::vector<std::string> overrides;  // applied to every scene
+  std::string out;                     // empty: out/verify/
+  int jobs = 0;                        // 0: one per core
+  bool quiet = false;
+};
+
 int run_command(const RunArguments& args);
+int verify_command(const VerifyArguments& args);
 int study_command(const StudyArguments& args);
 int compare_command(const CompareArguments& args);
 // Validates a scene, prints its state layout, the stiffest elements and the predicted
 // largest stable step of each fixed-step integrator; with a graph path, writes the network
-// as Graphviz DOT.
-int check_command(const std::string& scene, const std::string& graph_path = {});
+// as Graphviz DOT. Reads [render], [camera], [overlay], [[plots]] and [verify] as `run` does
+// (same errors, exit 2). With `json`, prints its findings (or the errors) as JSON on stdout.
+int check_command(const std::string& scene, const std::string& graph_path = {}, bool json = false);
 int scenes_command();
 
 }  // namespace stiction::app

@@ -70,6 +70,8 @@ int dispatch(int argc, char** argv) {
   std::string check_graph;
   check->add_option("--graph", check_graph,
                     "also write the scene's network (Fig. 2 of the paper) as Graphviz DOT");
+  bool check_json = false;
+  check->add_flag("--json", check_json, "print the findings (or the errors) as JSON on stdout");
 
   CLI::App* scenes = cli.add_subcommand("scenes", "list the bundled scenes");
 
@@ -112,6 +114,29 @@ int dispatch(int argc, char** argv) {
       ->allow_extra_args(false);
   compare->add_flag("--quiet", compare_args.quiet, "print nothing but errors");
 
+  app::VerifyArguments verify_args;
+  CLI::App* verify = cli.add_subcommand(
+      "verify", "compare frames, figures and key numbers of scenes with a golden set (exit 4 on a "
+                "difference)");
+  verify->add_option("SCENE", verify_args.scenes,
+                     "bundled scene names, .toml paths or directories of .toml files")
+      ->required();
+  verify->add_option("--golden", verify_args.golden, "golden set directory (one folder per scene)")
+      ->required();
+  verify->add_flag("--update", verify_args.update, "write or refresh the golden set and say what changed");
+  verify->add_option("--at", verify_args.at,
+                     "comma-separated frame times in s (default: the scene's [verify] at, else "
+                     "first frame, each event, last frame)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  verify->add_option("--set", verify_args.overrides,
+                     "KEY=VALUE: set a dotted key of every scene to a TOML value (repeatable)")
+      ->allow_extra_args(false);
+  verify->add_option("--out", verify_args.out, "report directory (default out/verify/)");
+  verify->add_option("-j,--jobs", verify_args.jobs, "scenes verified at once (default: one per core)")
+      ->check(CLI::Range(1, 256));
+  verify->add_flag("--quiet", verify_args.quiet, "print nothing but errors and the verdict");
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -128,11 +153,12 @@ int dispatch(int argc, char** argv) {
     return app::run_command(run_args);
   }
   if (*compare) return app::compare_command(compare_args);
+  if (*verify) return app::verify_command(verify_args);
   if (*study) {
     if (reference_dt_opt->count() > 0) study_args.reference_dt = reference_dt;
     return app::study_command(study_args);
   }
-  if (*check) return app::check_command(check_scene, check_graph);
+  if (*check) return app::check_command(check_scene, check_graph, check_json);
   if (*scenes) return app::scenes_command();
   return app::kExitBadInput;
 }

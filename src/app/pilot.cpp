@@ -5,25 +5,29 @@
 
 namespace stiction::app {
 
-Pilot bounded_pilot(core::Network& network, const core::RunOptions& run, double budget_seconds) {
-  // Never more steps than this, whatever the measured speed (a counter that stays exact).
-  constexpr double kMaxSteps = 2e6;
-  constexpr double kProbeSteps = 256;
-  Pilot pilot{run, false};
-  pilot.options.stop = nullptr;
-  core::RunOptions probe = run;
-  probe.stop = nullptr;
-  probe.duration = std::min(run.duration, kProbeSteps * run.dt);
-  probe.output_rate = 1.0 / probe.duration;  // two rows: the probe is only timed
-  const core::RunResult timed = core::simulate(network, probe);
-  const double per_step = timed.wall_seconds / std::max(1L, timed.steps);
-  // sample_states walks the run twice and classifies every state: about three runs' cost.
-  double steps = per_step > 0.0 ? budget_seconds / (3.0 * per_step) : kMaxSteps;
-  steps = std::clamp(steps, kProbeSteps, kMaxSteps);
-  if (run.duration / run.dt > steps) {
-    pilot.options.duration = steps * run.dt;
-    pilot.shortened = true;
+double round_down_125(double x) {
+  const double decade = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {5.0, 2.0, 1.0}) {
+    if (m * decade <= x * (1.0 + 1e-12)) return m * decade;
   }
+  return decade;
+}
+
+Pilot bounded_pilot(core::Network& network, const core::RunOptions& options,
+                    double budget_seconds) {
+  Pilot pilot{options, false};
+  constexpr long kProbeSteps = 2000;
+  core::RunOptions probe = options;
+  probe.duration = std::min(options.duration, kProbeSteps * options.dt);
+  const core::RunResult r = core::simulate(network, probe);
+  if (r.steps <= 0 || r.instability || probe.duration >= options.duration) return pilot;
+  const double per_step = r.wall_seconds / static_cast<double>(r.steps);
+  // sample_states walks the run twice and prices each step's regime: about 3 runs' cost.
+  const double affordable_steps = budget_seconds / (3.0 * std::max(per_step, 1e-9));
+  const double affordable = affordable_steps * options.dt;
+  if (affordable >= options.duration) return pilot;
+  pilot.options.duration = std::max(probe.duration, round_down_125(affordable));
+  pilot.truncated = pilot.options.duration < options.duration;
   return pilot;
 }
 

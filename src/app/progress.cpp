@@ -4,10 +4,39 @@
 #include <cmath>
 #include <cstdio>
 
+#include <unistd.h>
+
 namespace stiction::app {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+ProgressBar::ProgressBar(std::string label, bool terminal)
+    : label_(std::move(label)), terminal_(terminal), start_(std::chrono::steady_clock::now()),
+      last_(start_) {
+  if (!terminal_) {
+    std::fprintf(stderr, "%s: start\n", label_.c_str());
+    std::fflush(stderr);
+  }
+}
+
+ProgressBar::ProgressBar(std::string label)
+    : ProgressBar(std::move(label), ::isatty(STDERR_FILENO) == 1) {}
 
 bool ProgressBar::due(double fraction) {
   const auto now = std::chrono::steady_clock::now();
+  if (!terminal_) {
+    if (finished_) return false;
+    const bool tenth = fraction * 10.0 >= next_tenth_ - 1e-9;
+    if (fraction < 1.0 && !tenth && now - last_ < std::chrono::seconds(10)) return false;
+    next_tenth_ = std::max(next_tenth_, static_cast<int>(std::floor(fraction * 10.0 + 1e-9)) + 1);
+    last_ = now;
+    return true;
+  }
   if (drawn_ && fraction < 1.0 && now - last_ < std::chrono::milliseconds(100)) return false;
   last_ = now;
   return true;
@@ -15,6 +44,18 @@ bool ProgressBar::due(double fraction) {
 
 void ProgressBar::draw(double fraction, const char* detail) {
   fraction = std::clamp(fraction, 0.0, 1.0);
+  fraction_ = fraction;
+  if (!terminal_) {
+    if (fraction >= 1.0) {
+      std::fprintf(stderr, "%s: done in %.1f s (%s)\n", label_.c_str(), seconds_since(start_), detail);
+      finished_ = true;
+    } else {
+      std::fprintf(stderr, "%s: %3d%% after %.1f s (%s)\n", label_.c_str(),
+                   static_cast<int>(fraction * 100.0), seconds_since(start_), detail);
+    }
+    std::fflush(stderr);
+    return;
+  }
   constexpr int kWidth = 30;
   const int filled = static_cast<int>(fraction * kWidth + 0.5);
   char bar[kWidth + 1];
@@ -44,9 +85,31 @@ void ProgressBar::frames(int done, int frame_count, double frames_per_second, do
   draw(fraction, detail);
 }
 
+void ProgressBar::items(int done, int total, const std::string& detail) {
+  const double fraction = total > 0 ? double(done) / total : 1.0;
+  if (!due(fraction)) return;
+  const std::string text = std::to_string(done) + "/" + std::to_string(total) +
+                           (detail.empty() ? "" : ": " + detail);
+  draw(fraction, text.c_str());
+}
+
+void ProgressBar::finish(const std::string& detail) {
+  if (terminal_ || finished_) return;
+  fraction_ = 1.0;
+  draw(1.0, detail.c_str());
+}
+
 ProgressBar::~ProgressBar() {
-  if (drawn_) {
-    std::fprintf(stderr, "\r\033[K");
+  if (terminal_) {
+    if (drawn_) {
+      std::fprintf(stderr, "\r\033[K");
+      std::fflush(stderr);
+    }
+    return;
+  }
+  if (!finished_) {
+    std::fprintf(stderr, "%s: stopped at %d%% after %.1f s\n", label_.c_str(),
+                 static_cast<int>(fraction_ * 100.0), seconds_since(start_));
     std::fflush(stderr);
   }
 }

@@ -1,6 +1,7 @@
-// A one-line progress bar on stderr, redrawn in place; used only when stderr is a
-// terminal (pipes and logs get no control characters). The line is cleared when the bar is
-// destroyed, so whatever is printed next starts on a clean line.
+// Progress on stderr. On a terminal: a one-line bar redrawn in place, cleared when done.
+// Otherwise (a pipe, a CI log): plain lines without control characters, one at the start,
+// one whenever another 10% is done or 10 s have passed since the last line, and one at the
+// end, so a log shows that a long job is alive and how far it got.
 #pragma once
 
 #include <chrono>
@@ -10,8 +11,11 @@ namespace stiction::app {
 
 class ProgressBar {
  public:
-  // `label` is printed before the bar ("simulate", "render").
-  explicit ProgressBar(std::string label) : label_(std::move(label)) {}
+  // `label` is printed before the bar ("simulate", "render"). `terminal`: draw a bar;
+  // otherwise write plain lines (the start line at once).
+  ProgressBar(std::string label, bool terminal);
+  // Decides by whether stderr is a terminal.
+  explicit ProgressBar(std::string label);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
@@ -20,16 +24,26 @@ class ProgressBar {
   void simulation(double fraction, double duration);
   // Rendering: frames done of frame_count, frames per second so far, seconds left.
   void frames(int done, int frame_count, double frames_per_second, double eta_seconds);
+  // Any other job: `done` of `total` items, with a short description of the last one.
+  void items(int done, int total, const std::string& detail);
+  // The job is over: plain lines get their end line ("done in 3.2 s (DETAIL)"). Without it
+  // the destructor reports where the job stopped.
+  void finish(const std::string& detail);
 
  private:
   // False while the last redraw is under 100 ms old (a terminal write costs more than
-  // many steps), except for the final update.
+  // many steps), except for the final update; for plain lines, false until the next 10%
+  // or 10 s.
   bool due(double fraction);
   void draw(double fraction, const char* detail);
 
   std::string label_;
+  bool terminal_ = false;
   bool drawn_ = false;
-  std::chrono::steady_clock::time_point last_{};
+  bool finished_ = false;
+  double fraction_ = 0.0;
+  int next_tenth_ = 1;  // plain lines: the next multiple of 10% that earns a line
+  std::chrono::steady_clock::time_point start_{}, last_{};
 };
 
 }  // namespace stiction::app

@@ -13,6 +13,7 @@
 #include "app/output_dir.hpp"
 #include "app/progress.hpp"
 #include "app/run_support.hpp"
+#include "app/verify_settings.hpp"
 #include "core/simulation.hpp"
 #include "image/image.hpp"
 #include "io/atomic_file.hpp"
@@ -61,7 +62,9 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
       bar->frames(p.frames_done, p.frame_count, p.frames_per_second, p.eta_seconds);
     };
   }
-  return render::render_outputs(scene, result.trajectory, settings, request);
+  render::RenderResult rendered = render::render_outputs(scene, result.trajectory, settings, request);
+  if (bar && !rendered.interrupted) bar->finish(std::to_string(rendered.frames) + " frames");
+  return rendered;
 }
 
 }  // namespace
@@ -79,6 +82,7 @@ int run_command(const RunArguments& args) {
   std::vector<plot::PlotSpec> plot_specs =
       plot::read_plot_specs(scene.document, scene.path.string(), columns);
   if (plot_specs.empty()) plot_specs = plot::default_plot_specs(columns);
+  read_verify_settings(scene.document, run.duration);  // [verify]: same errors as check/verify
 
   // Interrupted while loading: nothing was written, nothing to keep.
   if (sys::interrupted()) return interrupted_exit(args.quiet, "load", {});
@@ -96,7 +100,11 @@ int run_command(const RunArguments& args) {
   description.output_rate = run.output_rate;
   description.state_dim = scene.network->state_dim();
   if (run.tolerance > 0.0) description.tolerance = run.tolerance;
-  if (result.instability) description.suggested_dt = suggested_dt(scene);
+  std::optional<StepSuggestion> suggestion;
+  if (result.instability) {
+    suggestion = suggested_dt(scene);
+    description.suggested_dt = suggestion->dt;
+  }
 
   auto summary = io::make_summary(description, result);
   io::write_csv(result.trajectory, out / "trajectory.csv");
@@ -117,7 +125,7 @@ int run_command(const RunArguments& args) {
   if (result.instability) {
     // The rows up to the instability are in the CSV; pictures of a diverging run are not
     // worth the time, so the plots and the video are skipped.
-    print_instability(scene.name, run, *result.instability, *description.suggested_dt);
+    print_instability(scene.name, run, *result.instability, *suggestion);
     if (!args.quiet) {
       std::fprintf(stderr, "  wrote %s and %s (rows up to the instability); no plots or video\n",
                    (out / "trajectory.csv").c_str(), (out / "summary.json").c_str());

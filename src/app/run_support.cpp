@@ -38,7 +38,8 @@ void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   }
 }
 
-bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO) == 1; }
+// A bar on a terminal, plain lines in a log (ProgressBar decides); nothing with --quiet.
+bool show_progress(bool quiet) { return !quiet; }
 
 core::RunResult simulate_scene(scene::Scene& scene, bool progress) {
   std::unique_ptr<ProgressBar> bar;
@@ -48,7 +49,9 @@ core::RunResult simulate_scene(scene::Scene& scene, bool progress) {
     const double duration = scene.run.duration;
     callback = [&bar, duration](double fraction) { bar->simulation(fraction, duration); };
   }
-  return core::simulate(*scene.network, scene.run, callback);
+  core::RunResult result = core::simulate(*scene.network, scene.run, callback);
+  if (bar) bar->finish(result.instability ? "unstable" : std::to_string(result.steps) + " steps");
+  return result;
 }
 
 std::map<std::string, double> event_times(const core::RunResult& result) {
@@ -60,25 +63,10 @@ std::map<std::string, double> event_times(const core::RunResult& result) {
   return events;
 }
 
-double suggested_dt(scene::Scene& scene) {
-  const core::RunOptions& run = scene.run;
-  const double quarter = run.dt / 4.0;
-  if (run.integrator == "rk4_adaptive") return quarter;  // its tolerance is what to change
-  core::RunOptions pilot = run;
-  pilot.dt = quarter;
-  const auto states = core::sample_states(*scene.network, bounded_pilot(*scene.network, pilot).options, 10);
-  const core::StepLimit limit =
-      core::predict_step_limit(*scene.network, run.integrator, states, 1e-9, run.dt);
-  if (!limit.unbounded && limit.max_step > 0.0 && 0.8 * limit.max_step < run.dt) {
-    return 0.8 * limit.max_step;
-  }
-  // The linearization sees nothing wrong at this step (a non-linear or impact-driven
-  // instability): fall back to a quarter of the step.
-  return quarter;
-}
+StepSuggestion suggested_dt(scene::Scene& scene) { return suggest_step(scene); }
 
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
-                       const core::Instability& inst, double suggested_dt) {
+                       const core::Instability& inst, const StepSuggestion& suggestion) {
   if (run.integrator == "rk4_adaptive") {
     std::fprintf(stderr,
                  "error: %s: numerical instability at t = %.6g s in '%s' (%s) with rk4_adaptive, "
@@ -89,9 +77,9 @@ void print_instability(const std::string& scene_name, const core::RunOptions& ru
   }
   std::fprintf(stderr,
                "error: %s: numerical instability at t = %.6g s in '%s' (%s) with %s, dt = %g s; "
-               "try a smaller step, e.g. --dt %g\n",
+               "try a smaller step, e.g. --dt %g\n  (that step is %s)\n",
                scene_name.c_str(), inst.time, inst.component.c_str(), inst.reason.c_str(),
-               run.integrator.c_str(), run.dt, suggested_dt);
+               run.integrator.c_str(), run.dt, suggestion.dt, suggestion.how.c_str());
 }
 
 }  // namespace stiction::app

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "app/suggest_step.hpp"
 #include "core/simulation.hpp"
 #include "scene/scene.hpp"
 
@@ -23,7 +24,8 @@ struct RunOverrides {
 // fixed-step --integrator, or rk4_adaptive ends up without a tolerance.
 void apply_overrides(scene::Scene& scene, const RunOverrides& overrides);
 
-// True when progress should be drawn: stderr is a terminal and --quiet was not given.
+// True when progress should be shown (a bar on a terminal, plain lines otherwise): unless
+// --quiet was given.
 bool show_progress(bool quiet);
 
 // core::simulate with a progress bar on stderr when `progress` is set.
@@ -32,14 +34,12 @@ core::RunResult simulate_scene(scene::Scene& scene, bool progress);
 // "<impedance>.stick_time" -> first stick time, for every element that stuck.
 std::map<std::string, double> event_times(const core::RunResult& result);
 
-// The step to suggest after an instability: 0.8 times the largest stable step predicted by
-// linearizing the step map along a pilot run at a quarter of the step (core/stability.hpp),
-// when that is below the failed step; a quarter of the step otherwise.
-double suggested_dt(scene::Scene& scene);
+// The step to suggest after an instability, checked by a trial run (app/suggest_step.hpp).
+StepSuggestion suggested_dt(scene::Scene& scene);
 
 // The error line for an unstable run (stderr), naming the time, the component and a step
-// (for rk4_adaptive a tolerance instead).
+// with how it was obtained (for rk4_adaptive a tolerance instead).
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
-                       const core::Instability& instability, double suggested_dt);
+                       const core::Instability& instability, const StepSuggestion& suggestion);
 
 }  // namespace stiction::app

@@ -1,12 +1,13 @@
 // `stiction study SCENE`: runs the study (study.cpp), writes its reports (study_report.cpp)
 // and prints the Markdown tables on stdout.
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 
-#include <unistd.h>
-
 #include "app/commands.hpp"
+#include "app/heartbeat.hpp"
 #include "app/study.hpp"
 #include "scene/scene.hpp"
 
@@ -22,11 +23,26 @@ int study_command(const StudyArguments& args) {
   options.reference_dt = args.reference_dt;
   options.repeats = args.repeats;
 
+  // One line per run, on a terminal and in a log alike (each is a finished item, no bar),
+  // between a start and an end line.
+  // A watcher fills silences over 10 s (a long reference run).
   StudyLog log;
-  if (!args.quiet && ::isatty(STDERR_FILENO)) {
-    log = [](const std::string& line) { std::fprintf(stderr, "study: %s\n", line.c_str()); };
+  std::unique_ptr<Heartbeat> heartbeat;
+  const auto start = std::chrono::steady_clock::now();
+  if (!args.quiet) {
+    heartbeat = std::make_unique<Heartbeat>("study");
+    heartbeat->line("start " + args.scene);
+    log = [&heartbeat](const std::string& line) { heartbeat->line(line); };
   }
   const StudyResult result = run_study(options, log);
+  if (heartbeat) {
+    char done[96];
+    std::snprintf(done, sizeof done, "done in %.1f s (%zu runs)",
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                  result.rows.size());
+    heartbeat->line(done);
+    heartbeat.reset();
+  }
 
   const std::filesystem::path out =
       args.out.empty() ? std::filesystem::path("out") / result.scene / "study" : std::filesystem::path(args.out);

@@ -1,6 +1,7 @@
 #include "image/compare.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -35,17 +36,23 @@ CompareResult compare_images(const Image& expected, const Image& actual,
     return r;
   }
   const long count = static_cast<long>(expected.width) * expected.height;
+  double squares = 0.0;
   for (long i = 0; i < count; ++i) {
-    const int d = channel_difference(&expected.pixels[i * 4], &actual.pixels[i * 4]);
+    const std::uint8_t* e = &expected.pixels[i * 4];
+    const std::uint8_t* a = &actual.pixels[i * 4];
+    const int d = channel_difference(e, a);
     r.max_channel_difference = std::max(r.max_channel_difference, d);
     if (d > options.channel_tolerance) ++r.pixels_off;
+    for (int c = 0; c < 3; ++c) squares += double(int(e[c]) - int(a[c])) * double(int(e[c]) - int(a[c]));
   }
   r.fraction_off = count > 0 ? double(r.pixels_off) / double(count) : 0.0;
-  r.matches = r.fraction_off <= options.max_fraction;
+  r.rms = count > 0 ? std::sqrt(squares / (3.0 * double(count))) : 0.0;
+  r.matches = r.fraction_off <= options.max_fraction && r.rms <= options.max_rms;
   msg << r.pixels_off << " of " << count << " pixels (" << r.fraction_off * 100.0
       << "%) off by more than " << options.channel_tolerance << "/255 (allowed "
       << options.max_fraction * 100.0 << "%), largest channel difference "
-      << r.max_channel_difference;
+      << r.max_channel_difference << ", RMS " << r.rms;
+  if (options.max_rms < 255.0) msg << " (allowed " << options.max_rms << ")";
   r.message = msg.str();
   return r;
 }

@@ -1,6 +1,7 @@
 // Golden-image comparison with a tolerance: a pixel is "off" when any channel differs by
 // more than channel_tolerance/255; the images match when at most max_fraction of the pixels
-// are off. On failure, NAME.expected.png, NAME.actual.png and NAME.diff.png are written to a
+// are off and the RMS channel difference (over R, G, B of every pixel, in 0..255) is at most
+// max_rms. On failure, NAME.expected.png, NAME.actual.png and NAME.diff.png are written to a
 // failure directory for inspection.
 //
 // Regenerating goldens after an intended change: run the tests with the environment variable
@@ -17,6 +18,7 @@ namespace stiction::image {
 struct CompareOptions {
   int channel_tolerance = 5;    // out of 255
   double max_fraction = 0.001;  // 0.1% of the pixels
+  double max_rms = 255.0;       // RMS channel difference allowed (255: no limit)
 };
 
 struct CompareResult {
@@ -25,6 +27,7 @@ struct CompareResult {
   long pixels_off = 0;
   double fraction_off = 0.0;
   int max_channel_difference = 0;
+  double rms = 0.0;  // RMS of the R, G, B differences over all pixels, 0..255
   std::string message;  // one line, for test output
 };
 

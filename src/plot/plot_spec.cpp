@@ -66,6 +66,20 @@ PanelSpec read_panel(scene::TableReader& table, const std::string& file,
     table.fail("legend", "needs one entry per signal (" + std::to_string(panel.signals.size()) +
                              "), got " + std::to_string(panel.legend.size()));
   }
+  for (const std::string& c : table.strings("colors")) {
+    if (c.size() != 7 || c[0] != '#' ||
+        c.find_first_not_of("0123456789abcdefABCDEF", 1) != std::string::npos) {
+      table.fail("colors", "expected \"#rrggbb\" colours, got \"" + c + "\"");
+    }
+    const auto channel = [&](int at) {
+      return static_cast<std::uint8_t>(std::stoi(c.substr(static_cast<std::size_t>(at), 2), nullptr, 16));
+    };
+    panel.colors.push_back({channel(1), channel(3), channel(5), 255});
+  }
+  if (!panel.colors.empty() && panel.colors.size() != panel.signals.size()) {
+    table.fail("colors", "needs one entry per signal (" + std::to_string(panel.signals.size()) +
+                             "), got " + std::to_string(panel.colors.size()));
+  }
   panel.label = table.string("label", "");
   panel.unit = table.string("unit", "");
   panel.log = table.boolean("log", false);
@@ -353,6 +367,10 @@ Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
     for (std::size_t i = 0; i < ps->signals.size(); ++i) {
       Series series;
       series.label = ps->legend.empty() ? signal_label(ps->signals[i]) : ps->legend[i];
+      if (!ps->colors.empty()) {
+        series.style = series_style(static_cast<int>(i));
+        series.style->colour = ps->colors[i];
+      }
       signal_series(trajectory, *trajectory.find(ps->signals[i]), *ps, series.x, series.y);
       clip_to_window(figure, series);
       panel.series.push_back(std::move(series));

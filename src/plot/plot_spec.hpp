@@ -13,6 +13,7 @@
 //     [[plots.panels]]
 //     signals = ["sphere.v.x", "ground.slip.x"]   # trajectory columns
 //     legend = ["centre", "contact point"]        # default: the signal names
+//     colors = ["#0072b2", "#d55e00"]             # "#rrggbb" per signal (default: palette)
 //     label = "Horizontal velocity"               # vertical axis label
 //     unit = "m/s"                                # printed as "label [unit]"
 //     log = false                                 # logarithmic vertical axis
@@ -39,6 +40,7 @@ namespace stiction::plot {
 struct PanelSpec {
   std::vector<std::string> signals;
   std::vector<std::string> legend;  // empty, or one entry per signal
+  std::vector<image::Rgba> colors;  // empty, or one entry per signal (dashes stay the palette's)
   std::string label;
   std::string unit;
   bool log = false;

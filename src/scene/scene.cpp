@@ -19,8 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Tables owned by the renderer and the plotter (validated there, not here).
-constexpr const char* kForeignSections[] = {"render", "camera", "overlay", "plots"};
+// Tables owned by the renderer, the plotter and `verify` (validated there, not here).
+constexpr const char* kForeignSections[] = {"render", "camera", "overlay", "plots", "verify"};
 
 toml::table parse_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
