@@ -91,8 +91,8 @@ components::SurfaceExtent read_extent(TableReader& contact, const Vec3& n, doubl
   if (!(extent.u_min < extent.u_max) || !(extent.v_min < extent.v_max)) {
     table->fail("max", "must exceed `min` in both coordinates");
   }
-  if (!extent.bounded()) table->fail("max", "an extent needs at least one finite bound in `min` or `max`");
   table->finish();
+  if (!extent.bounded()) table->fail("max", "an extent needs at least one finite bound in `min` or `max`");
   return extent;
 }
 
