@@ -76,6 +76,8 @@ class MovingContact final : public core::Impedance {
   const KikuuweContactParams& params() const { return params_; }
   const SurfaceMotion& motion() const { return motion_; }
   double radius() const { return radius_; }
+  // The belt's direction on the plane at rest (unit).
+  const core::Vec3& belt_direction() const { return belt_direction_; }
 
  private:
   // The contact point's geometry at x_hat: world point, its velocity relative to the surface
