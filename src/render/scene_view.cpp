@@ -142,13 +142,12 @@ double body_scale(const SceneDescription& scene) {
   return std::isfinite(s) ? s : 0.2;
 }
 
-
 // A contact surface as checkered squares: the plane within `half` of the scene's centre,
 // cut to the surface's extent (a rectangle in the plane's u, v coordinates, covered by
 // squares of its shorter side so the checker keeps square cells), tilted and scrolled as the
 // surface moves at time t.
-void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bounds& around, float half,
-                 float checker, double t) {
+void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bounds& around,
+                 float half, float checker, double t) {
   const bool bounded = s.extent.bounded();
   core::Vec3 u, v;
   if (bounded) {
@@ -172,7 +171,8 @@ void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bou
     }
   }
   const core::Vec3 origin = s.offset * s.normal;
-  const core::Vec3 c(around.empty() ? 0.0 : around.centre().x, around.empty() ? 0.0 : around.centre().y,
+  const core::Vec3 c(around.empty() ? 0.0 : around.centre().x,
+                     around.empty() ? 0.0 : around.centre().y,
                      around.empty() ? 0.0 : around.centre().z);
   // The scene centre carried back to the plane at rest.
   const core::Vec3 c_rest = pivot + rotation.conjugate() * (c - pivot);
@@ -204,8 +204,10 @@ void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bou
   for (int i = 0; i < na; ++i) {
     for (int j = 0; j < nb; ++j) {
       // Squares from the low corner, the last one flush with the far edge (they overlap).
-      const double ma = na == 1 ? 0.5 * (a0 + a1) : a0 + 0.5 * side + (a1 - a0 - side) * i / (na - 1);
-      const double mb = nb == 1 ? 0.5 * (b0 + b1) : b0 + 0.5 * side + (b1 - b0 - side) * j / (nb - 1);
+      const double ma =
+          na == 1 ? 0.5 * (a0 + a1) : a0 + 0.5 * side + (a1 - a0 - side) * i / (na - 1);
+      const double mb =
+          nb == 1 ? 0.5 * (b0 + b1) : b0 + 0.5 * side + (b1 - b0 - side) * j / (nb - 1);
       const core::Vec3 at = pivot + rotation * (origin + ma * u + mb * v - pivot);
       DrawItem item;
       item.shape = Shape::plane;
@@ -222,8 +224,9 @@ void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bou
       // The pattern repeats every 10 checker squares: an offset reduced modulo that keeps
       // the shader's coordinates small, hence precise. A belt shifts it by its travel.
       const double oa = ma - travel_u, ob = mb - travel_v;
-      item.material.local_offset = glm::vec2(static_cast<float>(oa - period * std::floor(oa / period)),
-                                             static_cast<float>(ob - period * std::floor(ob / period)));
+      item.material.local_offset =
+          glm::vec2(static_cast<float>(oa - period * std::floor(oa / period)),
+                    static_cast<float>(ob - period * std::floor(ob / period)));
       item.material.specular = 0.05f;
       item.casts_shadow = false;
       items.push_back(item);
@@ -301,11 +304,12 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
     SurfaceVisual s{params.normal.normalized(), params.offset, params.extent, moving};
     if (std::find(drawn.begin(), drawn.end(), table_name) == drawn.end()) {
       drawn.push_back(table_name);
-      const bool seen = !moving && !params.extent.bounded() &&
-                        std::any_of(scene.surfaces.begin(), scene.surfaces.end(), [&](const auto& o) {
-                          return !o.moving && !o.extent.bounded() && (o.normal - s.normal).norm() < 1e-9 &&
-                                 std::abs(o.offset - s.offset) < 1e-9;
-                        });
+      const bool seen =
+          !moving && !params.extent.bounded() &&
+          std::any_of(scene.surfaces.begin(), scene.surfaces.end(), [&](const auto& o) {
+            return !o.moving && !o.extent.bounded() && (o.normal - s.normal).norm() < 1e-9 &&
+                   std::abs(o.offset - s.offset) < 1e-9;
+          });
       if (!seen) scene.surfaces.push_back(s);
     }
     // The contact's body, from its map; a trail only for a single contact point.

@@ -3,11 +3,11 @@
 // `<arm>.theta.*`), turned into a list of draw items.
 #pragma once
 
-#include <string>
-#include <vector>
+#include <toml++/toml.h>
 
 #include <glm/glm.hpp>
-#include <toml++/toml.h>
+#include <string>
+#include <vector>
 
 #include "components/impedance/moving_contact.hpp"
 #include "components/impedance/surface_extent.hpp"
@@ -40,8 +40,8 @@ struct BodyVisual {
 struct SurfaceVisual {
   core::Vec3 normal{0.0, 0.0, 1.0};
   double offset = 0.0;
-  components::SurfaceExtent extent;                     // the whole plane unless bounded()
-  const components::MovingContact* moving = nullptr;    // null: fixed
+  components::SurfaceExtent extent;                   // the whole plane unless bounded()
+  const components::MovingContact* moving = nullptr;  // null: fixed
 };
 
 // A contact whose touching point can leave a trail (point = p - radius * normal).

@@ -279,14 +279,18 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     core::Vec initial_e;
     if (const toml::node* e = table.node("initial_e")) {
       std::vector<double> v;
-      if (e->is_number()) v.push_back(table.number("initial_e", 0.0));
-      else v = table.numbers("initial_e");
+      if (e->is_number())
+        v.push_back(table.number("initial_e", 0.0));
+      else
+        v = table.numbers("initial_e");
       if (static_cast<int>(v.size()) != p.dimension) {
-        table.fail("initial_e", "expected " + std::to_string(p.dimension) + " number(s), one per axis");
+        table.fail("initial_e",
+                   "expected " + std::to_string(p.dimension) + " number(s), one per axis");
       }
       initial_e = Eigen::Map<const core::Vec>(v.data(), static_cast<Eigen::Index>(v.size()));
     }
-    auto friction = construct(table, [&] { return std::make_unique<components::KikuuweFriction>(name, p); });
+    auto friction =
+        construct(table, [&] { return std::make_unique<components::KikuuweFriction>(name, p); });
     friction->set_initial_e(initial_e);
     impedance = std::move(friction);
   } else if (type == "lugre") {

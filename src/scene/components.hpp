@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/body.hpp"
-#include "scene/settle.hpp"
 #include "core/network.hpp"
+#include "scene/settle.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace stiction::scene {
@@ -48,8 +48,8 @@ class ComponentBuilder {
   std::map<std::string, BodyInfo> bodies_;
   std::map<std::string, std::string> impedance_types_;
   std::map<std::string, double> stick_thresholds_;
-  core::Admittance* clock_ = nullptr;   // time for moving surfaces, made on first use
-  std::vector<SettleBody> settle_;      // bodies to start in equilibrium (settle.cpp)
+  core::Admittance* clock_ = nullptr;  // time for moving surfaces, made on first use
+  std::vector<SettleBody> settle_;     // bodies to start in equilibrium (settle.cpp)
 };
 
 }  // namespace stiction::scene

@@ -6,8 +6,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "components/admittance/clock.hpp"
@@ -59,8 +59,8 @@ std::array<double, 2> bound_pair(TableReader& table, std::string_view key, doubl
   for (std::size_t i = 0; i < 2; ++i) {
     const toml::node& e = (*a)[i];
     if (!e.is_number() || std::isnan(e.value<double>().value())) {
-      throw InputError::at(e.source(), table.path() + "." + std::string(key) +
-                                           ": expected a number (inf allowed)");
+      throw InputError::at(
+          e.source(), table.path() + "." + std::string(key) + ": expected a number (inf allowed)");
     }
     out[i] = e.value<double>().value();
   }
@@ -92,7 +92,8 @@ components::SurfaceExtent read_extent(TableReader& contact, const Vec3& n, doubl
     table->fail("max", "must exceed `min` in both coordinates");
   }
   table->finish();
-  if (!extent.bounded()) table->fail("max", "an extent needs at least one finite bound in `min` or `max`");
+  if (!extent.bounded())
+    table->fail("max", "an extent needs at least one finite bound in `min` or `max`");
   return extent;
 }
 
@@ -109,8 +110,10 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   p.stiffness = table.positive("stiffness", p.stiffness);
   p.damping = table.non_negative("damping", p.damping);
   p.mu = table.non_negative("mu", p.mu);
-  if (table.has("tangential_stiffness")) p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
-  if (table.has("tangential_damping")) p.tangential_damping = table.non_negative("tangential_damping", 0.0);
+  if (table.has("tangential_stiffness"))
+    p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
+  if (table.has("tangential_damping"))
+    p.tangential_damping = table.non_negative("tangential_damping", 0.0);
   p.extent = read_extent(table, p.normal, p.offset);
 
   // The body points: a list, a box's corners, or the one point p - radius n.
@@ -119,7 +122,8 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   if (listed) {
     const toml::node* node = table.node("points");
     const toml::array* a = node->as_array();
-    if (a == nullptr || a->empty()) table.fail("points", "expected a non-empty array of [x, y, z] points");
+    if (a == nullptr || a->empty())
+      table.fail("points", "expected a non-empty array of [x, y, z] points");
     for (const toml::node& e : *a) {
       const toml::array* xyz = e.as_array();
       bool ok = xyz != nullptr && xyz->size() == 3;
@@ -128,7 +132,9 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
         ok = (*xyz)[i].is_number() && std::isfinite((*xyz)[i].value<double>().value());
         if (ok) v[static_cast<int>(i)] = (*xyz)[i].value<double>().value();
       }
-      if (!ok) throw InputError::at(e.source(), table.path() + ".points: expected [x, y, z] (finite numbers)");
+      if (!ok)
+        throw InputError::at(e.source(),
+                             table.path() + ".points: expected [x, y, z] (finite numbers)");
       points.push_back(v);
     }
     if (!b->can_rotate() && points.size() > 1) {
@@ -137,7 +143,8 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   } else if (info.box_size != Vec3::Zero()) {
     const Vec3 h = 0.5 * info.box_size;
     for (int i = 0; i < 8; ++i) {
-      points.emplace_back((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(), (i & 4 ? 1 : -1) * h.z());
+      points.emplace_back((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(),
+                          (i & 4 ? 1 : -1) * h.z());
     }
   } else {
     points.emplace_back(Vec3::Zero());
@@ -151,7 +158,8 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     const toml::array* a = node->as_array();
     auto pair = [&](const toml::node& n) -> std::optional<Eigen::Vector2d> {
       const toml::array* e = n.as_array();
-      if (e == nullptr || e->size() != 2 || !(*e)[0].is_number() || !(*e)[1].is_number()) return std::nullopt;
+      if (e == nullptr || e->size() != 2 || !(*e)[0].is_number() || !(*e)[1].is_number())
+        return std::nullopt;
       const Eigen::Vector2d v((*e)[0].value<double>().value(), (*e)[1].value<double>().value());
       if (!v.allFinite()) return std::nullopt;
       return v;
@@ -159,11 +167,14 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     if (a != nullptr && pair(*node)) {
       std::fill(initial_e.begin(), initial_e.end(), *pair(*node));
     } else if (a != nullptr && a->size() == points.size() &&
-               std::all_of(a->begin(), a->end(), [&](const toml::node& n) { return pair(n).has_value(); })) {
+               std::all_of(a->begin(), a->end(),
+                           [&](const toml::node& n) { return pair(n).has_value(); })) {
       for (std::size_t i = 0; i < points.size(); ++i) initial_e[i] = *pair((*a)[i]);
     } else {
-      table.fail("initial_e", "expected [e0, e1] (m, along the surface's tangents) or one such pair per point (" +
-                                  std::to_string(points.size()) + ")");
+      table.fail(
+          "initial_e",
+          "expected [e0, e1] (m, along the surface's tangents) or one such pair per point (" +
+              std::to_string(points.size()) + ")");
     }
   }
 
@@ -173,7 +184,8 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     motion.belt_speed = time_profile(table, "belt_speed");
     const Vec3 d = table.vec3("belt_direction", Vec3::UnitX());
     if (!((d - p.normal.dot(d) * p.normal).norm() > 1e-9 * std::max(1.0, d.norm()))) {
-      table.fail("belt_direction", "must be a direction in the surface plane (not along the normal)");
+      table.fail("belt_direction",
+                 "must be a direction in the surface plane (not along the normal)");
     }
     motion.belt_direction = d;
   } else if (table.has("belt_direction")) {
@@ -226,19 +238,21 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
       sp.inside = [c](const Vec3& x) {
         const components::SurfaceState s = c->surface(0.0);
         const Vec3 at_rest = c->motion().pivot + s.rotation.conjugate() * (x - c->motion().pivot);
-        return !c->params().extent.bounded() || c->params().extent.contains(at_rest - c->params().extent.centre);
+        return !c->params().extent.bounded() ||
+               c->params().extent.contains(at_rest - c->params().extent.centre);
       };
       sp.set_e = [c = contact.get()](const Eigen::Vector2d& e) { c->set_initial_e(e); };
       impedance = std::move(contact);
       map = std::make_unique<components::SurfacePointMap>(*b, points[i], *clock_);
     } else {
-      auto contact = construct_contact(table, [&] {
-        return std::make_unique<components::KikuuweContact>(element, p);
-      });
+      auto contact = construct_contact(
+          table, [&] { return std::make_unique<components::KikuuweContact>(element, p); });
       sp.frame = {contact->normal(), contact->tangent1(), contact->tangent2()};
       sp.origin = p.offset * p.normal;
       const components::SurfaceExtent extent = p.extent;
-      sp.inside = [extent](const Vec3& x) { return !extent.bounded() || extent.contains(x - extent.centre); };
+      sp.inside = [extent](const Vec3& x) {
+        return !extent.bounded() || extent.contains(x - extent.centre);
+      };
       sp.set_e = [c = contact.get()](const Eigen::Vector2d& e) { c->set_initial_e(e); };
       impedance = std::move(contact);
       map = std::make_unique<components::ContactPointMap>(*b, radius, p.normal, points[i]);

@@ -59,7 +59,8 @@ void settle(const SettleBody& b, const Vec3& gravity) {
       const Vec3 f = s.k * n.dot(s.origin - c) * n - s.kt * slide;  // stuck, at rest
       residual.head<3>() += f;
       residual.tail<3>() += r.cross(f);
-      const Eigen::Matrix3d S = s.k * n * n.transpose() + s.kt * (Eigen::Matrix3d::Identity() - n * n.transpose());
+      const Eigen::Matrix3d S =
+          s.k * n * n.transpose() + s.kt * (Eigen::Matrix3d::Identity() - n * n.transpose());
       Eigen::Matrix<double, 3, 6> A;
       A << Eigen::Matrix3d::Identity(), -skew(r);  // dc = dp + dtheta x r
       stiffness += A.transpose() * S * A;
@@ -70,19 +71,22 @@ void settle(const SettleBody& b, const Vec3& gravity) {
     Eigen::Matrix<double, 6, 6> stiffness;
     forces(p, q, residual, stiffness);
     // stiffness * step = residual: the springs' change of force cancels what is left over.
-    const Eigen::VectorXd step = stiffness.topLeftCorner(dof, dof)
-                                     .completeOrthogonalDecomposition()
-                                     .solve(residual.head(dof));
+    const Eigen::VectorXd step =
+        stiffness.topLeftCorner(dof, dof).completeOrthogonalDecomposition().solve(
+            residual.head(dof));
     p += step.head<3>();
     if (rigid) {
       const Vec3 dtheta = step.tail<3>();
-      if (dtheta.norm() > 0.0) q = core::Quat(Eigen::AngleAxisd(dtheta.norm(), dtheta.normalized())) * q;
+      if (dtheta.norm() > 0.0)
+        q = core::Quat(Eigen::AngleAxisd(dtheta.norm(), dtheta.normalized())) * q;
       q.normalize();
     }
     if (step.norm() < 1e-15) break;
   }
-  if (rigid) rigid->set_initial_pose(p, q);
-  else point->set_initial_position(p);
+  if (rigid)
+    rigid->set_initial_pose(p, q);
+  else
+    point->set_initial_position(p);
   for (std::size_t i = 0; i < touching.size(); ++i) {
     const SettlePoint& s = *touching[i];
     const Vec3 slide = p + lever(s, q) - anchor[i];

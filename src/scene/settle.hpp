@@ -20,9 +20,9 @@
 namespace stiction::scene {
 
 struct SettlePoint {
-  core::Vec3 local = core::Vec3::Zero();  // body frame
-  double radius = 0.0;                    // contact sphere about `local`
-  components::ContactFrame frame;         // the surface at t = 0
+  core::Vec3 local = core::Vec3::Zero();   // body frame
+  double radius = 0.0;                     // contact sphere about `local`
+  components::ContactFrame frame;          // the surface at t = 0
   core::Vec3 origin = core::Vec3::Zero();  // a point of the plane at t = 0
   // Whether a world point lies within the surface's extent at t = 0.
   std::function<bool(const core::Vec3&)> inside;

@@ -10,7 +10,8 @@
 namespace stiction::testing {
 
 inline ScenarioRun run_text(const std::string& text) {
-  ScenarioRun run{scene::build_scene(toml::parse(text, std::string_view("gen.toml")), "gen.toml"), {}};
+  ScenarioRun run{scene::build_scene(toml::parse(text, std::string_view("gen.toml")), "gen.toml"),
+                  {}};
   core::RunOptions options = run.scene.run;
   run.result = core::simulate(*run.scene.network, options);
   return run;
@@ -25,6 +26,8 @@ inline std::string num(double v) {
 }
 
 // Rows of a run: time and a column by index.
-inline double cell(const ScenarioRun& run, int row, int column) { return run.result.trajectory.at(row, column); }
+inline double cell(const ScenarioRun& run, int row, int column) {
+  return run.result.trajectory.at(row, column);
+}
 
 }  // namespace stiction::testing

@@ -47,15 +47,18 @@ TEST_CASE("contact keys: bad values are errors at their line and column", "[cont
   expect_error("points = 3", "x.toml:11:", "impedances.c.points");
   expect_error("extent = { min = [0.0] }", "x.toml:11:", "impedances.c.extent.min");
   expect_error("extent = { min = [nan, 0.0] }", "x.toml:11:", "impedances.c.extent.min");
-  expect_error("extent = { min = [1.0, 0.0], max = [0.0, 1.0] }", "x.toml:11:", "impedances.c.extent.max");
-  expect_error("extent = { axis = [0.0, 0.0, 1.0], max = [0.0, inf] }", "x.toml:11:", "impedances.c.extent.axis");
+  expect_error("extent = { min = [1.0, 0.0], max = [0.0, 1.0] }",
+               "x.toml:11:", "impedances.c.extent.max");
+  expect_error("extent = { axis = [0.0, 0.0, 1.0], max = [0.0, inf] }",
+               "x.toml:11:", "impedances.c.extent.axis");
   expect_error("extent = { }", "x.toml:11:", "impedances.c.extent");
   expect_error("extent = { size = 1.0 }", "x.toml:11:", "unknown key 'impedances.c.extent.size'");
   expect_error("initial_e = [1.0, 2.0, 3.0]", "x.toml:11:", "impedances.c.initial_e");
   expect_error("initial_e = [[1.0, 2.0]]", "x.toml:11:", "impedances.c.initial_e");
   expect_error("belt_speed = \"2*(t\"", "x.toml:11:", "impedances.c.belt_speed");
   expect_error("belt_speed = true", "x.toml:11:", "impedances.c.belt_speed");
-  expect_error("belt_speed = 1.0\nbelt_direction = [0.0, 0.0, 2.0]", "x.toml:12:", "impedances.c.belt_direction");
+  expect_error("belt_speed = 1.0\nbelt_direction = [0.0, 0.0, 2.0]",
+               "x.toml:12:", "impedances.c.belt_direction");
   expect_error("belt_direction = [1.0, 0.0, 0.0]", "x.toml:11:", "needs `belt_speed`");
   expect_error("tilt = \"sin(\"", "x.toml:11:", "impedances.c.tilt");
   expect_error("tilt = 0.1\ntilt_axis = [0.0, 0.0, 0.0]", "x.toml:12:", "impedances.c.tilt_axis");
@@ -64,7 +67,8 @@ TEST_CASE("contact keys: bad values are errors at their line and column", "[cont
   expect_error("mu = -1.0", "x.toml:11:", "impedances.c.mu");
 }
 
-TEST_CASE("contact keys: kikuuwe_friction initial_e needs one number per axis", "[contacts][keys]") {
+TEST_CASE("contact keys: kikuuwe_friction initial_e needs one number per axis",
+          "[contacts][keys]") {
   const std::string base = R"(
 [bodies.m]
 type = "point_mass"
@@ -82,14 +86,17 @@ body = "m"
   CHECK(x.tail(3).isApprox(core::Vec3(1e-4, -2e-4, 0.0)));
 }
 
-TEST_CASE("contact points: a box gets its eight corners, `points` its own list", "[contacts][keys]") {
+TEST_CASE("contact points: a box gets its eight corners, `points` its own list",
+          "[contacts][keys]") {
   const scene::Scene box = from_text(kBox);
   std::vector<std::string> names;
   for (const auto& imp : box.network->impedances()) names.push_back(imp->name());
   CHECK(names == std::vector<std::string>{"c.0", "c.1", "c.2", "c.3", "c.4", "c.5", "c.6", "c.7"});
   CHECK(box.run.stick_thresholds.size() == 8);
-  const scene::Scene listed = from_text(std::string(kBox) + "points = [[0.1, 0.0, -0.05], [-0.1, 0.0, -0.05], [0.0, 0.1, -0.05]]\n"
-                                                            "initial_e = [[1e-6, 0.0], [0.0, 1e-6], [2e-6, 0.0]]\n");
+  const scene::Scene listed =
+      from_text(std::string(kBox) +
+                "points = [[0.1, 0.0, -0.05], [-0.1, 0.0, -0.05], [0.0, 0.1, -0.05]]\n"
+                "initial_e = [[1e-6, 0.0], [0.0, 1e-6], [2e-6, 0.0]]\n");
   REQUIRE(listed.network->impedances().size() == 3);
   const core::Vec x = listed.network->initial_state();
   // Body (13) then three 2-D friction states, as given.
@@ -97,11 +104,15 @@ TEST_CASE("contact points: a box gets its eight corners, `points` its own list",
   CHECK(x.segment<2>(15) == Eigen::Vector2d(0.0, 1e-6));
   CHECK(x.segment<2>(17) == Eigen::Vector2d(2e-6, 0.0));
   // A name taken by a contact's points is taken for every other component too.
-  CHECK_THROWS_WITH(from_text(std::string(kBox) + "[impedances.c2]\ntype = \"spring_damper\"\nbody = \"b\"\n[bodies.c]\ntype = \"point_mass\"\nmass = 1.0\n"),
-                    Contains("already used"));
+  CHECK_THROWS_WITH(
+      from_text(std::string(kBox) + "[impedances.c2]\ntype = \"spring_damper\"\nbody = "
+                                    "\"b\"\n[bodies.c]\ntype = \"point_mass\"\nmass = 1.0\n"),
+      Contains("already used"));
 }
 
-TEST_CASE("settle: a box on a floor starts at its static deflection, each corner carrying a quarter", "[contacts][keys]") {
+TEST_CASE(
+    "settle: a box on a floor starts at its static deflection, each corner carrying a quarter",
+    "[contacts][keys]") {
   const scene::Scene s = from_text(std::string(kBox) + "stiffness = 1e6\nsettle = true\n");
   const core::Vec x = s.network->initial_state();
   CHECK(x[2] == Approx(0.05 - 9.8 / 4e6).epsilon(1e-12));

@@ -23,8 +23,9 @@ TEST_CASE("cli: bad contact keys give exit 2 and FILE:LINE:COL: error:", "[conta
   for (const auto& [line, expected] : cases) {
     INFO(line);
     std::ofstream(dir / "bad.toml") << head << line << "\n";
-    for (const auto& args : {std::vector<std::string>{"check", "bad.toml"},
-                             std::vector<std::string>{"run", "bad.toml", "--no-video", "--no-plots"}}) {
+    for (const auto& args :
+         {std::vector<std::string>{"check", "bad.toml"},
+          std::vector<std::string>{"run", "bad.toml", "--no-video", "--no-plots"}}) {
       const auto outcome = run_stiction(args, dir);
       CHECK(outcome.code == 2);
       CHECK_THAT(outcome.out, Catch::Matchers::Contains(expected));

@@ -31,7 +31,7 @@ struct KikuuweContactParams {
   // as in the paper.
   double tangential_stiffness = -1.0;
   double tangential_damping = -1.0;
-  SurfaceExtent extent;                            // default: the whole plane
+  SurfaceExtent extent;                                 // default: the whole plane
   Eigen::Vector2d initial_e = Eigen::Vector2d::Zero();  // friction state at t = 0 (m)
 };
 
@@ -49,8 +49,8 @@ class KikuuweContact final : public core::Impedance {
   void evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
                 core::VecRef u, core::VecRef y_dot) const override {
     const core::Vec3 v_c = x_hat.segment<3>(3);
-    const core::Vec3 on_body =
-        contact_law(frame_, coefficients_, normal_force(x_hat), v_c, y.head<2>(), tau, y_dot.head<2>());
+    const core::Vec3 on_body = contact_law(frame_, coefficients_, normal_force(x_hat), v_c,
+                                           y.head<2>(), tau, y_dot.head<2>());
     // u is the negative of the force on the body.
     u.head<3>() = -on_body;
   }

@@ -16,12 +16,13 @@ MovingContact::MovingContact(std::string name, const KikuuweContactParams& param
   // The fixed contact checks the parameters and builds the rest frame the same way.
   const KikuuweContact fixed("rest", params_);
   rest_ = {fixed.normal(), fixed.tangent1(), fixed.tangent2()};
-  coefficients_ = {params_.stiffness, params_.damping,
-                   params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness,
-                   params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping,
-                   params_.mu};
+  coefficients_ = {
+      params_.stiffness, params_.damping,
+      params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness,
+      params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping, params_.mu};
   if (!(radius_ >= 0.0)) throw std::invalid_argument("contact: radius must be >= 0");
-  if (motion_.tilt && !(motion_.tilt_axis.norm() > 0.0)) throw std::invalid_argument("contact: zero tilt axis");
+  if (motion_.tilt && !(motion_.tilt_axis.norm() > 0.0))
+    throw std::invalid_argument("contact: zero tilt axis");
   motion_.tilt_axis.normalize();
   const Vec3 d = motion_.belt_direction - rest_.n.dot(motion_.belt_direction) * rest_.n;
   if (motion_.belt_speed && !(d.norm() > 1e-9)) {
@@ -79,14 +80,15 @@ MovingContact::Touch MovingContact::touch(ConstVecRef x_hat) const {
 }
 
 double MovingContact::normal_force(const Touch& c) const {
-  return c.inside ? contact_normal_force(coefficients_, c.depth, c.surface.frame.n.dot(c.v_rel)) : 0.0;
+  return c.inside ? contact_normal_force(coefficients_, c.depth, c.surface.frame.n.dot(c.v_rel))
+                  : 0.0;
 }
 
 void MovingContact::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, double tau, VecRef u,
                              VecRef y_dot) const {
   const Touch c = touch(x_hat);
-  const Vec3 on_body =
-      contact_law(c.surface.frame, coefficients_, normal_force(c), c.v_rel, y.head<2>(), tau, y_dot.head<2>());
+  const Vec3 on_body = contact_law(c.surface.frame, coefficients_, normal_force(c), c.v_rel,
+                                   y.head<2>(), tau, y_dot.head<2>());
   u.head<3>() = -on_body;
   u.segment<3>(3) = -c.lever.cross(on_body);
 }
@@ -127,7 +129,8 @@ Vec3 MovingContact::slip_velocity(ConstVecRef x_hat) const {
 double MovingContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
   const Touch c = touch(x_hat);
   const double depth = c.inside ? std::max(0.0, c.depth) : 0.0;
-  return 0.5 * params_.stiffness * depth * depth + 0.5 * coefficients_.kt * y.head<2>().squaredNorm();
+  return 0.5 * params_.stiffness * depth * depth +
+         0.5 * coefficients_.kt * y.head<2>().squaredNorm();
 }
 
 double MovingContact::power_in(ConstVecRef x_hat, ConstVecRef u) const {
@@ -139,14 +142,17 @@ double MovingContact::power_in(ConstVecRef x_hat, ConstVecRef u) const {
 }
 
 std::vector<core::SignalInfo> MovingContact::signals() const {
-  std::vector<core::SignalInfo> out{
-      {"f", core::xyz_axes()}, {"slip", core::xyz_axes()}, {"e", core::index_axes(2)}, {"n_force", {}}};
+  std::vector<core::SignalInfo> out{{"f", core::xyz_axes()},
+                                    {"slip", core::xyz_axes()},
+                                    {"e", core::index_axes(2)},
+                                    {"n_force", {}}};
   if (motion_.tilt) out.push_back({"angle", {}});
   if (motion_.belt_speed) out.push_back({"belt_speed", {}});
   return out;
 }
 
-void MovingContact::write_signals(ConstVecRef x_hat, ConstVecRef y, ConstVecRef u, VecRef out) const {
+void MovingContact::write_signals(ConstVecRef x_hat, ConstVecRef y, ConstVecRef u,
+                                  VecRef out) const {
   const Touch c = touch(x_hat);
   const Vec3& n = c.surface.frame.n;
   const Vec3 on_body = -u.head<3>();

@@ -22,10 +22,10 @@ namespace stiction::components {
 
 struct SurfaceMotion {
   using Profile = std::function<double(double)>;
-  Profile tilt;                             // angle (rad) of t; empty: not tilted
-  core::Vec3 tilt_axis = core::Vec3::UnitY();  // world, unit
-  core::Vec3 pivot = core::Vec3::Zero();       // a point of the axis (world)
-  Profile belt_speed;                       // m/s of t along belt_direction; empty: no belt
+  Profile tilt;                                     // angle (rad) of t; empty: not tilted
+  core::Vec3 tilt_axis = core::Vec3::UnitY();       // world, unit
+  core::Vec3 pivot = core::Vec3::Zero();            // a point of the axis (world)
+  Profile belt_speed;                               // m/s of t along belt_direction; empty: no belt
   core::Vec3 belt_direction = core::Vec3::UnitX();  // in the plane at rest (projected, unit)
 };
 
@@ -34,8 +34,8 @@ struct SurfaceState {
   ContactFrame frame;
   core::Vec3 origin;  // a point of the plane (the rest plane's offset * n, moved)
   core::Quat rotation = core::Quat::Identity();  // rest plane -> plane at s
-  core::Vec3 omega = core::Vec3::Zero();          // angular velocity (world)
-  core::Vec3 belt = core::Vec3::Zero();           // belt velocity (world)
+  core::Vec3 omega = core::Vec3::Zero();         // angular velocity (world)
+  core::Vec3 belt = core::Vec3::Zero();          // belt velocity (world)
   double angle = 0.0, speed = 0.0;
 };
 

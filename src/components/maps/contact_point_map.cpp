@@ -37,7 +37,9 @@ class KikuuweContactCoupling final : public core::Coupling {
 
 ContactPointMap::ContactPointMap(const core::Body& body, double radius, const core::Vec3& normal,
                                  const core::Vec3& local)
-    : body_(body), offset_(-radius * normal.normalized()), local_(local),
+    : body_(body),
+      offset_(-radius * normal.normalized()),
+      local_(local),
       body_point_(local != core::Vec3::Zero()) {}
 
 std::unique_ptr<core::Coupling> ContactPointMap::direct_coupling(const core::Impedance& impedance,

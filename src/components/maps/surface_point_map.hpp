@@ -21,7 +21,8 @@ class SurfacePointMap final : public core::CoordinateMap {
     clock_slot_ = slots.at(1);
   }
   void motion(core::ConstVecRef x, core::VecRef x_hat) const override {
-    const core::BodyMotion m = body_.motion(x.segment(body_slot_.state_offset, body_slot_.state_size));
+    const core::BodyMotion m =
+        body_.motion(x.segment(body_slot_.state_offset, body_slot_.state_size));
     const core::Vec3 lever = m.q * local_;
     x_hat.segment<3>(0) = m.p + lever;
     x_hat.segment<3>(3) = m.v + m.w_world.cross(lever);
@@ -29,7 +30,8 @@ class SurfacePointMap final : public core::CoordinateMap {
     x_hat[9] = x[clock_slot_.state_offset];
   }
   void apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const override {
-    const core::BodyMotion m = body_.motion(x.segment(body_slot_.state_offset, body_slot_.state_size));
+    const core::BodyMotion m =
+        body_.motion(x.segment(body_slot_.state_offset, body_slot_.state_size));
     body_.add_wrench(m, m.q * local_, -core::Vec3(u.head<3>()), -core::Vec3(u.segment<3>(3)),
                      u_hat.segment(body_slot_.input_offset, body_slot_.input_size));
   }
