@@ -154,3 +154,17 @@ TEST_CASE("tilting planes with generated mu and tilt rates", "[contacts][tilt]")
     CHECK(std::abs(onset - expected) * 180.0 / M_PI < 0.5);
   }
 }
+
+TEST_CASE("a belt at rest and a zero tilt reproduce the fixed contact (sphere_roll)",
+          "[contacts][belt]") {
+  const auto fixed = run_scenario("sphere_roll");
+  const auto belt = run_scenario("sphere_roll", {"impedances.ground.belt_speed=\"0*t\""});
+  const auto tilt = run_scenario("sphere_roll", {"impedances.ground.tilt=0.0"});
+  REQUIRE_FALSE(belt.result.instability);
+  REQUIRE_FALSE(tilt.result.instability);
+  for (const auto* moving : {&belt, &tilt}) {
+    CHECK(moving->stick_time("ground") == Approx(fixed.stick_time("ground")).margin(1e-6));
+    CHECK(moving->at("sphere.v.x", 2.0) == Approx(fixed.at("sphere.v.x", 2.0)).margin(1e-9));
+    CHECK(moving->at("sphere.p.x", 2.0) == Approx(fixed.at("sphere.p.x", 2.0)).margin(1e-9));
+  }
+}
