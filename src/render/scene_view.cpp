@@ -11,6 +11,7 @@
 #include "components/admittance/point_mass.hpp"
 #include "components/admittance/rigid_body.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
+#include "components/impedance/moving_contact.hpp"
 #include "components/impedance/penalty_joint.hpp"
 #include "core/admittance.hpp"
 #include "core/coordinate_map.hpp"
@@ -89,6 +90,8 @@ const glm::vec3 kJointColour{0.06f, 0.06f, 0.07f};
 const glm::vec3 kBlockColour{0.72f, 0.10f, 0.08f};
 const glm::vec3 kGroundLight{0.78f, 0.78f, 0.76f};
 const glm::vec3 kGroundDark{0.55f, 0.57f, 0.60f};
+const glm::vec3 kBeltLight{0.36f, 0.36f, 0.38f};  // moving surfaces: darker, rubber-like
+const glm::vec3 kBeltDark{0.16f, 0.16f, 0.18f};
 
 // True if body `index` is a child or a parent of a joint: a link, drawn as an arm's link is.
 bool is_link(const SceneDescription& scene, int index) {
@@ -137,6 +140,98 @@ double body_scale(const SceneDescription& scene) {
     }
   }
   return std::isfinite(s) ? s : 0.2;
+}
+
+// A contact surface as checkered squares: the plane within `half` of the scene's centre,
+// cut to the surface's extent (a rectangle in the plane's u, v coordinates, covered by
+// squares of its shorter side so the checker keeps square cells), tilted and scrolled as the
+// surface moves at time t.
+void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bounds& around,
+                 float half, float checker, double t) {
+  const bool bounded = s.extent.bounded();
+  core::Vec3 u, v;
+  if (bounded) {
+    u = s.extent.u;
+    v = s.extent.v;
+  } else {
+    tangents(s.normal, u, v);
+  }
+  // Everything in the plane at rest, then moved as a whole.
+  core::Quat rotation = core::Quat::Identity();
+  core::Vec3 pivot = core::Vec3::Zero();
+  double travel_u = 0.0, travel_v = 0.0;
+  if (s.moving) {
+    const components::SurfaceState st = s.moving->surface(t);
+    rotation = st.rotation;
+    pivot = s.moving->motion().pivot;
+    if (s.moving->motion().belt_speed) {
+      const double travel = s.moving->belt_travel(t);
+      travel_u = travel * s.moving->belt_direction().dot(u);
+      travel_v = travel * s.moving->belt_direction().dot(v);
+    }
+  }
+  const core::Vec3 origin = s.offset * s.normal;
+  const core::Vec3 c(around.empty() ? 0.0 : around.centre().x,
+                     around.empty() ? 0.0 : around.centre().y,
+                     around.empty() ? 0.0 : around.centre().z);
+  // The scene centre carried back to the plane at rest.
+  const core::Vec3 c_rest = pivot + rotation.conjugate() * (c - pivot);
+  double a0 = (c_rest - origin).dot(u) - half, a1 = (c_rest - origin).dot(u) + half;
+  double b0 = (c_rest - origin).dot(v) - half, b1 = (c_rest - origin).dot(v) + half;
+  if (bounded) {
+    const double ca = (s.extent.centre - origin).dot(u), cb = (s.extent.centre - origin).dot(v);
+    a0 = std::max(a0, ca + s.extent.u_min);
+    a1 = std::min(a1, ca + s.extent.u_max);
+    b0 = std::max(b0, cb + s.extent.v_min);
+    b1 = std::min(b1, cb + s.extent.v_max);
+    if (!(a1 > a0) || !(b1 > b0)) return;
+  }
+  const double side = std::min(a1 - a0, b1 - b0);
+  // A long narrow strip (a belt) is drawn over at most 64 of its squares around the scene.
+  constexpr int kMost = 64;
+  auto shorten = [&](double& lo, double& hi, double centre) {
+    if (hi - lo <= kMost * side) return;
+    const double from = std::clamp(centre - 0.5 * kMost * side, lo, hi - kMost * side);
+    lo = from;
+    hi = from + kMost * side;
+  };
+  shorten(a0, a1, (c_rest - origin).dot(u));
+  shorten(b0, b1, (c_rest - origin).dot(v));
+  const int na = std::max(1, static_cast<int>(std::ceil((a1 - a0) / side - 1e-9)));
+  const int nb = std::max(1, static_cast<int>(std::ceil((b1 - b0) / side - 1e-9)));
+  const double grid = 5.0 * checker;
+  const double period = 2.0 * grid;
+  for (int i = 0; i < na; ++i) {
+    for (int j = 0; j < nb; ++j) {
+      // Squares from the low corner, the last one flush with the far edge (they overlap).
+      const double ma =
+          na == 1 ? 0.5 * (a0 + a1) : a0 + 0.5 * side + (a1 - a0 - side) * i / (na - 1);
+      const double mb =
+          nb == 1 ? 0.5 * (b0 + b1) : b0 + 0.5 * side + (b1 - b0 - side) * j / (nb - 1);
+      const core::Vec3 at = pivot + rotation * (origin + ma * u + mb * v - pivot);
+      DrawItem item;
+      item.shape = Shape::plane;
+      item.model = glm::translate(glm::mat4(1.0f), render::to_glm(at)) *
+                   rotation_from_basis(rotation * u, rotation * v, rotation * s.normal) *
+                   glm::scale(glm::mat4(1.0f), glm::vec3(0.5f * static_cast<float>(side),
+                                                         0.5f * static_cast<float>(side), 1.0f));
+      item.material.kind = MaterialKind::checker;
+      item.material.colour = s.moving ? kBeltLight : kGroundLight;
+      item.material.colour2 = s.moving ? kBeltDark : kGroundDark;
+      item.material.checker_size = checker;
+      item.material.grid_spacing = static_cast<float>(grid);
+      item.material.local_scale = 0.5f * static_cast<float>(side);
+      // The pattern repeats every 10 checker squares: an offset reduced modulo that keeps
+      // the shader's coordinates small, hence precise. A belt shifts it by its travel.
+      const double oa = ma - travel_u, ob = mb - travel_v;
+      item.material.local_offset =
+          glm::vec2(static_cast<float>(oa - period * std::floor(oa / period)),
+                    static_cast<float>(ob - period * std::floor(ob / period)));
+      item.material.specular = 0.05f;
+      item.casts_shadow = false;
+      items.push_back(item);
+    }
+  }
 }
 
 }  // namespace
@@ -192,25 +287,43 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
     }
     scene.bodies.push_back(std::move(b));
   }
-  for (const auto& imp : network.impedances()) {
-    const auto* contact = dynamic_cast<const components::KikuuweContact*>(imp.get());
-    if (!contact) continue;
-    SurfaceVisual s{contact->params().normal.normalized(), contact->params().offset};
-    const bool seen = std::any_of(scene.surfaces.begin(), scene.surfaces.end(), [&](const auto& o) {
-      return (o.normal - s.normal).norm() < 1e-9 && std::abs(o.offset - s.offset) < 1e-9;
-    });
-    if (!seen) scene.surfaces.push_back(s);
-    // The contact's body, from the document's wiring.
-    const toml::table* imps = document["impedances"].as_table();
-    const toml::table* t = imps ? (*imps)[imp->name()].as_table() : nullptr;
-    const std::string body = t ? (*t)["body"].value_or(std::string()) : "";
+  const toml::table* contact_tables = document["impedances"].as_table();
+  std::vector<std::string> drawn;  // contact tables whose surface is drawn already
+  for (std::size_t i = 0; i < network.impedances().size(); ++i) {
+    const core::Impedance* imp = network.impedances()[i].get();
+    const auto* fixed = dynamic_cast<const components::KikuuweContact*>(imp);
+    const auto* moving = dynamic_cast<const components::MovingContact*>(imp);
+    if (!fixed && !moving) continue;
+    const components::KikuuweContactParams& params = fixed ? fixed->params() : moving->params();
+    // The element of a contact point "NAME.i" comes from the table NAME.
+    std::string table_name = imp->name();
+    if (!(contact_tables && (*contact_tables)[table_name].as_table())) {
+      table_name = table_name.substr(0, table_name.rfind('.'));
+    }
+    const bool several = table_name != imp->name();
+    SurfaceVisual s{params.normal.normalized(), params.offset, params.extent, moving};
+    if (std::find(drawn.begin(), drawn.end(), table_name) == drawn.end()) {
+      drawn.push_back(table_name);
+      const bool seen =
+          !moving && !params.extent.bounded() &&
+          std::any_of(scene.surfaces.begin(), scene.surfaces.end(), [&](const auto& o) {
+            return !o.moving && !o.extent.bounded() && (o.normal - s.normal).norm() < 1e-9 &&
+                   std::abs(o.offset - s.offset) < 1e-9;
+          });
+      if (!seen) scene.surfaces.push_back(s);
+    }
+    // The contact's body, from its map; a trail only for a single contact point.
+    const auto wired = network.map_of(static_cast<int>(i)).admittances();
+    const std::string body = wired.empty() ? "" : wired.front()->name();
+    const toml::table* t = contact_tables ? (*contact_tables)[table_name].as_table() : nullptr;
     for (auto& b : scene.bodies) {
       if (b.name != body) continue;
+      if (b.kind == BodyVisual::Kind::block) b.up = s.normal;
+      if (several) continue;
       ContactVisual c{imp->name(), body, b.kind == BodyVisual::Kind::sphere ? b.radius : 0.0,
                       s.normal};
       if (t && (*t)["radius"].is_number()) c.radius = (*t)["radius"].value<double>().value_or(c.radius);
       scene.contacts.push_back(c);
-      if (b.kind == BodyVisual::Kind::block) b.up = s.normal;
     }
   }
   auto body_index = [&](const core::Admittance* a) {
@@ -391,40 +504,11 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
     for (const auto& j : scene.joints) link_width = std::max(link_width, j.width);
     if (link_width > 0.0) gap = 3.0 * link_width;
     floor_z = (all.empty() ? 0.0 : all.min.z) - gap;
-    surfaces.push_back({core::Vec3::UnitZ(), floor_z});
+    surfaces.push_back({core::Vec3::UnitZ(), floor_z, {}, nullptr});
   }
   const Bounds& around = focus.empty() ? all : focus;
-  const glm::vec3 centre = around.empty() ? glm::vec3(0.0f) : around.centre();
   const float half = std::max(20.0f, 8.0f * (around.empty() ? 1.0f : around.radius()));
-  for (const auto& s : surfaces) {
-    core::Vec3 t1, t2;
-    tangents(s.normal, t1, t2);
-    const core::Vec3 origin = s.offset * s.normal;
-    const core::Vec3 c(centre.x, centre.y, centre.z);
-    // Centre the square on the scene, on a whole number of grid cells from the origin.
-    const double grid = 5.0 * checker;
-    const double a = std::round((c - origin).dot(t1) / grid) * grid;
-    const double b = std::round((c - origin).dot(t2) / grid) * grid;
-    const core::Vec3 at = origin + a * t1 + b * t2;
-    DrawItem item;
-    item.shape = Shape::plane;
-    item.model = glm::translate(glm::mat4(1.0f), to_glm(at)) * rotation_from_basis(t1, t2, s.normal) *
-                 glm::scale(glm::mat4(1.0f), glm::vec3(half, half, 1.0f));
-    item.material.kind = MaterialKind::checker;
-    item.material.colour = kGroundLight;
-    item.material.colour2 = kGroundDark;
-    item.material.checker_size = checker;
-    item.material.grid_spacing = static_cast<float>(grid);
-    item.material.local_scale = half;
-    // The pattern repeats every 10 checker squares (2 per checker period, 5 per grid line):
-    // an offset reduced modulo that keeps the shader's coordinates small, hence precise.
-    const double period = 2.0 * grid;
-    item.material.local_offset = glm::vec2(static_cast<float>(a - period * std::floor(a / period)),
-                                           static_cast<float>(b - period * std::floor(b / period)));
-    item.material.specular = 0.05f;
-    item.casts_shadow = false;
-    items.push_back(item);
-  }
+  for (const auto& s : surfaces) add_surface(items, s, around, half, checker, t);
 
   int links = 0;  // jointed rigid bodies so far: their colours alternate as an arm's links
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

@@ -3,12 +3,14 @@
 // `<arm>.theta.*`), turned into a list of draw items.
 #pragma once
 
+#include <toml++/toml.h>
+
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-#include <toml++/toml.h>
-
+#include "components/impedance/moving_contact.hpp"
+#include "components/impedance/surface_extent.hpp"
 #include "core/network.hpp"
 #include "core/trajectory.hpp"
 #include "core/types.hpp"
@@ -32,9 +34,14 @@ struct BodyVisual {
   std::vector<double> lengths, widths;  // arm links
 };
 
+// A contact's surface. With an extent only that rectangle (or half-plane, strip) of the plane
+// is drawn; a moving surface is drawn at its tilt at time t, its checker carried along by the
+// belt (both from the contact component's own law of t).
 struct SurfaceVisual {
   core::Vec3 normal{0.0, 0.0, 1.0};
   double offset = 0.0;
+  components::SurfaceExtent extent;                   // the whole plane unless bounded()
+  const components::MovingContact* moving = nullptr;  // null: fixed
 };
 
 // A contact whose touching point can leave a trail (point = p - radius * normal).

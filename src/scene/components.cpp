@@ -169,6 +169,7 @@ void ComponentBuilder::add_body(TableReader& table) {
       diagonal << s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
           s.x() * s.x() + s.y() * s.y();
       diagonal *= p.mass / 12.0;
+      info.box_size = s;
     } else if (!shape.empty()) {
       table.fail("shape", "unknown shape '" + shape + "' (expected sphere, hollow_sphere or box)");
     }
@@ -264,20 +265,10 @@ void ComponentBuilder::add_impedance(TableReader& table) {
   };
 
   if (type == "kikuuwe_contact") {
-    const BodyInfo& info = body(table, "body");
-    const core::Body* b = pose_body(table, "body");
-    components::KikuuweContactParams p;
-    p.normal = unit(table, "normal", p.normal);
-    p.offset = table.number("offset", p.offset);
-    p.stiffness = table.positive("stiffness", p.stiffness);
-    p.damping = table.non_negative("damping", p.damping);
-    p.mu = table.non_negative("mu", p.mu);
-    if (table.has("tangential_stiffness")) p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
-    if (table.has("tangential_damping")) p.tangential_damping = table.non_negative("tangential_damping", 0.0);
-    const double radius = table.non_negative("radius", info.sphere_radius);
-    impedance = construct(table, [&] { return std::make_unique<components::KikuuweContact>(name, p); });
-    map = std::make_unique<components::ContactPointMap>(*b, radius, p.normal);
-  } else if (type == "kikuuwe_friction") {
+    add_contact(table, name);  // one element per contact point: contact_builder.cpp
+    return;
+  }
+  if (type == "kikuuwe_friction") {
     components::KikuuweFrictionParams p;
     map = joint_map();
     if (!map) map = point_map();
@@ -285,7 +276,23 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     p.stiffness = table.positive("stiffness", p.stiffness);
     p.damping = table.non_negative("damping", p.damping);
     p.force_limit = table.non_negative("force_limit", p.force_limit);
-    impedance = construct(table, [&] { return std::make_unique<components::KikuuweFriction>(name, p); });
+    core::Vec initial_e;
+    if (const toml::node* e = table.node("initial_e")) {
+      std::vector<double> v;
+      if (e->is_number())
+        v.push_back(table.number("initial_e", 0.0));
+      else
+        v = table.numbers("initial_e");
+      if (static_cast<int>(v.size()) != p.dimension) {
+        table.fail("initial_e",
+                   "expected " + std::to_string(p.dimension) + " number(s), one per axis");
+      }
+      initial_e = Eigen::Map<const core::Vec>(v.data(), static_cast<Eigen::Index>(v.size()));
+    }
+    auto friction =
+        construct(table, [&] { return std::make_unique<components::KikuuweFriction>(name, p); });
+    friction->set_initial_e(initial_e);
+    impedance = std::move(friction);
   } else if (type == "lugre") {
     components::LuGreParams p;
     map = joint_only();

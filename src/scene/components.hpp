@@ -9,6 +9,7 @@
 
 #include "core/body.hpp"
 #include "core/network.hpp"
+#include "scene/settle.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace stiction::scene {
@@ -24,6 +25,8 @@ class ComponentBuilder {
 
   void add_body(TableReader& table);
   void add_impedance(TableReader& table);
+  // After every component: bodies whose contacts ask for `settle` start in equilibrium.
+  void finish();
 
   const std::map<std::string, double>& stick_thresholds() const { return stick_thresholds_; }
 
@@ -31,7 +34,11 @@ class ComponentBuilder {
   struct BodyInfo {
     core::Admittance* admittance = nullptr;
     double sphere_radius = 0.0;  // for the default contact radius; 0 if not a sphere
+    core::Vec3 box_size = core::Vec3::Zero();  // a box's sides (its corners are contact points)
   };
+  // kikuuwe_contact (contact_builder.cpp): one element per contact point.
+  void add_contact(TableReader& table, const std::string& name);
+
   void check_name(TableReader& table);
   const BodyInfo& body(TableReader& table, std::string_view key);
   const core::Body* pose_body(TableReader& table, std::string_view key);
@@ -41,6 +48,8 @@ class ComponentBuilder {
   std::map<std::string, BodyInfo> bodies_;
   std::map<std::string, std::string> impedance_types_;
   std::map<std::string, double> stick_thresholds_;
+  core::Admittance* clock_ = nullptr;  // time for moving surfaces, made on first use
+  std::vector<SettleBody> settle_;     // bodies to start in equilibrium (settle.cpp)
 };
 
 }  // namespace stiction::scene

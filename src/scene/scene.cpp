@@ -164,6 +164,7 @@ Scene build_scene(toml::table document, const fs::path& path) {
     for (TableReader& impedance : builder.entries(*impedances)) builder.add_impedance(impedance);
     impedances->finish();
   }
+  builder.finish();  // contacts' `settle`
   root.finish();
   if (scene.network->admittances().empty()) {
     throw InputError::at(scene.document.source(), "the scene has no [bodies]");

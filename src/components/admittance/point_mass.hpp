@@ -43,6 +43,8 @@ class PointMass final : public core::Body {
   }
   bool can_rotate() const override { return false; }
   const PointMassParams& params() const { return params_; }
+  // Where the mass starts (scene loading: a contact's `settle` moves it into equilibrium).
+  void set_initial_position(const core::Vec3& p) { params_.position = p; }
 
  private:
   PointMassParams params_;

@@ -54,6 +54,11 @@ class RigidBody final : public core::Body {
   }
   bool can_rotate() const override { return true; }
   const RigidBodyParams& params() const { return params_; }
+  // Where the body starts (scene loading: a contact's `settle` moves it into equilibrium).
+  void set_initial_pose(const core::Vec3& p, const core::Quat& q) {
+    params_.position = p;
+    params_.orientation = q.normalized();
+  }
 
  private:
   static core::Quat orientation(core::ConstVecRef x) {

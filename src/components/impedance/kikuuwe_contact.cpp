@@ -23,6 +23,9 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
   t2_ = n_.cross(t1_);
   kt_ = params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness;
   bt_ = params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
+  frame_ = {n_, t1_, t2_};
+  coefficients_ = {params_.stiffness, params_.damping, kt_, bt_, params_.mu};
+  bounded_ = params_.extent.bounded();
 }
 
 int KikuuweContact::regime(ConstVecRef x_hat, ConstVecRef y, double tau) const {
@@ -55,7 +58,9 @@ Vec3 KikuuweContact::slip_velocity(ConstVecRef x_hat) const {
 }
 
 double KikuuweContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
-  const double depth = std::max(0.0, params_.offset - n_.dot(Vec3(x_hat.segment<3>(0))));
+  const Vec3 p_c = x_hat.segment<3>(0);
+  const bool inside = !bounded_ || params_.extent.contains(p_c - params_.extent.centre);
+  const double depth = inside ? std::max(0.0, params_.offset - n_.dot(p_c)) : 0.0;
   return 0.5 * params_.stiffness * depth * depth + 0.5 * kt_ * y.head<2>().squaredNorm();
 }
 

@@ -8,10 +8,15 @@
 // Output u = -(force on the body) (the moving side's force on the element).
 // Signals: f (force on the body, world), slip (tangential contact-point velocity, world),
 // e (axes 0 1 along t1, t2), and the normal force n_force.
+// The surface may have an extent (a rectangle or half-plane of its plane, surface_extent.hpp):
+// a contact point whose projection lies outside it is not in contact (N = 0). The law
+// itself is contact_law.hpp, shared with the moving surfaces (moving_contact.hpp).
 #pragma once
 
 #include <algorithm>
 
+#include "components/impedance/contact_law.hpp"
+#include "components/impedance/surface_extent.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -26,6 +31,8 @@ struct KikuuweContactParams {
   // as in the paper.
   double tangential_stiffness = -1.0;
   double tangential_damping = -1.0;
+  SurfaceExtent extent;                                 // default: the whole plane
+  Eigen::Vector2d initial_e = Eigen::Vector2d::Zero();  // friction state at t = 0 (m)
 };
 
 class KikuuweContact final : public core::Impedance {
@@ -36,26 +43,15 @@ class KikuuweContact final : public core::Impedance {
   int output_size() const override { return 3; }
   int state_size() const override { return 2; }
   std::vector<std::string> state_labels() const override { return {"e.0", "e.1"}; }
+  void initial_state(core::VecRef y) const override { y.head<2>() = params_.initial_e; }
+  void set_initial_e(const Eigen::Vector2d& e) { params_.initial_e = e; }
   // Inline: contact couplings fuse it into their straight code (core/coupling.hpp).
   void evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
                 core::VecRef u, core::VecRef y_dot) const override {
     const core::Vec3 v_c = x_hat.segment<3>(3);
-    const double normal_force = this->normal_force(x_hat);
-    // (23b)-(23d): eq. (19) in the tangent plane with F = mu N.
-    const Eigen::Vector2d v_t(t1_.dot(v_c), t2_.dot(v_c));
-    const Eigen::Vector2d e = y.head<2>();
-    const double BtK = bt_ + tau * kt_;
-    Eigen::Vector2d f = BtK * v_t + kt_ * e;
-    const double limit = params_.mu * normal_force;
-    const double norm = f.norm();
-    if (norm <= limit) {
-      y_dot.head<2>() = v_t;  // exactly v while stuck (see kikuuwe_friction.cpp)
-    } else {
-      f *= norm > 0.0 ? limit / norm : 0.0;
-      y_dot.head<2>() = (f - kt_ * e) / BtK;
-    }
-    // Force on the body: normal push minus friction; u is its negative.
-    const core::Vec3 on_body = normal_force * n_ - (f.x() * t1_ + f.y() * t2_);
+    const core::Vec3 on_body = contact_law(frame_, coefficients_, normal_force(x_hat), v_c,
+                                           y.head<2>(), tau, y_dot.head<2>());
+    // u is the negative of the force on the body.
     u.head<3>() = -on_body;
   }
   std::vector<core::SignalInfo> signals() const override;
@@ -76,19 +72,23 @@ class KikuuweContact final : public core::Impedance {
   const KikuuweContactParams& params() const { return params_; }
   const core::Vec3& tangent1() const { return t1_; }
   const core::Vec3& tangent2() const { return t2_; }
+  const core::Vec3& normal() const { return n_; }
 
  private:
   double normal_force(core::ConstVecRef x_hat) const {
     // (23a) with the clamp of DESIGN section 1: no adhesion, so mu N is never negative.
-    const double depth = params_.offset - n_.dot(core::Vec3(x_hat.segment<3>(0)));
-    return depth > 0.0 ? std::max(0.0, params_.stiffness * depth -
-                                           params_.damping * n_.dot(core::Vec3(x_hat.segment<3>(3))))
-                       : 0.0;
+    const core::Vec3 p_c = x_hat.segment<3>(0);
+    if (bounded_ && !params_.extent.contains(p_c - params_.extent.centre)) return 0.0;
+    return contact_normal_force(coefficients_, params_.offset - n_.dot(p_c),
+                                n_.dot(core::Vec3(x_hat.segment<3>(3))));
   }
 
   KikuuweContactParams params_;
   core::Vec3 n_, t1_, t2_;
   double kt_, bt_;
+  ContactFrame frame_;
+  ContactCoefficients coefficients_;
+  bool bounded_ = false;
 };
 
 }  // namespace stiction::components

@@ -29,6 +29,11 @@ class KikuuweFriction final : public core::Impedance {
   int output_size() const override { return params_.dimension; }
   int state_size() const override { return params_.dimension; }
   std::vector<std::string> state_labels() const override;
+  // The friction state at t = 0 (`dimension` entries; default zeros): a preloaded spring.
+  void initial_state(core::VecRef y) const override {
+    if (initial_e_.size() == params_.dimension) y = initial_e_;
+  }
+  void set_initial_e(const core::Vec& e) { initial_e_ = e; }
   void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
                 core::VecRef y_dot) const override;
   std::vector<core::SignalInfo> signals() const override;
@@ -62,6 +67,7 @@ class KikuuweFriction final : public core::Impedance {
 
  private:
   KikuuweFrictionParams params_;
+  core::Vec initial_e_;
 };
 
 }  // namespace stiction::components

@@ -35,8 +35,12 @@ class KikuuweContactCoupling final : public core::Coupling {
 
 }  // namespace
 
-ContactPointMap::ContactPointMap(const core::Body& body, double radius, const core::Vec3& normal)
-    : body_(body), offset_(-radius * normal.normalized()) {}
+ContactPointMap::ContactPointMap(const core::Body& body, double radius, const core::Vec3& normal,
+                                 const core::Vec3& local)
+    : body_(body),
+      offset_(-radius * normal.normalized()),
+      local_(local),
+      body_point_(local != core::Vec3::Zero()) {}
 
 std::unique_ptr<core::Coupling> ContactPointMap::direct_coupling(const core::Impedance& impedance,
                                                                  const core::Slot& state) const {

@@ -1,7 +1,8 @@
 // Psi/Phi for a contact against a flat surface of normal n: the contact point of a body of
-// round shape `radius` is its point nearest the surface, p - radius n (radius 0: the body
-// origin, e.g. a point mass). x_hat = [p_c (3), v_c (3)] with v_c = v + w x (p_c - p);
-// the body receives -u at p_c (force and the matching torque).
+// round shape `radius` about its body-frame point `local` is that sphere's point nearest the
+// surface, p + R local - radius n (local 0, radius 0: the body origin, e.g. a point mass;
+// a box corner: local the corner, radius 0). x_hat = [p_c (3), v_c (3)] with
+// v_c = v + w x (p_c - p); the body receives -u at p_c (force and the matching torque).
 #pragma once
 
 #include "core/body.hpp"
@@ -11,7 +12,8 @@ namespace stiction::components {
 
 class ContactPointMap final : public core::CoordinateMap {
  public:
-  ContactPointMap(const core::Body& body, double radius, const core::Vec3& normal);
+  ContactPointMap(const core::Body& body, double radius, const core::Vec3& normal,
+                  const core::Vec3& local = core::Vec3::Zero());
   int motion_size() const override { return 6; }
   int force_size() const override { return 3; }
   std::vector<const core::Admittance*> admittances() const override { return {&body_}; }
@@ -35,20 +37,28 @@ class ContactPointMap final : public core::CoordinateMap {
     const core::BodyMotion m =
         body.motion(Eigen::Map<const core::Vec>(x + slot_.state_offset, slot_.state_size));
     // (27d): contact point velocity v + w x a, with a the lever arm in world coordinates.
-    x_hat.segment<3>(0) = m.p + offset_;
-    x_hat.segment<3>(3) = m.v + m.w_world.cross(offset_);
+    const core::Vec3 a = lever(m);
+    x_hat.segment<3>(0) = m.p + a;
+    x_hat.segment<3>(3) = m.v + m.w_world.cross(a);
     return m;
   }
   template <typename BodyType>
   void apply_to(const BodyType& body, const core::BodyMotion& at, core::ConstVecRef u,
                 double* u_hat) const {
-    body.add_wrench(at, offset_, -core::Vec3(u.head<3>()), core::Vec3::Zero(),
+    body.add_wrench(at, lever(at), -core::Vec3(u.head<3>()), core::Vec3::Zero(),
                     Eigen::Map<core::Vec>(u_hat + slot_.input_offset, slot_.input_size));
   }
 
  private:
+  // Contact point minus body origin, world frame.
+  core::Vec3 lever(const core::BodyMotion& m) const {
+    return body_point_ ? core::Vec3(m.q * local_ + offset_) : offset_;
+  }
+
   const core::Body& body_;
-  core::Vec3 offset_;  // contact point minus body origin, world frame
+  core::Vec3 offset_;  // -radius n, world frame
+  core::Vec3 local_;   // the body-frame point the contact sits about
+  bool body_point_;    // local_ != 0: the lever turns with the body
   core::Slot slot_;
 };
 

@@ -1,0 +1,279 @@
+// [impedances.NAME] of type kikuuwe_contact: a contact surface (plane, optional extent,
+// optional belt and tilt) and the body points that touch it. One Kikuuwe contact element per
+// point, each with its own friction state and events: `NAME` for a single point, `NAME.i`
+// for the points of a `points` list or of a box's corners. docs/scene_format.md lists the keys.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "components/admittance/clock.hpp"
+#include "components/admittance/rigid_body.hpp"
+#include "components/impedance/kikuuwe_contact.hpp"
+#include "components/impedance/moving_contact.hpp"
+#include "components/maps/contact_point_map.hpp"
+#include "components/maps/surface_point_map.hpp"
+#include "scene/components.hpp"
+#include "scene/expression.hpp"
+
+namespace stiction::scene {
+
+using core::Vec3;
+
+namespace {
+
+// Components check their own parameters too: report what they reject at the table.
+template <typename Make>
+auto construct_contact(TableReader& table, Make make) {
+  try {
+    return make();
+  } catch (const std::invalid_argument& e) {
+    throw InputError::at(table.table().source(), table.path() + ": " + e.what());
+  }
+}
+
+// A number, or an expression of t (string), as a profile.
+std::function<double(double)> time_profile(TableReader& table, std::string_view key) {
+  const toml::node* node = table.node(key);
+  if (node->is_number()) {
+    const double value = node->value<double>().value();
+    if (!std::isfinite(value)) table.fail(key, "expected a finite number");
+    return [value](double) { return value; };
+  }
+  if (!node->is_string()) table.fail(key, "expected a number or an expression of t (a string)");
+  auto expression = std::make_shared<Expression>(node->as_string()->get(), node->source(),
+                                                 table.path() + "." + std::string(key));
+  return [expression](double t) { return expression->evaluate(t); };
+}
+
+// Two numbers; infinities allowed (TOML `inf`, `-inf`), NaN not.
+std::array<double, 2> bound_pair(TableReader& table, std::string_view key, double fallback) {
+  const toml::node* node = table.node(key);
+  if (node == nullptr) return {fallback, fallback};
+  const toml::array* a = node->as_array();
+  if (a == nullptr || a->size() != 2) table.fail(key, "expected 2 numbers [u, v] (inf allowed)");
+  std::array<double, 2> out{};
+  for (std::size_t i = 0; i < 2; ++i) {
+    const toml::node& e = (*a)[i];
+    if (!e.is_number() || std::isnan(e.value<double>().value())) {
+      throw InputError::at(
+          e.source(), table.path() + "." + std::string(key) + ": expected a number (inf allowed)");
+    }
+    out[i] = e.value<double>().value();
+  }
+  return out;
+}
+
+components::SurfaceExtent read_extent(TableReader& contact, const Vec3& n, double offset) {
+  components::SurfaceExtent extent;
+  std::optional<TableReader> table = contact.subtable("extent");
+  if (!table) return extent;
+  extent.centre = table->vec3("centre", offset * n);
+  extent.centre -= n.dot(extent.centre - offset * n) * n;  // onto the plane
+  const Vec3 seed = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 axis = table->vec3("axis", seed);
+  const Vec3 u = axis - n.dot(axis) * n;
+  if (!(u.norm() > 1e-9 * std::max(1.0, axis.norm()))) {
+    table->fail("axis", "must be a direction in the surface plane (not along the normal)");
+  }
+  extent.u = u.normalized();
+  extent.v = n.cross(extent.u);
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto lo = bound_pair(*table, "min", -inf);
+  const auto hi = bound_pair(*table, "max", inf);
+  extent.u_min = lo[0];
+  extent.v_min = lo[1];
+  extent.u_max = hi[0];
+  extent.v_max = hi[1];
+  if (!(extent.u_min < extent.u_max) || !(extent.v_min < extent.v_max)) {
+    table->fail("max", "must exceed `min` in both coordinates");
+  }
+  table->finish();
+  if (!extent.bounded())
+    table->fail("max", "an extent needs at least one finite bound in `min` or `max`");
+  return extent;
+}
+
+}  // namespace
+
+void ComponentBuilder::add_contact(TableReader& table, const std::string& name) {
+  const BodyInfo& info = body(table, "body");
+  core::Body* b = const_cast<core::Body*>(pose_body(table, "body"));
+  components::KikuuweContactParams p;
+  p.normal = table.vec3("normal", p.normal);
+  if (!(p.normal.norm() > 1e-12)) table.fail("normal", "must be a non-zero vector");
+  p.normal.normalize();
+  p.offset = table.number("offset", p.offset);
+  p.stiffness = table.positive("stiffness", p.stiffness);
+  p.damping = table.non_negative("damping", p.damping);
+  p.mu = table.non_negative("mu", p.mu);
+  if (table.has("tangential_stiffness"))
+    p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
+  if (table.has("tangential_damping"))
+    p.tangential_damping = table.non_negative("tangential_damping", 0.0);
+  p.extent = read_extent(table, p.normal, p.offset);
+
+  // The body points: a list, a box's corners, or the one point p - radius n.
+  std::vector<Vec3> points;
+  const bool listed = table.has("points");
+  if (listed) {
+    const toml::node* node = table.node("points");
+    const toml::array* a = node->as_array();
+    if (a == nullptr || a->empty())
+      table.fail("points", "expected a non-empty array of [x, y, z] points");
+    for (const toml::node& e : *a) {
+      const toml::array* xyz = e.as_array();
+      bool ok = xyz != nullptr && xyz->size() == 3;
+      Vec3 v = Vec3::Zero();
+      for (std::size_t i = 0; ok && i < 3; ++i) {
+        ok = (*xyz)[i].is_number() && std::isfinite((*xyz)[i].value<double>().value());
+        if (ok) v[static_cast<int>(i)] = (*xyz)[i].value<double>().value();
+      }
+      if (!ok)
+        throw InputError::at(e.source(),
+                             table.path() + ".points: expected [x, y, z] (finite numbers)");
+      points.push_back(v);
+    }
+    if (!b->can_rotate() && points.size() > 1) {
+      table.fail("points", "a point_mass has one point (its position): several need a rigid_body");
+    }
+  } else if (info.box_size != Vec3::Zero()) {
+    const Vec3 h = 0.5 * info.box_size;
+    for (int i = 0; i < 8; ++i) {
+      points.emplace_back((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(),
+                          (i & 4 ? 1 : -1) * h.z());
+    }
+  } else {
+    points.emplace_back(Vec3::Zero());
+  }
+  const bool several = listed || points.size() > 1;
+  const double radius = table.non_negative("radius", several ? 0.0 : info.sphere_radius);
+
+  // Friction state at t = 0: one [e0, e1] for every point, or one per point.
+  std::vector<Eigen::Vector2d> initial_e(points.size(), Eigen::Vector2d::Zero());
+  if (const toml::node* node = table.node("initial_e")) {
+    const toml::array* a = node->as_array();
+    auto pair = [&](const toml::node& n) -> std::optional<Eigen::Vector2d> {
+      const toml::array* e = n.as_array();
+      if (e == nullptr || e->size() != 2 || !(*e)[0].is_number() || !(*e)[1].is_number())
+        return std::nullopt;
+      const Eigen::Vector2d v((*e)[0].value<double>().value(), (*e)[1].value<double>().value());
+      if (!v.allFinite()) return std::nullopt;
+      return v;
+    };
+    if (a != nullptr && pair(*node)) {
+      std::fill(initial_e.begin(), initial_e.end(), *pair(*node));
+    } else if (a != nullptr && a->size() == points.size() &&
+               std::all_of(a->begin(), a->end(),
+                           [&](const toml::node& n) { return pair(n).has_value(); })) {
+      for (std::size_t i = 0; i < points.size(); ++i) initial_e[i] = *pair((*a)[i]);
+    } else {
+      table.fail(
+          "initial_e",
+          "expected [e0, e1] (m, along the surface's tangents) or one such pair per point (" +
+              std::to_string(points.size()) + ")");
+    }
+  }
+
+  // A moving surface: a belt and/or a tilt, each a number or an expression of t.
+  components::SurfaceMotion motion;
+  if (table.has("belt_speed")) {
+    motion.belt_speed = time_profile(table, "belt_speed");
+    const Vec3 d = table.vec3("belt_direction", Vec3::UnitX());
+    if (!((d - p.normal.dot(d) * p.normal).norm() > 1e-9 * std::max(1.0, d.norm()))) {
+      table.fail("belt_direction",
+                 "must be a direction in the surface plane (not along the normal)");
+    }
+    motion.belt_direction = d;
+  } else if (table.has("belt_direction")) {
+    table.fail("belt_direction", "needs `belt_speed`");
+  }
+  if (table.has("tilt")) {
+    motion.tilt = time_profile(table, "tilt");
+    motion.tilt_axis = table.vec3("tilt_axis", motion.tilt_axis);
+    if (!(motion.tilt_axis.norm() > 1e-12)) table.fail("tilt_axis", "must be a non-zero vector");
+    motion.tilt_axis.normalize();
+    motion.pivot = table.vec3("tilt_pivot", p.offset * p.normal);
+  } else {
+    for (const char* key : {"tilt_axis", "tilt_pivot"}) {
+      if (table.has(key)) table.fail(key, "needs `tilt`");
+    }
+  }
+  const bool moving = static_cast<bool>(motion.belt_speed) || static_cast<bool>(motion.tilt);
+  const bool settle = table.boolean("settle", false);
+  const double threshold = table.positive("stick_threshold", 1e-3);
+  table.finish();
+
+  if (moving && clock_ == nullptr) {
+    // One clock for every moving surface; its name cannot clash with a component's
+    // (those have no '.').
+    auto clock = std::make_unique<components::Clock>("scene.clock");
+    clock_ = clock.get();
+    network_.add_admittance(std::move(clock));
+  }
+  SettleBody* settling = nullptr;
+  if (settle) {
+    for (auto& s : settle_) {
+      if (s.body == info.admittance) settling = &s;
+    }
+    if (settling == nullptr) settling = &settle_.emplace_back(SettleBody{info.admittance, {}});
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::string element = several ? name + "." + std::to_string(i) : name;
+    p.initial_e = initial_e[i];
+    std::unique_ptr<core::Impedance> impedance;
+    std::unique_ptr<core::CoordinateMap> map;
+    SettlePoint sp;
+    if (moving) {
+      auto contact = construct_contact(table, [&] {
+        return std::make_unique<components::MovingContact>(element, p, motion, radius);
+      });
+      const components::SurfaceState at0 = contact->surface(0.0);
+      sp.frame = at0.frame;
+      sp.origin = at0.origin;
+      const components::MovingContact* c = contact.get();
+      sp.inside = [c](const Vec3& x) {
+        const components::SurfaceState s = c->surface(0.0);
+        const Vec3 at_rest = c->motion().pivot + s.rotation.conjugate() * (x - c->motion().pivot);
+        return !c->params().extent.bounded() ||
+               c->params().extent.contains(at_rest - c->params().extent.centre);
+      };
+      sp.set_e = [c = contact.get()](const Eigen::Vector2d& e) { c->set_initial_e(e); };
+      impedance = std::move(contact);
+      map = std::make_unique<components::SurfacePointMap>(*b, points[i], *clock_);
+    } else {
+      auto contact = construct_contact(
+          table, [&] { return std::make_unique<components::KikuuweContact>(element, p); });
+      sp.frame = {contact->normal(), contact->tangent1(), contact->tangent2()};
+      sp.origin = p.offset * p.normal;
+      const components::SurfaceExtent extent = p.extent;
+      sp.inside = [extent](const Vec3& x) {
+        return !extent.bounded() || extent.contains(x - extent.centre);
+      };
+      sp.set_e = [c = contact.get()](const Eigen::Vector2d& e) { c->set_initial_e(e); };
+      impedance = std::move(contact);
+      map = std::make_unique<components::ContactPointMap>(*b, radius, p.normal, points[i]);
+    }
+    if (settling != nullptr) {
+      sp.local = points[i];
+      sp.radius = radius;
+      sp.k = p.stiffness;
+      sp.kt = p.tangential_stiffness > 0.0 ? p.tangential_stiffness : p.stiffness;
+      settling->points.push_back(std::move(sp));
+    }
+    stick_thresholds_[element] = threshold;
+    impedance_types_.emplace(element, "kikuuwe_contact");
+    network_.add_impedance(std::move(impedance), std::move(map));
+  }
+  // The table's own name too, so no other component takes it.
+  impedance_types_.emplace(name, "kikuuwe_contact");
+}
+
+void ComponentBuilder::finish() {
+  for (const SettleBody& s : settle_) settle(s, gravity_);
+}
+
+}  // namespace stiction::scene

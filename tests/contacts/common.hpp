@@ -1,0 +1,33 @@
+// Helpers for the contact tests: scenes from text, column access on a run.
+#pragma once
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "scenario.hpp"
+
+namespace stiction::testing {
+
+inline ScenarioRun run_text(const std::string& text) {
+  ScenarioRun run{scene::build_scene(toml::parse(text, std::string_view("gen.toml")), "gen.toml"),
+                  {}};
+  core::RunOptions options = run.scene.run;
+  run.result = core::simulate(*run.scene.network, options);
+  return run;
+}
+
+inline std::string num(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  std::string s = buf;
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+// Rows of a run: time and a column by index.
+inline double cell(const ScenarioRun& run, int row, int column) {
+  return run.result.trajectory.at(row, column);
+}
+
+}  // namespace stiction::testing
