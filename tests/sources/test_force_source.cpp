@@ -162,3 +162,19 @@ TEST_CASE("force_source: bad values are errors at FILE:LINE:COL") {
           "[impedances.push]\ntype = \"force_source\"\nbody = \"arm\"\nforce = [1, 2, 3]\n"),
       Contains("impedances.push.body: 'arm' is a planar_arm, not a point_mass or rigid_body"));
 }
+
+TEST_CASE("torque_source: a feedback torque on a rigid body (viscous spin-down)") {
+  // torque = -c w_z about the body's z axis: w_z(t) = w0 exp(-c t / J), J = 2/5 m r^2.
+  const double m = 1.0, r = 0.1, c = 0.004, w0 = 5.0;
+  const double j = 0.4 * m * r * r;
+  const std::string text =
+      "gravity = [0.0, 0.0, 0.0]\n[simulation]\nduration = 1.0\n"
+      "[bodies.top]\ntype = \"rigid_body\"\nmass = 1.0\nshape = \"sphere\"\nradius = 0.1\n"
+      "angular_velocity = [0.0, 0.0, 5.0]\n"
+      "[impedances.brake]\ntype = \"torque_source\"\nbody = \"top\"\ntorque = \"-" +
+      num(c) + "*top.w.z\"\n";
+  const auto run = testing::run_text(text);
+  REQUIRE_FALSE(run.result.instability);
+  CHECK(run.values("top.w.z").back() == Approx(w0 * std::exp(-c / j)).epsilon(1e-9));
+  CHECK(run.values("brake.tau").back() == Approx(-c * w0 * std::exp(-c / j)).epsilon(1e-9));
+}

@@ -31,6 +31,7 @@ class ObservingMap final : public core::CoordinateMap {
     inner_->apply(x, u, u_hat);
   }
   const core::CoordinateMap& inner() const { return *inner_; }
+  const std::vector<Observed>& observed() const { return observed_; }
 
  private:
   struct Source {  // one observed admittance
