@@ -12,6 +12,7 @@
 #include "components/impedance/dahl.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
 #include "components/impedance/kikuuwe_friction.hpp"
+#include "components/impedance/line_spring_damper.hpp"
 #include "components/impedance/lugre.hpp"
 #include "components/impedance/penalty_joint.hpp"
 #include "components/impedance/spring_damper.hpp"
@@ -308,7 +309,21 @@ void ComponentBuilder::add_impedance(TableReader& table) {
       }
       p.rest = Eigen::Map<const core::Vec>(v.data(), static_cast<Eigen::Index>(v.size()));
     }
-    impedance = construct(table, [&] { return std::make_unique<components::SpringDamper>(name, p); });
+    if (table.has("length")) {
+      // A spring along the line between the two points, with a free length (Drake's
+      // LinearSpringDamper): point wiring only, and `rest` has no meaning then.
+      if (p.dimension != 3)
+        table.fail("length", "a free length needs point wiring (a joint spring has `rest`)");
+      if (table.has("rest"))
+        table.fail("length", "give either `length` (along the line) or `rest`, not both");
+      components::LineSpringDamperParams line{p.stiffness, p.damping,
+                                              table.non_negative("length", 0.0)};
+      impedance = construct(
+          table, [&] { return std::make_unique<components::LineSpringDamper>(name, line); });
+    } else {
+      impedance =
+          construct(table, [&] { return std::make_unique<components::SpringDamper>(name, p); });
+    }
   } else if (type == "penalty_joint") {
     components::PenaltyJointParams p;
     const core::Body* child = pose_body(table, "body");

@@ -44,7 +44,7 @@ std::string unknown_name_message(const std::string& token,
   std::string same;
   int shown = 0;
   for (const auto& s : signals) {
-    if (s.rfind(component + ".", 0) == 0 && shown < 12) {
+    if (s.rfind(component + ".", 0) == 0 && shown < 16) {
       same += (same.empty() ? "" : ", ") + s;
       ++shown;
     }

@@ -178,3 +178,56 @@ TEST_CASE("torque_source: a feedback torque on a rigid body (viscous spin-down)"
   CHECK(run.values("top.w.z").back() == Approx(w0 * std::exp(-c / j)).epsilon(1e-9));
   CHECK(run.values("brake.tau").back() == Approx(-c * w0 * std::exp(-c / j)).epsilon(1e-9));
 }
+
+TEST_CASE("spring_damper with a free length: acts along the line, any direction") {
+  // Two bodies on a line of random direction, a spring of free length L stretched by s0:
+  // the distance oscillates about L as mu s'' + c s' + k s = 0, and stays on the line.
+  std::mt19937 rng(4);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const core::Vec3 n = core::Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
+  const double m1 = 0.6, m2 = 0.9, k = 50.0, c = 0.2, length = 0.4, s0 = 0.03;
+  const double mu = m1 * m2 / (m1 + m2);
+  const double wn = std::sqrt(k / mu), zeta = c / (2 * std::sqrt(k * mu)),
+               wd = wn * std::sqrt(1 - zeta * zeta);
+  const core::Vec3 p1 = (length + s0) * n;
+  std::string text =
+      "gravity = [0.0, 0.0, 0.0]\n[simulation]\nduration = 1.0\n[bodies.a]\ntype = "
+      "\"point_mass\"\nmass = ";
+  text +=
+      num(m1) + "\nposition = [" + num(p1.x()) + ", " + num(p1.y()) + ", " + num(p1.z()) + "]\n";
+  text += "[bodies.b]\ntype = \"point_mass\"\nmass = " + num(m2) + "\n";
+  text += "[impedances.coil]\ntype = \"spring_damper\"\nbody = \"a\"\nother = \"b\"\nstiffness = " +
+          num(k) + "\ndamping = " + num(c) + "\nlength = " + num(length) + "\n";
+  const auto run = testing::run_text(text);
+  REQUIRE_FALSE(run.result.instability);
+  const auto t = run.times();
+  const auto distance = run.values("coil.length");
+  double worst = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double s =
+        s0 * std::exp(-zeta * wn * t[i]) *
+        (std::cos(wd * t[i]) + zeta / std::sqrt(1 - zeta * zeta) * std::sin(wd * t[i]));
+    worst = std::max(worst, std::abs(distance[i] - (length + s)));
+  }
+  CHECK(worst < 1e-9);
+  // The separation stays along n.
+  const core::Vec3 d(run.values("a.p.x").back() - run.values("b.p.x").back(),
+                     run.values("a.p.y").back() - run.values("b.p.y").back(),
+                     run.values("a.p.z").back() - run.values("b.p.z").back());
+  CHECK(d.cross(n).norm() < 1e-12);
+  // The force on a (the moving side) pulls it back while stretched: at t = 0, -k s0 n.
+  CHECK(run.values("coil.f.x").front() == Approx(-k * s0 * n.x()));
+
+  const std::string head =
+      "[bodies.a]\ntype = \"point_mass\"\nmass = 1\n[impedances.s]\ntype = \"spring_damper\"\n"
+      "body = \"a\"\n";
+  CHECK_THAT(testing::load_error(head + "length = -1\n"),
+             StartsWith("gen.toml:7:10: error: impedances.s.length: must be >= 0"));
+  CHECK_THAT(testing::load_error(head + "length = 1\nrest = [0, 0, 0]\n"),
+             StartsWith("gen.toml:7:10: error: impedances.s.length: give either"));
+  CHECK_THAT(
+      testing::load_error(
+          "[bodies.arm]\ntype = \"planar_arm\"\nlinks = [{length = 0.2, mass = 0.2}]\n"
+          "[impedances.s]\ntype = \"spring_damper\"\nbody = \"arm\"\njoint = 0\nlength = 1\n"),
+      StartsWith("gen.toml:8:10: error: impedances.s.length: a free length needs point wiring"));
+}
