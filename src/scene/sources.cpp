@@ -2,6 +2,7 @@
 // expressions of t and of the bodies' signals (feedback). Part of ComponentBuilder; kept
 // apart from components.cpp because expressions of the state need the observing wiring.
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "components/impedance/torque_source.hpp"
