@@ -117,7 +117,7 @@ TEST_CASE("arm gravity: a three-link arm in a tilted plane keeps kinetic + poten
   CHECK(worst < 1e-6 * (kinetic_max - kinetic_min));  // ...and the potential energy accounts for it
 }
 
-TEST_CASE("arm gravity: along the joint axis gravity does nothing; across it the arm falls") {
+TEST_CASE("arm gravity: along the joint axis gravity does nothing, across it the arm falls") {
   // Default axis (vertical) and gravity along z: the arm stays where it is.
   const auto still = testing::run_text(
       "[simulation]\nduration = 0.5\n[bodies.arm]\ntype = \"planar_arm\"\n"
