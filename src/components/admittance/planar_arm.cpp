@@ -48,7 +48,8 @@ PlanarArm::PlanarArm(std::string name, const PlanarArmParams& params)
     : core::JointSpace(std::move(name)), params_(params) {
   const int n = joint_count();
   if (!(params_.axis.norm() > 1e-12) || !params_.gravity.allFinite()) {
-    throw std::invalid_argument("planar_arm '" + this->name() + "': the axis must be non-zero and gravity finite");
+    throw std::invalid_argument("planar_arm '" + this->name() +
+                                "': the axis must be non-zero and gravity finite");
   }
   params_.axis.normalize();
   arm_plane(params_.axis, e1_, e2_);
