@@ -1,7 +1,9 @@
 #include "app/network_graph.hpp"
 
+#include <algorithm>
 #include <sstream>
 
+#include "components/maps/observing_map.hpp"
 #include "io/atomic_file.hpp"
 
 namespace stiction::app {
@@ -52,7 +54,19 @@ void write_network_dot(const scene::Scene& scene, const std::filesystem::path& p
         << quoted(imp.name() + "\n" + std::string(imp.type()) + "\nstate " +
                   std::to_string(imp.state_size()))
         << "];\n";
-    for (const core::Admittance* a : map.admittances()) {
+    // A feedback element's map observes bodies it does not drive: a dotted edge, no force.
+    const auto* observing = dynamic_cast<const components::ObservingMap*>(&map);
+    const core::CoordinateMap& wiring = observing ? observing->inner() : map;
+    if (observing) {
+      std::vector<const core::Admittance*> shown;
+      for (const auto& o : observing->observed()) {
+        if (std::find(shown.begin(), shown.end(), o.admittance) != shown.end()) continue;
+        shown.push_back(o.admittance);
+        dot << "  " << quoted(o.admittance->name()) << " -> " << quoted(imp.name())
+            << " [style=dotted, label=\"observed\"];\n";
+      }
+    }
+    for (const core::Admittance* a : wiring.admittances()) {
       dot << "  " << quoted(a->name()) << " -> " << quoted(imp.name())
           << " [label=" << quoted(std::string("x_hat (") + std::to_string(map.motion_size()) + ")") << "];\n";
       dot << "  " << quoted(imp.name()) << " -> " << quoted(a->name())

@@ -75,7 +75,7 @@ ArmPose arm_pose(const BodyVisual& arm, const PoseTrack& poses, int index, doubl
   pose.joints.push_back(p);
   for (std::size_t i = 0; i < arm.lengths.size(); ++i) {
     phi += poses.angle(index, static_cast<int>(i), t);
-    p += arm.lengths[i] * core::Vec3(std::cos(phi), std::sin(phi), 0.0);
+    p += arm.lengths[i] * (std::cos(phi) * arm.plane_x + std::sin(phi) * arm.plane_y);
     pose.joints.push_back(p);
     pose.phi.push_back(phi);
   }
@@ -259,6 +259,9 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
     if (const auto* arm = dynamic_cast<const components::PlanarArm*>(a.get())) {
       b.kind = BodyVisual::Kind::arm;
       b.base = arm->params().base;
+      b.plane_x = arm->plane_x();
+      b.plane_y = arm->plane_y();
+      b.axis = arm->params().axis;
       const toml::array* links = table ? (*table)["links"].as_array() : nullptr;
       for (std::size_t i = 0; i < arm->params().links.size(); ++i) {
         const double length = arm->params().links[i].length;
@@ -555,13 +558,34 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
         const ArmPose pose = arm_pose(b, poses, index, t);
         const float w0 = static_cast<float>(b.widths.front());
         // A post from the floor to the base joint.
+        // An arm in a tilted plane (a pendulum) would swing through a post under its base:
+        // the post stands beside the plane, on the far side from the default camera (+y),
+        // and an axle along the joint axis joins it to the base.
+        const bool upright = std::abs(b.axis.z()) > 0.9;
+        const core::Vec3 side = (b.axis.y() >= 0.0 ? 1.0 : -1.0) * b.axis;
+        const core::Vec3 post_at =
+            upright ? b.base : core::Vec3(b.base + 2.5 * b.widths.front() * side);
+        if (!upright) {
+          DrawItem axle;
+          axle.shape = Shape::cylinder;
+          core::Vec3 t1, t2;
+          tangents(side, t1, t2);
+          axle.model = glm::translate(glm::mat4(1.0f), to_glm(0.5 * (b.base + post_at))) *
+                       rotation_from_basis(t1, t2, side) *
+                       glm::scale(glm::mat4(1.0f),
+                                  glm::vec3(0.35f * w0, 0.35f * w0,
+                                            0.5f * static_cast<float>((post_at - b.base).norm())));
+          axle.material.colour = glm::vec3(0.35f);
+          items.push_back(axle);
+        }
         if (scene.surfaces.empty()) {
           const float z0 = static_cast<float>(floor_z), z1 = static_cast<float>(b.base.z());
           DrawItem post;
           post.shape = Shape::cylinder;
-          post.model = glm::translate(glm::mat4(1.0f), glm::vec3(to_glm(b.base).x, to_glm(b.base).y,
-                                                                 0.5f * (z0 + z1))) *
-                       glm::scale(glm::mat4(1.0f), glm::vec3(0.7f * w0, 0.7f * w0, 0.5f * (z1 - z0)));
+          post.model =
+              glm::translate(glm::mat4(1.0f),
+                             glm::vec3(to_glm(post_at).x, to_glm(post_at).y, 0.5f * (z0 + z1))) *
+              glm::scale(glm::mat4(1.0f), glm::vec3(0.7f * w0, 0.7f * w0, 0.5f * (z1 - z0)));
           post.material.colour = glm::vec3(0.35f);
           items.push_back(post);
         }
@@ -570,15 +594,19 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
           const core::Vec3 mid = 0.5 * (pose.joints[k] + pose.joints[k + 1]);
           DrawItem link;
           link.shape = Shape::box;
-          link.model = glm::translate(glm::mat4(1.0f), to_glm(mid)) *
-                       glm::rotate(glm::mat4(1.0f), static_cast<float>(pose.phi[k]), glm::vec3(0, 0, 1)) *
-                       glm::scale(glm::mat4(1.0f),
-                                  glm::vec3(0.5f * static_cast<float>(b.lengths[k]), 0.5f * w, 0.5f * w));
+          const core::Vec3 along =
+              std::cos(pose.phi[k]) * b.plane_x + std::sin(pose.phi[k]) * b.plane_y;
+          link.model =
+              glm::translate(glm::mat4(1.0f), to_glm(mid)) *
+              rotation_from_basis(along, b.axis.cross(along), b.axis) *
+              glm::scale(glm::mat4(1.0f),
+                         glm::vec3(0.5f * static_cast<float>(b.lengths[k]), 0.5f * w, 0.5f * w));
           link.material.colour = k % 2 == 0 ? kBoxColour : kLinkColour2;
           items.push_back(link);
           DrawItem joint;
           joint.shape = Shape::cylinder;
           joint.model = glm::translate(glm::mat4(1.0f), to_glm(pose.joints[k])) *
+                        rotation_from_basis(b.plane_x, b.plane_y, b.axis) *
                         glm::scale(glm::mat4(1.0f), glm::vec3(0.95f * w, 0.95f * w, 0.85f * w));
           joint.material.colour = kJointColour;
           joint.material.specular = 0.5f;

@@ -31,6 +31,8 @@ struct BodyVisual {
   core::Vec3 size{0.1, 0.1, 0.1};       // box, block: full side lengths
   core::Vec3 up{0.0, 0.0, 1.0};         // block: normal of the surface it rests on
   core::Vec3 base = core::Vec3::Zero();  // arm
+  // arm: its plane of motion, e1 and e2 (theta_0 from e1 towards e2), and the joint axis
+  core::Vec3 plane_x{1.0, 0.0, 0.0}, plane_y{0.0, 1.0, 0.0}, axis{0.0, 0.0, 1.0};
   std::vector<double> lengths, widths;  // arm links
 };
 

@@ -12,16 +12,14 @@
 #include "components/impedance/dahl.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
 #include "components/impedance/kikuuwe_friction.hpp"
+#include "components/impedance/line_spring_damper.hpp"
 #include "components/impedance/lugre.hpp"
 #include "components/impedance/penalty_joint.hpp"
 #include "components/impedance/spring_damper.hpp"
-#include "components/impedance/torque_source.hpp"
 #include "components/maps/contact_point_map.hpp"
 #include "components/maps/frame_pair_map.hpp"
 #include "components/maps/joint_map.hpp"
 #include "components/maps/point_map.hpp"
-#include "scene/axis_torque_map.hpp"
-#include "scene/expression.hpp"
 
 namespace stiction::scene {
 
@@ -30,9 +28,9 @@ using core::Vec3;
 namespace {
 
 const std::vector<std::string> kBodyTypes{"point_mass", "rigid_body", "planar_arm"};
-const std::vector<std::string> kImpedanceTypes{"kikuuwe_contact", "kikuuwe_friction", "lugre",
-                                               "dahl",            "spring_damper",    "penalty_joint",
-                                               "torque_source"};
+const std::vector<std::string> kImpedanceTypes{
+    "kikuuwe_contact", "kikuuwe_friction", "lugre",         "dahl",
+    "spring_damper",   "penalty_joint",    "torque_source", "force_source"};
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -68,19 +66,6 @@ auto construct(TableReader& table, Make make) {
   } catch (const std::invalid_argument& e) {
     throw InputError::at(table.table().source(), table.path() + ": " + e.what());
   }
-}
-
-components::TorqueSource::Profile profile(TableReader& table, std::string_view key) {
-  const toml::node* node = table.node(key);
-  if (node == nullptr) table.fail(key, "missing (a number or an expression of t is required)");
-  if (node->is_number()) {
-    const double value = finite_number(*node, table.path() + "." + std::string(key));
-    return [value](double) { return value; };
-  }
-  if (!node->is_string()) table.fail(key, "expected a number or an expression of t (a string)");
-  auto expression = std::make_shared<Expression>(node->as_string()->get(), node->source(),
-                                                 table.path() + "." + std::string(key));
-  return [expression](double t) { return expression->evaluate(t); };
 }
 
 }  // namespace
@@ -215,10 +200,10 @@ void ComponentBuilder::add_body(TableReader& table) {
       (std::string_view(key) == "angles" ? p.angles : p.rates) =
           Eigen::Map<const core::Vec>(v.data(), static_cast<Eigen::Index>(n));
     }
-    // The arm moves in a horizontal plane: gravity must not have a component in it.
-    if (std::hypot(gravity_.x(), gravity_.y()) > 0.0) {
-      table.fail("type", "a planar_arm moves in the x-y plane: gravity must be along z");
-    }
+    // The joint axis: vertical by default (a horizontal arm, on which gravity does no work);
+    // any other direction tilts the plane of motion, and gravity's part in it drives the arm.
+    p.axis = unit(table, "axis", p.axis);
+    p.gravity = gravity_;
     admittance = construct(table, [&] { return std::make_unique<components::PlanarArm>(name, p); });
   }
   table.finish();
@@ -331,7 +316,21 @@ void ComponentBuilder::add_impedance(TableReader& table) {
       }
       p.rest = Eigen::Map<const core::Vec>(v.data(), static_cast<Eigen::Index>(v.size()));
     }
-    impedance = construct(table, [&] { return std::make_unique<components::SpringDamper>(name, p); });
+    if (table.has("length")) {
+      // A spring along the line between the two points, with a free length (Drake's
+      // LinearSpringDamper): point wiring only, and `rest` has no meaning then.
+      if (p.dimension != 3)
+        table.fail("length", "a free length needs point wiring (a joint spring has `rest`)");
+      if (table.has("rest"))
+        table.fail("length", "give either `length` (along the line) or `rest`, not both");
+      components::LineSpringDamperParams line{p.stiffness, p.damping,
+                                              table.non_negative("length", 0.0)};
+      impedance = construct(
+          table, [&] { return std::make_unique<components::LineSpringDamper>(name, line); });
+    } else {
+      impedance =
+          construct(table, [&] { return std::make_unique<components::SpringDamper>(name, p); });
+    }
   } else if (type == "penalty_joint") {
     components::PenaltyJointParams p;
     const core::Body* child = pose_body(table, "body");
@@ -362,22 +361,8 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     p.initial_e = table.number("initial_e", p.initial_e);
     impedance = construct(table, [&] { return std::make_unique<components::PenaltyJoint>(name, p); });
     map = std::make_unique<components::FramePairMap>(parent, parent_point, *child, point);
-  } else {  // torque_source
-    map = joint_map();
-    if (!map) {
-      const core::Body* child = pose_body(table, "body");
-      const core::Body* parent = table.has("parent") ? pose_body(table, "parent") : nullptr;
-      if (!child->can_rotate() || (parent != nullptr && !parent->can_rotate())) {
-        table.fail("body", "a torque needs bodies that rotate (rigid_body) or a planar_arm joint");
-      }
-      if (parent == child) table.fail("parent", "must differ from `body`");
-      const Vec3 axis = unit(table, "axis", Vec3::UnitZ());
-      map = std::make_unique<AxisTorqueMap>(*child, parent, axis);
-    }
-    std::vector<components::TorqueSource::Profile> profiles{profile(table, "torque")};
-    impedance = construct(table, [&] {
-      return std::make_unique<components::TorqueSource>(name, std::move(profiles));
-    });
+  } else {  // torque_source, force_source (sources.cpp)
+    add_source(table, type, type == "torque_source" ? joint_map() : nullptr, impedance, map);
   }
   // Elements with a slip speed (contacts, joint friction) get stick/slip events.
   if (impedance->has_slip()) stick_thresholds_[name] = table.positive("stick_threshold", 1e-3);

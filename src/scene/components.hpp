@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,14 @@ class ComponentBuilder {
   void check_name(TableReader& table);
   const BodyInfo& body(TableReader& table, std::string_view key);
   const core::Body* pose_body(TableReader& table, std::string_view key);
+  // The CSV column names of every body's signals: what expressions may use.
+  std::vector<std::string> observable_signals() const;
+  // torque_source and force_source (sources.cpp).
+  // `joint`: the joint wiring when `body` is an arm (torque_source), else nullptr.
+  void add_source(TableReader& table, const std::string& type,
+                  std::unique_ptr<core::CoordinateMap> joint,
+                  std::unique_ptr<core::Impedance>& impedance,
+                  std::unique_ptr<core::CoordinateMap>& map);
 
   core::Network& network_;
   core::Vec3 gravity_;

@@ -39,8 +39,7 @@ auto construct_contact(TableReader& table, Make make) {
 std::function<double(double)> time_profile(TableReader& table, std::string_view key) {
   const toml::node* node = table.node(key);
   if (node->is_number()) {
-    const double value = node->value<double>().value();
-    if (!std::isfinite(value)) table.fail(key, "expected a finite number");
+    const double value = finite_number(*node, table.path() + "." + std::string(key));
     return [value](double) { return value; };
   }
   if (!node->is_string()) table.fail(key, "expected a number or an expression of t (a string)");
@@ -57,12 +56,7 @@ std::array<double, 2> bound_pair(TableReader& table, std::string_view key, doubl
   if (a == nullptr || a->size() != 2) table.fail(key, "expected 2 numbers [u, v] (inf allowed)");
   std::array<double, 2> out{};
   for (std::size_t i = 0; i < 2; ++i) {
-    const toml::node& e = (*a)[i];
-    if (!e.is_number() || std::isnan(e.value<double>().value())) {
-      throw InputError::at(
-          e.source(), table.path() + "." + std::string(key) + ": expected a number (inf allowed)");
-    }
-    out[i] = e.value<double>().value();
+    out[i] = number_or_infinity((*a)[i], table.path() + "." + std::string(key));
   }
   return out;
 }
@@ -129,8 +123,8 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
       bool ok = xyz != nullptr && xyz->size() == 3;
       Vec3 v = Vec3::Zero();
       for (std::size_t i = 0; ok && i < 3; ++i) {
-        ok = (*xyz)[i].is_number() && std::isfinite((*xyz)[i].value<double>().value());
-        if (ok) v[static_cast<int>(i)] = (*xyz)[i].value<double>().value();
+        ok = (*xyz)[i].is_number();
+        if (ok) v[static_cast<int>(i)] = finite_number((*xyz)[i], table.path() + ".points");
       }
       if (!ok)
         throw InputError::at(e.source(),
@@ -160,7 +154,8 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
       const toml::array* e = n.as_array();
       if (e == nullptr || e->size() != 2 || !(*e)[0].is_number() || !(*e)[1].is_number())
         return std::nullopt;
-      const Eigen::Vector2d v((*e)[0].value<double>().value(), (*e)[1].value<double>().value());
+      const std::string what = table.path() + ".initial_e";
+      const Eigen::Vector2d v(finite_number((*e)[0], what), finite_number((*e)[1], what));
       if (!v.allFinite()) return std::nullopt;
       return v;
     };

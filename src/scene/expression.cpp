@@ -1,8 +1,10 @@
 #include "scene/expression.hpp"
 
-#include <cmath>
-
 #include <muParser.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 
 #include "scene/toml_reader.hpp"
 
@@ -10,10 +12,16 @@ namespace stiction::scene {
 
 struct Expression::Impl {
   mu::Parser parser;
-  double t = 0.0;  // bound to the variable "t" by address
+  double t = 0.0;              // bound to the variable "t" by address
+  std::vector<double> values;  // bound to the used signals by address; sized once
 };
 
 namespace {
+
+// Signal names are dotted ("arm.theta.0"): muParser's name characters plus '.'. Not '-':
+// it is the minus operator (a component named with '-' cannot be used in an expression).
+constexpr const char* kNameChars =
+    "0123456789_.abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ";
 
 // The column of the opening quote is where toml++ places a string value; the expression
 // text starts one character later (basic and literal strings alike).
@@ -23,27 +31,83 @@ toml::source_region inside(const toml::source_region& where, int position) {
   return r;
 }
 
+bool looks_like_name(const std::string& token) {
+  return !token.empty() && (std::isalpha(static_cast<unsigned char>(token[0])) || token[0] == '_');
+}
+
+std::string unknown_name_message(const std::string& token,
+                                 const std::vector<std::string>& signals) {
+  std::string message = "unknown name '" + token + "': an expression may use t";
+  if (signals.empty()) return message + " only";
+  // Suggest the signals of the component the name starts with, if any.
+  const std::string component = token.substr(0, token.find('.'));
+  std::string same;
+  int shown = 0;
+  for (const auto& s : signals) {
+    if (s.rfind(component + ".", 0) == 0 && shown < 16) {
+      same += (same.empty() ? "" : ", ") + s;
+      ++shown;
+    }
+  }
+  message += " and the bodies' signals by their CSV column names";
+  if (!same.empty()) return message + " (" + component + " has: " + same + ")";
+  return message + " (e.g. " + signals.front() + ")";
+}
+
 }  // namespace
 
 Expression::Expression(const std::string& text, const toml::source_region& where,
-                       const std::string& what)
+                       const std::string& what, const std::vector<std::string>& signals)
     : text_(text), impl_(std::make_unique<Impl>()) {
+  auto fail = [&](const mu::Parser::exception_type& e) {
+    const int pos = std::max(0, static_cast<int>(e.GetPos()));
+    const std::string token = e.GetToken();
+    std::string detail = e.GetMsg();
+    if (e.GetCode() == mu::ecUNASSIGNABLE_TOKEN && looks_like_name(token)) {
+      detail = unknown_name_message(token, signals);
+    }
+    throw InputError::at(inside(where, pos), what + ": invalid expression \"" + text_ +
+                                                 "\": " + detail + " (column " +
+                                                 std::to_string(pos + 1) + " of the expression)");
+  };
+  // First pass: every signal is a variable, to learn which ones the expression uses (and
+  // to report syntax errors and unknown names with their column).
   try {
+    mu::Parser probe;
+    probe.DefineNameChars(kNameChars);
+    double dummy = 0.0;
+    probe.DefineVar("t", &dummy);
+    for (const auto& s : signals) {
+      // A name muParser cannot spell (a component named with '-') cannot be used.
+      if (s.find_first_not_of(kNameChars) == std::string::npos) probe.DefineVar(s, &dummy);
+    }
+    probe.SetExpr(text_);
+    probe.Eval();
+    for (const auto& [name, address] : probe.GetUsedVar()) {
+      if (name != "t") used_.push_back(name);
+    }
+  } catch (const mu::Parser::exception_type& e) {
+    fail(e);
+  }
+  // The parser that runs: t and the used signals only, bound to storage sized once.
+  std::sort(used_.begin(), used_.end());
+  impl_->values.assign(used_.size(), 0.0);
+  try {
+    impl_->parser.DefineNameChars(kNameChars);
     impl_->parser.DefineVar("t", &impl_->t);
+    for (std::size_t i = 0; i < used_.size(); ++i)
+      impl_->parser.DefineVar(used_[i], &impl_->values[i]);
     impl_->parser.SetExpr(text_);
-    // Eval compiles to bytecode (and reports most syntax errors); later calls reuse it.
+    // Eval compiles to bytecode; later calls reuse it.
     impl_->t = 0.0;
     impl_->parser.Eval();
   } catch (const mu::Parser::exception_type& e) {
-    const int pos = std::max(0, static_cast<int>(e.GetPos()));
-    std::string message = what + ": invalid expression \"" + text_ + "\": " + e.GetMsg() +
-                          " (column " + std::to_string(pos + 1) + " of the expression)";
-    throw InputError::at(inside(where, pos), message);
+    fail(e);
   }
 }
 
-Expression::Expression(const std::string& text)
-    : Expression(text, toml::source_region{}, "expression") {}
+Expression::Expression(const std::string& text, const std::vector<std::string>& signals)
+    : Expression(text, toml::source_region{}, "expression", signals) {}
 
 Expression::~Expression() = default;
 Expression::Expression(Expression&&) noexcept = default;
@@ -51,6 +115,12 @@ Expression& Expression::operator=(Expression&&) noexcept = default;
 
 double Expression::evaluate(double t) const {
   impl_->t = t;
+  return impl_->parser.Eval();
+}
+
+double Expression::evaluate(double t, const double* values) const {
+  impl_->t = t;
+  std::copy(values, values + impl_->values.size(), impl_->values.begin());
   return impl_->parser.Eval();
 }
 

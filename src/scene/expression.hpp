@@ -1,13 +1,14 @@
-// An input profile written as an expression of time t (muParser syntax, e.g.
-// "t < 4 ? min(0.52, 0.3*t) : 0.336 + 0.144*sin(100*t)"). It is compiled once at load
-// time; evaluate() then runs muParser's bytecode, which does not allocate, so a profile can
-// be called inside a simulation step.
+// An input profile written as an expression (muParser syntax) of time t and, optionally, of
+// named signals of the scene ("-20*(arm.theta.0 - 1) - 2*arm.omega.0"). It is compiled once
+// at load time; evaluate() then runs muParser's bytecode, which does not allocate, so a
+// profile can be called inside every stage of a simulation step.
 #pragma once
+
+#include <toml++/toml.h>
 
 #include <memory>
 #include <string>
-
-#include <toml++/toml.h>
+#include <vector>
 
 namespace stiction::scene {
 
@@ -15,22 +16,30 @@ class Expression {
  public:
   // Compiles `text`. Errors are InputError at `where` (the TOML string value holding the
   // expression), the column moved to the offending character inside the expression.
-  // `what` names the key in messages ("impedances.motor0.torque").
-  Expression(const std::string& text, const toml::source_region& where, const std::string& what);
+  // `what` names the key in messages ("impedances.motor0.torque"). `signals` are the names
+  // (CSV column names, e.g. "arm.theta.0") the expression may use besides t; a name that is
+  // neither t, a constant, a function nor one of them is an error at its column.
+  Expression(const std::string& text, const toml::source_region& where, const std::string& what,
+             const std::vector<std::string>& signals = {});
   // Compiles without a source position (tests, command-line values): errors name column
   // positions inside the expression only.
-  explicit Expression(const std::string& text);
+  explicit Expression(const std::string& text, const std::vector<std::string>& signals = {});
   ~Expression();
   Expression(Expression&&) noexcept;
   Expression& operator=(Expression&&) noexcept;
 
   const std::string& text() const { return text_; }
+  // The signals the expression uses, in the order evaluate() takes their values.
+  const std::vector<std::string>& used_signals() const { return used_; }
   double evaluate(double t) const;
+  // values[i] is the value of used_signals()[i].
+  double evaluate(double t, const double* values) const;
 
  private:
   struct Impl;
   std::string text_;
-  std::unique_ptr<Impl> impl_;  // the parser keeps the address of t: keep it stable on moves
+  std::vector<std::string> used_;
+  std::unique_ptr<Impl> impl_;  // the parser keeps the addresses of its variables: keep them stable
 };
 
 }  // namespace stiction::scene

@@ -30,6 +30,8 @@ class InputError : public std::runtime_error {
 // conversion). `what` names the key in the message. InputError at the node otherwise, also
 // for NaN and infinities.
 double finite_number(const toml::node& node, const std::string& what);
+// The same, but infinities (TOML `inf`, `-inf`) are allowed: NaN is not.
+double number_or_infinity(const toml::node& node, const std::string& what);
 
 class TableReader {
  public:

@@ -123,9 +123,10 @@ TEST_CASE("loader: schema errors name the key and its position") {
   CHECK_THROWS_WITH(from_text("[bodies.b]\ntype = \"point_mass\"\nmass = 1\n"
                               "[impedances.m]\ntype = \"torque_source\"\nbody = \"b\"\ntorque = 1\n"),
                     Contains("impedances.m.body: a torque needs bodies that rotate"));
-  CHECK_THROWS_WITH(from_text("gravity = [0, 1, -9.8]\n[bodies.arm]\ntype = \"planar_arm\"\n"
-                              "links = [{length = 0.2, mass = 0.2}]\n"),
-                    Contains("gravity must be along z"));
+  // An arm's joint axis: a zero vector is an error at the value.
+  CHECK_THROWS_WITH(from_text("[bodies.arm]\ntype = \"planar_arm\"\n"
+                              "links = [{length = 0.2, mass = 0.2}]\naxis = [0, 0, 0]\n"),
+                    StartsWith("x.toml:4:8: error: bodies.arm.axis: must be a non-zero vector"));
   CHECK_THROWS_WITH(from_text("[bodies.arm]\ntype = \"planar_arm\"\nlinks = [{length = 0.2, mass = 0.2}]\n"
                               "[impedances.f]\ntype = \"kikuuwe_friction\"\nbody = \"arm\"\njoint = 1\n"),
                     Contains("impedances.f.joint: must be in 0..0"));

@@ -14,8 +14,11 @@
 // where dJ_v,i/dt omega is the acceleration of C_i when every joint acceleration is zero:
 // the links then turn at constant rates, so only centripetal terms remain,
 //   a_i = -sum_{j<i} l_j Phi_j^2 u(phi_j) - com_i Phi_i^2 u(phi_i).
-// The rotational part contributes nothing to c because J_w is constant. This is O(n^2)
-// and allocation-free; the 2-link case reduces to the textbook closed form (tested).
+// The rotational part contributes nothing to c because J_w is constant. Gravity g2 (its
+// component in the plane) gives the generalized force G_k = sum_{i>=k} m_i J_v,i[:, k] . g2,
+// taken into c as -G (c is the bias force, as MuJoCo's qfrc_bias). Plane coordinates start
+// at the base, so the base point itself never enters. This is O(n^2) and allocation-free;
+// the 2-link case reduces to the textbook closed form (tested).
 #include "components/admittance/planar_arm.hpp"
 
 #include <cmath>
@@ -34,9 +37,23 @@ ArmLink box_link(double length, double width, double mass) {
   return link;
 }
 
+void arm_plane(const core::Vec3& axis, core::Vec3& e1, core::Vec3& e2) {
+  core::Vec3 x = core::Vec3::UnitX() - axis.x() * axis;
+  if (x.norm() < 1e-6) x = core::Vec3::UnitY() - axis.y() * axis;
+  e1 = x.normalized();
+  e2 = axis.cross(e1);
+}
+
 PlanarArm::PlanarArm(std::string name, const PlanarArmParams& params)
     : core::JointSpace(std::move(name)), params_(params) {
   const int n = joint_count();
+  if (!(params_.axis.norm() > 1e-12) || !params_.gravity.allFinite()) {
+    throw std::invalid_argument("planar_arm '" + this->name() +
+                                "': the axis must be non-zero and gravity finite");
+  }
+  params_.axis.normalize();
+  arm_plane(params_.axis, e1_, e2_);
+  g_plane_ = Eigen::Vector2d(params_.gravity.dot(e1_), params_.gravity.dot(e2_));
   if (n < 1) throw std::invalid_argument("planar_arm '" + this->name() + "': no links");
   for (int i = 0; i < n; ++i) {
     const ArmLink& l = params_.links[i];
@@ -81,7 +98,7 @@ void PlanarArm::dynamics(core::ConstVecRef theta, core::ConstVecRef omega,
                          Eigen::Ref<Eigen::MatrixXd> H, core::VecRef c) const {
   const int n = joint_count();
   // Forward kinematics and centripetal accelerations, base to tip.
-  Eigen::Vector2d p(params_.base.x(), params_.base.y());
+  Eigen::Vector2d p = Eigen::Vector2d::Zero();        // plane coordinates from the base
   Eigen::Vector2d a_joint = Eigen::Vector2d::Zero();  // acceleration of P_i (zero joint accel.)
   double phi = 0.0;
   double rate = 0.0;
@@ -111,7 +128,7 @@ void PlanarArm::dynamics(core::ConstVecRef theta, core::ConstVecRef omega,
     for (int i = k; i < n; ++i) {
       const Eigen::Vector2d r = coms_.col(i) - joints_.col(k);
       const Eigen::Vector2d jv(-r.y(), r.x());  // z x r
-      ck += params_.links[i].mass * jv.dot(accel_.col(i));
+      ck += params_.links[i].mass * jv.dot(accel_.col(i) - g_plane_);
     }
     c[k] = ck;
   }
@@ -141,7 +158,12 @@ double PlanarArm::energy(core::ConstVecRef x) const {
   const int n = joint_count();
   dynamics(x.head(n), x.tail(n), H_, c_);
   rhs_.noalias() = H_ * x.tail(n);
-  return 0.5 * x.tail(n).dot(rhs_);
+  double potential = 0.0;  // -sum m_i g . C_i, with C_i = base + x e1 + y e2
+  for (int i = 0; i < n; ++i) {
+    potential -=
+        params_.links[i].mass * (params_.gravity.dot(params_.base) + g_plane_.dot(coms_.col(i)));
+  }
+  return 0.5 * x.tail(n).dot(rhs_) + potential;
 }
 
 }  // namespace stiction::components

@@ -1,9 +1,14 @@
 // Planar serial arm of n revolute joints (paper eq. 8): state [theta, omega] (2n), input
-// joint torques tau (n). Joint axes are parallel to the world z axis through `base`;
-// joint i sits at the base end of link i and theta_i is measured relative to link i-1
-// (theta_0 from the world x axis). H(theta) omega_dot + c(theta, omega) = tau.
-// Signals theta, omega (axes 0..n-1). energy() is the kinetic energy 0.5 omega^T H omega:
-// the arm moves in a horizontal plane, so gravity does no work on it.
+// joint torques tau (n). Joint axes are parallel to `axis` (default the world z axis)
+// through `base`; the arm moves in the plane through `base` normal to it. Joint i sits at
+// the base end of link i and theta_i is measured relative to link i-1, positive about
+// `axis` (right hand); theta_0 from the plane's first direction e1 (plane_axes()).
+// H(theta) omega_dot + c(theta, omega) = tau, where c holds the Coriolis and centrifugal
+// terms minus the generalized gravity force (the component of gravity in the plane; the
+// part along the axis is carried by the joints' bearings).
+// Signals theta, omega (axes 0..n-1). energy() is the kinetic energy 0.5 omega^T H omega
+// plus the links' potential energy -sum m_i g . C_i (zero work from gravity when the plane
+// is horizontal).
 // Not thread-safe: derivative() and dynamics() work in preallocated mutable scratch so that
 // no step allocates; one arm is evaluated by one thread at a time.
 #pragma once
@@ -30,7 +35,13 @@ struct PlanarArmParams {
   core::Vec3 base = core::Vec3::Zero();
   core::Vec angles;  // initial theta (n), zero if empty
   core::Vec rates;   // initial omega (n), zero if empty
+  core::Vec3 axis = core::Vec3::UnitZ();    // joint axis direction (world), normalized on use
+  core::Vec3 gravity = core::Vec3::Zero();  // world gravity acceleration
 };
+
+// The plane of an arm with joint axis `axis` (unit): e1 is world x projected onto the plane
+// (world y when the axis is along x), e2 = axis x e1, so (e1, e2, axis) is right-handed.
+void arm_plane(const core::Vec3& axis, core::Vec3& e1, core::Vec3& e2);
 
 class PlanarArm final : public core::JointSpace {
  public:
@@ -58,9 +69,15 @@ class PlanarArm final : public core::JointSpace {
   void dynamics(core::ConstVecRef theta, core::ConstVecRef omega, Eigen::Ref<Eigen::MatrixXd> H,
                 core::VecRef c) const;
   const PlanarArmParams& params() const { return params_; }
+  // World point of plane coordinates (x, y): base + x e1 + y e2.
+  core::Vec3 world_point(double x, double y) const { return params_.base + x * e1_ + y * e2_; }
+  const core::Vec3& plane_x() const { return e1_; }
+  const core::Vec3& plane_y() const { return e2_; }
 
  private:
   PlanarArmParams params_;
+  core::Vec3 e1_, e2_;       // the plane (see arm_plane)
+  Eigen::Vector2d g_plane_;  // gravity in plane coordinates
   // Scratch for derivative()/energy(), sized once in the constructor.
   mutable Eigen::MatrixXd H_;
   mutable Eigen::VectorXd c_;

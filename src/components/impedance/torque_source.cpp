@@ -1,22 +1,46 @@
 #include "components/impedance/torque_source.hpp"
 
+#include <stdexcept>
+
 namespace stiction::components {
 
-TorqueSource::TorqueSource(std::string name, std::vector<Profile> profiles,
-                           std::string signal_name)
+namespace {
+
+std::vector<TorqueSource::StateProfile> of_time(std::vector<TorqueSource::Profile> profiles) {
+  std::vector<TorqueSource::StateProfile> out;
+  for (auto& p : profiles) {
+    out.emplace_back([p = std::move(p)](double t, const double* /*observed*/) { return p(t); });
+  }
+  return out;
+}
+
+}  // namespace
+
+TorqueSource::TorqueSource(std::string name, std::vector<Profile> profiles, std::string signal_name)
+    : TorqueSource(std::move(name), of_time(std::move(profiles)), 0, std::move(signal_name),
+                   "torque_source") {}
+
+TorqueSource::TorqueSource(std::string name, std::vector<StateProfile> profiles, int observed,
+                           std::string signal_name, std::string type)
     : Impedance(std::move(name)),
       profiles_(std::move(profiles)),
-      signal_name_(std::move(signal_name)) {}
+      observed_(observed),
+      signal_name_(std::move(signal_name)),
+      type_(std::move(type)) {
+  if (profiles_.empty() || observed_ < 0) {
+    throw std::invalid_argument("source '" + this->name() + "': needs at least one entry");
+  }
+}
 
-void TorqueSource::evaluate(double t, core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,
+void TorqueSource::evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef /*y*/,
                             double /*tau*/, core::VecRef u, core::VecRef /*y_dot*/) const {
-  for (std::size_t i = 0; i < profiles_.size(); ++i) u[i] = -profiles_[i](t);
+  const double* observed = x_hat.data() + 2 * size();
+  for (int i = 0; i < size(); ++i) u[i] = -profiles_[i](t, observed);
 }
 
 std::vector<core::SignalInfo> TorqueSource::signals() const {
-  if (profiles_.size() == 1) return {{signal_name_, {}}};
-  const int n = static_cast<int>(profiles_.size());
-  return {{signal_name_, n == 3 ? core::xyz_axes() : core::index_axes(n)}};
+  if (size() == 1) return {{signal_name_, {}}};
+  return {{signal_name_, size() == 3 ? core::xyz_axes() : core::index_axes(size())}};
 }
 
 void TorqueSource::write_signals(core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,

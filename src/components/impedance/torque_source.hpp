@@ -1,10 +1,17 @@
-// A prescribed generalized force as a function of time (the paper's motor torques,
-// eqs. 28c-28d): an impedance with no state whose output ignores the motion. The value is
-// given by a callable so that core stays free of the expression parser.
-// Output u = -value, so that the driven side receives +value. Signal: tau (the value).
+// A prescribed generalized force (the paper's motor torques, eqs. 28c-28d; a force on a body
+// point): an impedance with no state whose output ignores the motion it is wired to. Each
+// entry is given by a callable, so that core stays free of the expression parser.
+//
+// Input x_hat = [position (n), velocity (n), observed (m)]: the motion of what it drives
+// (its map's Psi) followed by m observed values (signals of the scene read from the stage
+// state by an ObservingMap), which the callables receive: a feedback law (PD controller)
+// is a source of this kind, evaluated at every integrator stage from the stage state.
+// Output u = -value, so that the driven side receives +value. Signal: `tau` or `f` (the
+// value). It is an energy source: power_in() is what it feeds to the driven side.
 #pragma once
 
 #include <functional>
+#include <string>
 
 #include "core/impedance.hpp"
 
@@ -13,25 +20,34 @@ namespace stiction::components {
 class TorqueSource final : public core::Impedance {
  public:
   using Profile = std::function<double(double t)>;
-  // dimension: size of the generalized force; one profile per entry.
+  // Value at time t from the m observed values.
+  using StateProfile = std::function<double(double t, const double* observed)>;
+  // One profile per entry of the generalized force; no observed values.
   TorqueSource(std::string name, std::vector<Profile> profiles, std::string signal_name = "tau");
-  std::string_view type() const override { return "torque_source"; }
-  int input_size() const override { return 2 * static_cast<int>(profiles_.size()); }
-  int output_size() const override { return static_cast<int>(profiles_.size()); }
+  // `observed`: m, the number of observed values after the motion in x_hat. `type`:
+  // "torque_source" or "force_source" (for messages and `stiction check`).
+  TorqueSource(std::string name, std::vector<StateProfile> profiles, int observed,
+               std::string signal_name, std::string type);
+  std::string_view type() const override { return type_; }
+  int input_size() const override { return 2 * size() + observed_; }
+  int output_size() const override { return size(); }
   void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
                 core::VecRef y_dot) const override;
   std::vector<core::SignalInfo> signals() const override;
   bool is_source() const override { return true; }
-  // The driven side receives -u while moving at the velocity half of x_hat.
+  // The driven side receives -u while moving at the velocity part of x_hat.
   double power_in(core::ConstVecRef x_hat, core::ConstVecRef u) const override {
-    return -u.dot(x_hat.tail(u.size()));
+    return -u.dot(x_hat.segment(size(), size()));
   }
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
 
  private:
-  std::vector<Profile> profiles_;
+  int size() const { return static_cast<int>(profiles_.size()); }
+  std::vector<StateProfile> profiles_;
+  int observed_ = 0;
   std::string signal_name_;
+  std::string type_;
 };
 
 }  // namespace stiction::components
