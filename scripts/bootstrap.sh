@@ -10,6 +10,7 @@ packages=(
   catch2 libbenchmark-dev
   libosmesa6-dev libglm-dev libpng-dev libfreetype-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
+  clang-14 libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

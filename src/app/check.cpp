@@ -9,6 +9,7 @@
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
 #include "scene/scene.hpp"
+#include "sys/interrupt.hpp"
 
 namespace stiction::app {
 namespace {
@@ -113,6 +114,7 @@ int check_command(const std::string& scene_name, const std::string& graph_path) 
                 pilot.options.duration, run.duration);
   }
   const auto states = core::sample_states(network, pilot.options, 10);
+  if (sys::interrupted()) throw sys::Interrupted{};
   for (const std::string name : {"euler", "symplectic_euler", "heun", "rk4"}) {
     const core::StepLimit limit = core::predict_step_limit(network, name, states);
     if (limit.unbounded) {

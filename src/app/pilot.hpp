@@ -1,8 +1,9 @@
 // The pilot runs that `check` and the step suggestion after an instability linearize along
-// (core::sample_states walks the run twice). They are bounded in wall time whatever the
-// scene: a duration of 3e6 s or a step of 1e-300 must not make `check` run for ever. The
-// cost of one step is measured on a short run first, and the pilot covers only as much of
-// the scene's duration as fits the budget.
+// (core::sample_states walks the run twice). They are bounded whatever the scene: a duration
+// of 3e6 s or a step of 1e-300 must not make `check` run for ever. The bound is a number of
+// steps inversely proportional to the number of components (8e5 component-steps, one to three
+// seconds here), so that the advice is the same on every machine; the pilot covers only as
+// much of the scene's duration as fits.
 #pragma once
 
 #include "core/network.hpp"
@@ -15,7 +16,6 @@ struct Pilot {
   bool shortened = false;
 };
 
-// `budget_seconds` for both passes of sample_states together (roughly).
-Pilot bounded_pilot(core::Network& network, const core::RunOptions& run, double budget_seconds = 2.0);
+Pilot bounded_pilot(core::Network& network, const core::RunOptions& run);
 
 }  // namespace stiction::app
