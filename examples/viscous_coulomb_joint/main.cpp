@@ -4,8 +4,9 @@
 // its CSV writer. Checked against the closed forms:
 //   driven:   J omega' = T0 - F - b omega  ->  omega(2 s) = w_inf (1 - exp(-2 b / J)),
 //             w_inf = (T0 - F) / b;
-//   released: J omega' = -F - b omega      ->  stops at 2 s + (J / b) ln(1 + b omega(2) / F),
-//             and then stays put (the Coulomb part holds it without drift).
+//   released: J omega' = -F - b omega      ->  omega = (F/b + omega(2)) exp(-(t - 2) b / J) - F/b,
+//             reaching 0 at 2 s + (J / b) ln(1 + b omega(2) / F), and then staying put (the
+//             Coulomb part holds it without drift).
 // Usage: viscous_coulomb_joint [OUT.csv]   (exit 0 when the run matches the closed forms)
 #include <cmath>
 #include <cstdio>
@@ -55,12 +56,19 @@ int main(int argc, char** argv) {
   const char* out = argc > 1 ? argv[1] : "viscous_coulomb_joint.csv";
   io::write_csv(result.trajectory, out);
 
-  // Closed forms (J about the joint: the box link's inertia about its end).
+  // Closed forms (J about the joint: the box link's inertia about its end). The torque step
+  // at t = 2 s falls on a step boundary that RK4's last stage already sees, so the driven
+  // phase is compared one row before it.
   const auto& link = arm_ref.params().links[0];
   const double J = link.inertia + link.mass * link.com * link.com;
-  const double b = joint.viscous, F = joint.coulomb;
-  const double w_release = (T0 - F) / b * (1.0 - std::exp(-b * released_at / J));
-  const double t_stop = released_at + J / b * std::log(1.0 + b * w_release / F);
+  const double b = joint.viscous, F = joint.coulomb, time_constant = J / b;
+  const double t_before = released_at - 1.0 / options.output_rate;
+  const double w_before = (T0 - F) / b * (1.0 - std::exp(-t_before / time_constant));
+  const double w_release = (T0 - F) / b * (1.0 - std::exp(-released_at / time_constant));
+  // Released, omega = (F/b + w_release) exp(-(t - 2) / (J/b)) - F/b until it reaches 0.
+  const auto time_at = [&](double w) {
+    return released_at + time_constant * std::log((F / b + w_release) / (F / b + w));
+  };
   const core::Trajectory& tr = result.trajectory;
   const auto column = [&](const char* name) {
     for (int c = 0; c < tr.column_count(); ++c) {
@@ -73,21 +81,29 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "no arm.omega.0 / arm.theta.0 column\n");
     return 1;
   }
-  const int release_row = static_cast<int>(std::lround(released_at * options.output_rate));
-  double t_stopped = -1.0;
-  for (int r = release_row; r < tr.row_count(); ++r) {
-    if (std::abs(tr.at(r, omega)) < 1e-3) {
-      t_stopped = tr.at(r, 0);
+  const int before_row = static_cast<int>(std::lround(t_before * options.output_rate));
+  // When the slide has shed 99% of its speed (the last 1% ends in the friction spring's
+  // brief ringing, which the ideal Coulomb law does not have).
+  double t_slowed = -1.0;
+  for (int r = before_row; r < tr.row_count(); ++r) {
+    if (tr.at(r, omega) < 0.01 * w_release) {
+      // Interpolated between the two rows around the crossing.
+      const double w0 = tr.at(r - 1, omega), w1 = tr.at(r, omega), target = 0.01 * w_release;
+      t_slowed = tr.at(r - 1, 0) + (w0 - target) / (w0 - w1) * (tr.at(r, 0) - tr.at(r - 1, 0));
       break;
     }
   }
   const int last = tr.row_count() - 1;
-  const double drift = std::abs(tr.at(last, theta) - tr.at(last - 500, theta));
-  std::printf("omega at release: %.6f rad/s (closed form %.6f)\n", tr.at(release_row, omega), w_release);
-  std::printf("stops at:         %.4f s (closed form %.4f)\n", t_stopped, t_stop);
-  std::printf("drift over the last 0.5 s: %.3g rad\nwrote %s (%d rows)\n", drift, out, tr.row_count());
-  const bool ok = std::abs(tr.at(release_row, omega) - w_release) < 1e-3 * w_release &&
-                  std::abs(t_stopped - t_stop) < 5e-3 && drift < 1e-9;
+  const int half_second = static_cast<int>(0.5 * options.output_rate);
+  const double drift = std::abs(tr.at(last, theta) - tr.at(last - half_second, theta));
+  std::printf("omega at t = %.3f s: %.9f rad/s (closed form %.9f)\n", t_before, tr.at(before_row, omega), w_before);
+  std::printf("down to 1%% of its speed at %.4f s (closed form %.4f); stops for good at %.4f s\n", t_slowed,
+              time_at(0.01 * w_release), time_at(0.0));
+  std::printf("after the stop: omega %.3g rad/s, drift over the last 0.5 s %.3g rad\nwrote %s (%d rows)\n",
+              tr.at(last, omega), drift, out, tr.row_count());
+  const bool ok = std::abs(tr.at(before_row, omega) - w_before) < 1e-6 * w_before &&
+                  std::abs(t_slowed - time_at(0.01 * w_release)) < 1e-3 && std::abs(tr.at(last, omega)) < 1e-9 &&
+                  drift < 1e-9;
   std::printf("%s\n", ok ? "matches the closed forms" : "DOES NOT match the closed forms");
   return ok ? 0 : 1;
 }
