@@ -11,6 +11,7 @@ packages=(
   libosmesa6-dev libglm-dev libpng-dev libfreetype-dev
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   python3
+  clang-14 libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -17,6 +17,7 @@
 #include "render/render_settings.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
+#include "sys/interrupt.hpp"
 
 namespace stiction::app {
 namespace {
@@ -173,7 +174,7 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
 
   std::printf("\npredicted step limits of the whole network (step map linearized at up to 10 "
               "states of each regime of a pilot run at the scene's settings");
-  if (report.pilot.truncated) {
+  if (report.pilot.shortened) {
     std::printf(" over its first %g s of %g s, the part that fits a 1.5 s time budget",
                 report.pilot.options.duration, run.duration);
   }
@@ -210,7 +211,7 @@ nlohmann::json report_json(const scene::Scene& scene, const CheckReport& report)
     stiff.push_back(e);
   }
   j["stiff_elements"] = stiff;
-  j["pilot"] = {{"duration", report.pilot.options.duration}, {"truncated", report.pilot.truncated}};
+  j["pilot"] = {{"duration", report.pilot.options.duration}, {"truncated", report.pilot.shortened}};
   nlohmann::json limits = nlohmann::json::object();
   for (const IntegratorLimit& l : report.limits) {
     nlohmann::json e;
@@ -269,6 +270,7 @@ int check_scene(const std::string& scene_name, const std::string& graph_path, bo
   // the states the scene passes through: linearize the actual step map along a run.
   report.pilot = bounded_pilot(network, run);
   const auto states = core::sample_states(network, report.pilot.options, 10);
+  if (sys::interrupted()) throw sys::Interrupted{};
   for (const std::string name : {"euler", "symplectic_euler", "heun", "rk4"}) {
     report.limits.push_back({name, core::predict_step_limit(network, name, states)});
   }

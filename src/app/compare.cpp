@@ -13,6 +13,7 @@
 #include "io/atomic_file.hpp"
 #include "plot/plot_spec.hpp"
 #include "scene/scene.hpp"
+#include "sys/interrupt.hpp"
 
 namespace stiction::app {
 namespace fs = std::filesystem;
@@ -37,8 +38,10 @@ int compare_command(const CompareArguments& args) {
   std::vector<core::RunResult> results;
   results.reserve(scenes.size());
   for (scene::Scene& s : scenes) {
+    s.run.stop = &sys::interrupt_flag();
     results.push_back(simulate_scene(s, progress));
     const core::RunResult& r = results.back();
+    if (r.interrupted) throw sys::Interrupted{};  // a comparison of partial runs would mislead
     if (r.instability) {
       print_instability(s.name, s.run, *r.instability, suggested_dt(s));
       return kExitUnstable;

@@ -169,7 +169,13 @@ int main(int argc, char** argv) {
   stiction::sys::install_interrupt_handlers();
   try {
     const int code = finish_stdout(dispatch(argc, argv));
+    // A command that finished before it polled the flag (check, scenes) still reports the
+    // signal: the user asked it to stop, and it must not look like a success.
+    if (stiction::sys::interrupted() && code == stiction::app::kExitOk) return stiction::sys::interrupt_exit_code();
     return code;
+  } catch (const stiction::sys::Interrupted&) {
+    std::fprintf(stderr, "interrupted by %s; nothing written\n", stiction::sys::interrupt_signal_name());
+    return stiction::sys::interrupt_exit_code();
   } catch (const scene::InputError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return app::kExitBadInput;

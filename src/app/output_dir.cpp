@@ -16,8 +16,6 @@ namespace stiction::app {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr const char* kLockName = ".stiction.lock";
-
 // A relative path inside the directory, no "..", no absolute part: what an earlier
 // summary.json may name for removal (the file could have been edited by anyone).
 bool is_inside(const fs::path& relative) {
@@ -60,10 +58,11 @@ OutputDirectory::OutputDirectory(fs::path dir) : dir_(std::move(dir)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec) throw io::IoError(dir_.string() + ": cannot create the output directory: " + ec.message());
-  const fs::path lock = dir_ / kLockName;
-  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666);
+  // The lock is on the directory itself: no lock file to leave behind, and nothing a
+  // planted symlink could redirect.
+  lock_fd_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (lock_fd_ < 0) {
-    throw io::IoError(lock.string() + ": cannot open the lock file: " + std::strerror(errno));
+    throw io::IoError(dir_.string() + ": cannot open the output directory: " + std::strerror(errno));
   }
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
@@ -71,9 +70,9 @@ OutputDirectory::OutputDirectory(fs::path dir) : dir_(std::move(dir)) {
     lock_fd_ = -1;
     if (error == EWOULDBLOCK) {
       throw io::IoError(dir_.string() + ": another stiction run is writing into this directory "
-                        "(it holds " + lock.string() + "); wait for it or choose another --out");
+                        "(it holds its lock); wait for it or choose another --out");
     }
-    throw io::IoError(lock.string() + ": cannot lock: " + std::strerror(error));
+    throw io::IoError(dir_.string() + ": cannot lock the output directory: " + std::strerror(error));
   }
   remove_earlier_outputs();
 }

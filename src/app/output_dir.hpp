@@ -1,5 +1,5 @@
 // A run's output directory as a transaction (DESIGN section 4): the run owns its --out for
-// its lifetime through an advisory lock (flock on OUT/.stiction.lock; a second run into the
+// its lifetime through an advisory lock (flock on the directory itself; a second run into the
 // same directory fails at once with a clear message instead of mixing its files with the
 // first run's), removes what an earlier run wrote there before writing anything, and records
 // every file it writes, for `files` in summary.json.

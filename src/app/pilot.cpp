@@ -3,31 +3,26 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sys/interrupt.hpp"
+
 namespace stiction::app {
 
-double round_down_125(double x) {
-  const double decade = std::pow(10.0, std::floor(std::log10(x)));
-  for (double m : {5.0, 2.0, 1.0}) {
-    if (m * decade <= x * (1.0 + 1e-12)) return m * decade;
+Pilot bounded_pilot(core::Network& network, const core::RunOptions& run) {
+  // A step of the sampling walk costs roughly a few microseconds per component (measured:
+  // ~10 us for both walks of a four-component scene), so this budget is one to three seconds
+  // on this project's machine. Counted in steps, not seconds, so that `check` prints the
+  // same on every machine.
+  constexpr double kComponentSteps = 8e5;
+  constexpr double kMinSteps = 1000;
+  const double components =
+      static_cast<double>(network.admittances().size() + network.impedances().size());
+  const double max_steps = std::max(kMinSteps, kComponentSteps / std::max(1.0, components));
+  Pilot pilot{run, false};
+  pilot.options.stop = &sys::interrupt_flag();  // the sampling walk stops on a signal
+  if (run.duration / run.dt > max_steps) {
+    pilot.options.duration = max_steps * run.dt;
+    pilot.shortened = true;
   }
-  return decade;
-}
-
-Pilot bounded_pilot(core::Network& network, const core::RunOptions& options,
-                    double budget_seconds) {
-  Pilot pilot{options, false};
-  constexpr long kProbeSteps = 2000;
-  core::RunOptions probe = options;
-  probe.duration = std::min(options.duration, kProbeSteps * options.dt);
-  const core::RunResult r = core::simulate(network, probe);
-  if (r.steps <= 0 || r.instability || probe.duration >= options.duration) return pilot;
-  const double per_step = r.wall_seconds / static_cast<double>(r.steps);
-  // sample_states walks the run twice and prices each step's regime: about 3 runs' cost.
-  const double affordable_steps = budget_seconds / (3.0 * std::max(per_step, 1e-9));
-  const double affordable = affordable_steps * options.dt;
-  if (affordable >= options.duration) return pilot;
-  pilot.options.duration = std::max(probe.duration, round_down_125(affordable));
-  pilot.truncated = pilot.options.duration < options.duration;
   return pilot;
 }
 

@@ -1,8 +1,9 @@
-// The pilot run that `check` and the instability hint linearize along (core::sample_states)
-// walks the whole scene twice; on a long or expensive scene that takes minutes. A pilot is
-// therefore cut to a wall-clock budget: a short probe measures the cost of a step and the
-// pilot covers only the first part of the run that fits, rounded down to 1, 2 or 5 times a
-// power of ten seconds so that small timing noise does not change the result.
+// The pilot runs that `check` and the step suggestion after an instability linearize along
+// (core::sample_states walks the run twice). They are bounded whatever the scene: a duration
+// of 3e6 s or a step of 1e-300 must not make `check` run for ever. The bound is a number of
+// steps inversely proportional to the number of components (8e5 component-steps, one to three
+// seconds here), so that the advice is the same on every machine; the pilot covers only as
+// much of the scene's duration as fits.
 #pragma once
 
 #include "core/network.hpp"
@@ -11,15 +12,10 @@
 namespace stiction::app {
 
 struct Pilot {
-  core::RunOptions options;  // the scene's, with the duration cut to the budget
-  bool truncated = false;    // options.duration < the scene's duration
+  core::RunOptions options;  // the run to sample, duration possibly shortened
+  bool shortened = false;
 };
 
-// `budget_seconds` bounds the two passes of core::sample_states together.
-Pilot bounded_pilot(core::Network& network, const core::RunOptions& options,
-                    double budget_seconds = 1.5);
-
-// 1, 2 or 5 times a power of ten, at most `x` (x > 0).
-double round_down_125(double x);
+Pilot bounded_pilot(core::Network& network, const core::RunOptions& run);
 
 }  // namespace stiction::app

@@ -11,6 +11,7 @@
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
 #include "scene/scene.hpp"
+#include "sys/interrupt.hpp"
 
 namespace stiction::app {
 namespace {
@@ -109,7 +110,11 @@ class Study {
   }
 
   core::RunOptions options_for(const std::string& integrator, double dt, double tolerance) const {
+    // Every run of the study starts here: an interrupt stops the current run (stop) and the
+    // study before the next one (main turns sys::Interrupted into exit 130 / 143).
+    if (sys::interrupted()) throw sys::Interrupted{};
     core::RunOptions run = scene_.run;
+    run.stop = &sys::interrupt_flag();
     run.integrator = integrator;
     run.dt = dt;
     run.tolerance = tolerance;

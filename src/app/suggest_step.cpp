@@ -26,7 +26,7 @@ StepSuggestion predicted_candidate(scene::Scene& scene) {
   const core::RunOptions& run = scene.run;
   core::RunOptions pilot_options = run;
   pilot_options.dt = run.dt / 4.0;
-  const Pilot pilot = bounded_pilot(*scene.network, pilot_options, 1.0);
+  const Pilot pilot = bounded_pilot(*scene.network, pilot_options);
   const auto states = core::sample_states(*scene.network, pilot.options, 10);
   const core::StepLimit limit =
       core::predict_step_limit(*scene.network, run.integrator, states, 1e-9, run.dt);

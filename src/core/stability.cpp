@@ -33,6 +33,7 @@ void walk_run(Network& network, const RunOptions& options, Visit visit) {
   const bool sources = network.has_sources();
   double power = sources ? std::abs(network.source_power(0.0, x)) : 0.0;
   for (long k = 0; t < options.duration; ++k) {
+    if (options.stop != nullptr && options.stop->load(std::memory_order_relaxed)) break;
     visit(k, t, x, work);
     const double h = stepper->advance(network, t, options.duration - t, x);
     t += h;

@@ -13,6 +13,7 @@
 #include "core/run_limits.hpp"
 #include "scene/components.hpp"
 #include "scene/overrides.hpp"
+#include "sys/data_dirs.hpp"
 
 namespace stiction::scene {
 namespace fs = std::filesystem;
@@ -89,7 +90,9 @@ core::RunOptions read_simulation(TableReader& root) {
 }  // namespace
 
 std::vector<fs::path> scene_directories() {
-  return {fs::path(STICTION_INSTALL_DATA_DIR) / "scenes", fs::path(STICTION_SOURCE_DATA_DIR) / "scenes"};
+  std::vector<fs::path> dirs;
+  for (const fs::path& dir : sys::data_directories()) dirs.push_back(dir / "scenes");
+  return dirs;
 }
 
 fs::path find_scene(const std::string& name_or_path) {

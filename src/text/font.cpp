@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sys/data_dirs.hpp"
+
 namespace stiction::text {
 namespace {
 
@@ -36,13 +38,13 @@ struct Font::Impl {
 
 std::filesystem::path default_font_path() {
   const std::filesystem::path relative = std::filesystem::path("assets") / "DejaVuSans.ttf";
-  const std::filesystem::path installed =
-      std::filesystem::path(STICTION_INSTALL_DATA_DIR) / relative;
-  const std::filesystem::path source = std::filesystem::path(STICTION_SOURCE_DATA_DIR) / relative;
-  std::error_code ec;
-  if (std::filesystem::is_regular_file(installed, ec)) return installed;
-  if (std::filesystem::is_regular_file(source, ec)) return source;
-  throw FontError("font not found: looked for " + installed.string() + " and " + source.string());
+  std::string looked;
+  for (const std::filesystem::path& dir : sys::data_directories()) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(dir / relative, ec)) return dir / relative;
+    looked += (looked.empty() ? "" : ", ") + (dir / relative).string();
+  }
+  throw FontError("font not found: looked for " + looked);
 }
 
 std::u32string decode_utf8(std::string_view s) {

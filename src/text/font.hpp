@@ -61,9 +61,9 @@ struct Extent {
   double line_descent = 0.0;
 };
 
-// Where the bundled font lives: STICTION_INSTALL_DATA_DIR/assets/DejaVuSans.ttf if that file
-// exists, else STICTION_SOURCE_DATA_DIR/assets/DejaVuSans.ttf. Throws FontError naming both
-// places if neither exists.
+// Where the bundled font lives: assets/DejaVuSans.ttf in the first data directory that has it
+// (sys/data_dirs.hpp: next to an installed binary, wherever its prefix was moved, then the
+// configured prefix, then the source tree). Throws FontError naming every place tried.
 std::filesystem::path default_font_path();
 
 // Decodes UTF-8 into code points; an invalid byte becomes U+FFFD.

@@ -1,0 +1,21 @@
+# Instrumented builds for CI (.ci/run, docs/ci.md):
+# - STICTION_SANITIZE: everything with AddressSanitizer + UndefinedBehaviorSanitizer (g++ or
+#   clang); any UB report aborts. Leaks are checked by LeakSanitizer with
+#   .ci/lsan.supp, which names libOSMesa only.
+# - STICTION_FUZZ: the libFuzzer target fuzz/fuzz_scene, clang only; the libraries it uses
+#   are built with coverage instrumentation and the same sanitizers.
+option(STICTION_SANITIZE "Build with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
+option(STICTION_FUZZ "Build the libFuzzer target fuzz_scene (clang)" OFF)
+
+set(STICTION_SANITIZER_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=undefined
+                             -fno-omit-frame-pointer)
+if(STICTION_SANITIZE OR STICTION_FUZZ)
+  add_compile_options(${STICTION_SANITIZER_FLAGS})
+  add_link_options(-fsanitize=address,undefined)
+endif()
+if(STICTION_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "STICTION_FUZZ needs clang (libFuzzer): CXX=clang++-14")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()

@@ -1,0 +1,237 @@
+// Values that used to crash, hang or lie (issue 14): each is refused up front with exit 2
+// and a message that names the key (and, for scene values, FILE:LINE:COL), before any
+// output is written. Bounds are documented in docs/limits.md.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "child.hpp"
+#include "core/run_limits.hpp"
+#include "generated_scene.hpp"
+
+namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
+using namespace stiction::testing;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("stiction_limits_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+struct Result {
+  int code;
+  std::string err;
+};
+
+Result run(const std::vector<std::string>& args, const fs::path& cwd) {
+  Child child(args, cwd);
+  const int code = child.wait();
+  return {code, child.err() + child.out()};
+}
+
+}  // namespace
+
+TEST_CASE("run options beyond the limits are found in floating point", "[limits]") {
+  stiction::core::RunOptions o;
+  CHECK_FALSE(stiction::core::check_run_limits(o));
+  o.duration = 1e20;  // 1e24 steps: would overflow a long step counter
+  REQUIRE(stiction::core::check_run_limits(o));
+  CHECK(stiction::core::check_run_limits(o)->key == "dt");
+  o = {};
+  o.dt = 1e-300;
+  CHECK(stiction::core::check_run_limits(o)->key == "dt");
+  o = {};
+  o.output_rate = 1e300;
+  CHECK(stiction::core::check_run_limits(o)->key == "output_rate");
+  o = {};
+  o.dt = std::nan("");
+  CHECK(stiction::core::check_run_limits(o)->key == "dt");
+  o = {};
+  o.duration = std::numeric_limits<double>::infinity();
+  CHECK(stiction::core::check_run_limits(o)->key == "duration");
+  // Exactly at the limits is allowed; just past them is not.
+  o = {};
+  o.duration = 1.0;
+  o.dt = 1.0 / stiction::core::RunLimits::kMaxSteps;
+  CHECK_FALSE(stiction::core::check_run_limits(o));
+  o.dt /= 1.01;
+  CHECK(stiction::core::check_run_limits(o));
+  o = {};
+  o.output_rate = stiction::core::RunLimits::kMaxRows - 1.0;
+  CHECK_FALSE(stiction::core::check_run_limits(o));
+  o.output_rate = stiction::core::RunLimits::kMaxRows;
+  CHECK(stiction::core::check_run_limits(o));
+}
+
+TEST_CASE("command-line numbers must be finite and positive", "[limits]") {
+  const fs::path dir = scratch("cli");
+  const fs::path scene = write_scene(dir, {});
+  for (const std::string value : {"nan", "NaN", "inf", "-inf", "0", "-1", "1e400"}) {
+    INFO("--dt " << value);
+    const Result r = run({"run", scene.string(), "--dt", value, "--no-video", "--no-plots", "--out", "o"}, dir);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains("--dt"));
+    CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));
+  }
+  const Result r = run({"run", scene.string(), "--duration", "nan", "--no-video", "--out", "o"}, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("--duration"));
+}
+
+TEST_CASE("step and row counts beyond the limits exit 2 before writing anything", "[limits]") {
+  const fs::path dir = scratch("counts");
+  const fs::path scene = write_scene(dir, {});
+  struct Case {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  const std::vector<Case> cases{
+      {{"--duration", "1e20"}, "steps"},
+      {{"--dt", "1e-300"}, "steps"},
+      {{"--dt", "1e-19"}, "steps"},  // 1e19 steps: past 2^63, the counter used to wrap
+      {{"--set", "simulation.output_rate=1e300"}, "rows"},
+      {{"--set", "simulation.output_rate=1e9"}, "rows"},  // used to ask for 367 GB
+      {{"--set", "simulation.duration=1e300"}, "steps"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args{"run", scene.string(), "--no-video", "--no-plots", "--out", "o"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    INFO(c.args[0] << " " << c.args[1]);
+    const Result r = run(args, dir);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains(c.says));
+    CHECK_THAT(r.err, Contains("error:"));
+    CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));
+  }
+}
+
+TEST_CASE("a scene value past a limit is reported at its FILE:LINE:COL", "[limits]") {
+  const fs::path dir = scratch("scene_limits");
+  SceneSpec spec;
+  spec.output_rate = 1e12;  // line 7 of the generated scene: output_rate = ...
+  const fs::path scene = write_scene(dir, spec);
+  const Result r = run({"run", scene.string(), "--no-video", "--out", "o"}, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains(scene.string() + ":7:15: error: simulation.output_rate:"));
+}
+
+TEST_CASE("integers beyond 2^53 are located errors, not crashes", "[limits]") {
+  const fs::path dir = scratch("bigint");
+  SceneSpec spec;
+  spec.bodies = 1;
+  std::string text = generated_scene(spec);
+  // The mass line of the only body: replace its value by an integer past 2^53.
+  const std::size_t at = text.find("mass = ");
+  const std::size_t end = text.find('\n', at);
+  text.replace(at, end - at, "mass = 9007199254740993");
+  std::ofstream(dir / "big.toml") << text;
+  int line = 1;
+  for (std::size_t i = 0; i < at; ++i) line += text[i] == '\n';
+  const Result r = run({"run", (dir / "big.toml").string(), "--no-video", "--out", "o"}, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains((dir / "big.toml").string() + ":" + std::to_string(line) + ":8: error: bodies.mass_0.mass:"));
+  CHECK_THAT(r.err, Contains("2^53"));
+
+  // 2^53 itself is exact, and accepted.
+  text.replace(at, std::string("mass = 9007199254740993").size(), "mass = 9007199254740992");
+  std::ofstream(dir / "exact.toml") << text;
+  const Result ok = run({"check", (dir / "exact.toml").string()}, dir);
+  CHECK(ok.code == 0);
+
+  // The same through --set, and in an array.
+  const fs::path scene = write_scene(dir, spec);
+  Result s = run({"run", scene.string(), "--no-video", "--out", "o", "--set", "bodies.mass_0.mass=-9223372036854775808"}, dir);
+  CHECK(s.code == 2);
+  CHECK_THAT(s.err, Contains("--set bodies.mass_0.mass:1:"));
+  CHECK_THAT(s.err, Contains("2^53"));
+  s = run({"run", scene.string(), "--no-video", "--out", "o", "--set", "bodies.mass_0.velocity=[1, 0, 18014398509481984]"}, dir);
+  CHECK(s.code == 2);
+  CHECK_THAT(s.err, Contains("bodies.mass_0.velocity"));
+  CHECK_THAT(s.err, Contains("2^53"));
+  // A non-finite value through --set.
+  s = run({"run", scene.string(), "--no-video", "--out", "o", "--set", "simulation.dt=nan"}, dir);
+  CHECK(s.code == 2);
+  CHECK_THAT(s.err, Contains("simulation.dt: expected a finite number"));
+}
+
+TEST_CASE("a --set array index past the limit does not wrap to element 0", "[limits]") {
+  const fs::path dir = scratch("index");
+  const fs::path scene = write_scene(dir, {});
+  for (const std::string index : {"18446744073709551616", "18446744073709551617", "99999999999999999999999", "3"}) {
+    INFO(index);
+    const Result r = run({"run", scene.string(), "--no-video", "--out", "o", "--set",
+                          "bodies.mass_0.velocity[" + index + "]=5.0"},
+                         dir);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains("out of range"));
+    CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));
+  }
+}
+
+TEST_CASE("fps and slow_motion are bounded, and so is the frame count", "[limits]") {
+  const fs::path dir = scratch("render");
+  struct Case {
+    std::string render;
+    std::string key;
+  };
+  for (const Case& c : {Case{"fps = 1e-300", "render.fps"}, Case{"fps = 0.5", "render.fps"},
+                        Case{"slow_motion = 1e300", "render.slow_motion"},
+                        Case{"slow_motion = 1e-9", "render.slow_motion"},
+                        Case{"fps = nan", "render.fps"}}) {
+    SceneSpec spec;
+    spec.extra = "[render]\n" + c.render + "\n";
+    const fs::path scene = write_scene(dir, spec);
+    INFO(c.render);
+    const Result r = run({"run", scene.string(), "--out", "o"}, dir);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains(c.key));
+    CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));  // refused before simulating
+  }
+  // 1e5 s at 60 fps: 6e6 frames, past the limit; fine without a video.
+  SceneSpec spec;
+  spec.duration = 1e5;
+  spec.output_rate = 1.0;
+  spec.dt = 1.0;
+  spec.extra = "[render]\nfps = 60\n";
+  const fs::path scene = write_scene(dir, spec);
+  const Result r = run({"run", scene.string(), "--out", "o"}, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("render.fps"));
+  CHECK_THAT(r.err, Contains("frames"));
+}
+
+TEST_CASE("check bounds its pilot run whatever the duration", "[limits]") {
+  const fs::path dir = scratch("check");
+  SceneSpec spec;
+  spec.duration = 3e6;  // 3e10 steps: a pilot over all of it would run for days
+  spec.output_rate = 1.0;
+  const fs::path scene = write_scene(dir, spec);
+  Child child({"check", scene.string()}, dir);
+  const int code = child.wait(std::chrono::seconds(120));  // a hang bound, not a timing test
+  CHECK(code == 0);
+  CHECK_THAT(child.out(), Contains("pilot run bounded"));
+  CHECK_THAT(child.out(), Contains("rk4"));
+}
+
+TEST_CASE("a write error on standard output is a failure", "[limits]") {
+  const fs::path dir = scratch("stdout");
+  const fs::path scene = write_scene(dir, {});
+  // /dev/full accepts the open and fails every write with ENOSPC.
+  const std::string command = "cd '" + dir.string() + "' && '" + STICTION_BINARY + "' scenes > /dev/full 2> err.txt";
+  const int status = std::system(command.c_str());
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);
+  CHECK_THAT(read_text(dir / "err.txt"), Contains("standard output"));
+  const std::string run_command = "cd '" + dir.string() + "' && '" + STICTION_BINARY + "' run '" +
+                                  scene.string() + "' --no-video --no-plots --out o > /dev/full 2> err.txt";
+  const int run_status = std::system(run_command.c_str());
+  REQUIRE(WIFEXITED(run_status));
+  CHECK(WEXITSTATUS(run_status) == 1);
+}
