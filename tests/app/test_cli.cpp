@@ -152,8 +152,8 @@ TEST_CASE("cli: check prints the state layout and dt advice") {
   CHECK_THAT(o.out, Contains("[0..12]"));
   CHECK_THAT(o.out, Contains("sphere (rigid_body): p.x p.y p.z"));
   CHECK_THAT(o.out, Contains("ground (kikuuwe_contact): e.0 e.1"));
-  CHECK_THAT(o.out, Contains("predicted largest stable step"));
-  CHECK_THAT(o.out, Contains("rk4               dt < "));
+  CHECK_THAT(o.out, Contains("predicted step limits of the whole network"));
+  CHECK_THAT(o.out, Contains("rk4               unstable above "));
   const Outcome e = run_cli({"check", "two_link", "--dt", "1"}, scratch("check2"));
   CHECK(e.code == 2);  // check takes no run options
   const fs::path dot = scratch("check3") / "net.dot";
