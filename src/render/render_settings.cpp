@@ -57,6 +57,16 @@ void read_render(TableReader& r, RenderSettings& s) {
     r.fail("preset", "unknown preset '" + s.preset + "' (one of: " + join(presets) + ")");
   }
   s.slow_motion = r.positive("slow_motion", s.slow_motion);
+  if (r.has("slow_motion_around_events")) {
+    s.slow_motion_around_events = r.number("slow_motion_around_events", 0.0);
+    if (!(s.slow_motion_around_events >= 0.0)) {
+      r.fail("slow_motion_around_events", "must be a duration in seconds, >= 0 (0: off)");
+    }
+  }
+  s.event_slow_motion = r.positive("event_slow_motion", s.event_slow_motion);
+  if (s.event_slow_motion < 1.0 || s.event_slow_motion > 100.0) {
+    r.fail("event_slow_motion", "must be in 1..100 (times slower around events)");
+  }
   const long msaa = r.integer("msaa", s.msaa);
   if (msaa != 1 && msaa != 2 && msaa != 4) r.fail("msaa", "must be 1, 2 or 4");
   s.msaa = static_cast<int>(msaa);
@@ -105,6 +115,15 @@ void read_overlay(TableReader& r, OverlaySettings& o, const std::vector<std::str
   o.unit = r.string("unit", "");
   o.trail = r.boolean("trail", o.trail);
   o.trail_seconds = r.positive("trail_seconds", o.trail_seconds);
+  if (r.has("trail_contacts")) {
+    o.trail_contacts = r.strings("trail_contacts");
+    for (const std::string& c : o.trail_contacts) {
+      if (!columns.empty() && !matches_signal(c + ".slip", columns)) {
+        r.fail("trail_contacts", "no contact named '" + c + "' with a slip speed (" + c +
+                                     ".slip is not a signal of the scene)");
+      }
+    }
+  }
   r.finish();
 }
 
@@ -126,7 +145,10 @@ RenderSettings read_render_settings(const scene::Scene& scene) {
   for (const auto& a : scene.network->admittances()) bodies.push_back(a->name());
   std::vector<std::string> columns = scene.network->signal_columns();
   columns.insert(columns.begin(), "t");
-  return read_render_settings(scene.document, bodies, columns);
+  RenderSettings s = read_render_settings(scene.document, bodies, columns);
+  s.overlay.stick_thresholds = scene.run.stick_thresholds;
+  s.overlay.default_stick_threshold = scene.run.default_stick_threshold;
+  return s;
 }
 
 }  // namespace stiction::render

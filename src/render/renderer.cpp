@@ -6,6 +6,8 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "render/shadow_fit.hpp"
+
 namespace stiction::render {
 namespace {
 
@@ -122,30 +124,32 @@ const Mesh& Renderer::mesh(Shape shape) const {
 }
 
 void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
-                    const Bounds& shadow_bounds, const std::vector<TrailVertex>& trail) {
-  // Light: an orthographic box around the shadow bounds, seen from the light's direction.
-  const glm::vec3 c = shadow_bounds.empty() ? glm::vec3(0.0f) : shadow_bounds.centre();
-  const float r = shadow_bounds.empty() ? 1.0f : std::max(shadow_bounds.radius() * 1.05f, 0.05f);
-  const glm::vec3 light_up = std::abs(kLightDirection.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
-  const glm::mat4 light_view = glm::lookAt(c + kLightDirection * (2.0f * r), c, light_up);
-  const glm::mat4 light_view_proj = glm::ortho(-r, r, -r, r, 0.0f, 4.0f * r) * light_view;
+                    const std::vector<TrailVertex>& trail) {
+  const float aspect = float(options_.width) / float(options_.height);
+  const bool shadows = options_.shadow_map_size > 0;
+  const ShadowFit fit = shadows ? fit_shadow(items, camera, aspect, kLightDirection, options_.shadow_map_size)
+                                : ShadowFit{};
+  const bool cast = shadows && !fit.empty;
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
 
-  if (options_.shadow_map_size > 0) {
+  if (cast) {
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.get());
     glViewport(0, 0, options_.shadow_map_size, options_.shadow_map_size);
     glClear(GL_DEPTH_BUFFER_BIT);
+    // Casters poking out of the fitted depth range are clamped, not clipped.
+    glEnable(GL_DEPTH_CLAMP);
     depth_program_.use();
-    depth_program_.set("u_light_view_proj", light_view_proj);
+    depth_program_.set("u_light_view_proj", fit.light_view_proj);
     for (const DrawItem& item : items) {
       if (!item.casts_shadow) continue;
       depth_program_.set("u_model", item.model);
       mesh(item.shape).draw();
     }
+    glDisable(GL_DEPTH_CLAMP);
   }
 
   glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
@@ -153,12 +157,11 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
   const image::Rgba bg = options_.background;
   glClearColor(bg.r / 255.0f, bg.g / 255.0f, bg.b / 255.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  const float aspect = float(options_.width) / float(options_.height);
   const glm::mat4 view_proj = camera.projection(aspect) * camera.view();
 
   scene_program_.use();
   scene_program_.set("u_view_proj", view_proj);
-  scene_program_.set("u_light_view_proj", light_view_proj);
+  scene_program_.set("u_light_view_proj", fit.light_view_proj);
   scene_program_.set("u_light_dir", kLightDirection);
   scene_program_.set("u_eye", camera.eye);
   scene_program_.set("u_background", linear(bg));
@@ -168,9 +171,13 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, shadow_map_.get());
   scene_program_.set("u_shadow_map", 0);
-  const int map = std::max(options_.shadow_map_size, 1);
-  scene_program_.set("u_shadow_texel", glm::vec2(1.0f / float(map)));
-  scene_program_.set("u_shadow_taps", options_.shadow_map_size > 0 ? options_.shadow_taps : 1);
+  // The soft edge and the depth bias in world units, converted to the map's coordinates.
+  const float side = cast ? fit.texel * float(options_.shadow_map_size) : 1.0f;
+  scene_program_.set("u_shadows", cast ? 1 : 0);
+  scene_program_.set("u_shadow_kernel", glm::vec2(cast ? fit.softness / side : 0.0f));
+  scene_program_.set("u_shadow_bias", cast ? (2.0f * fit.texel + 0.5f * fit.softness) / fit.depth_range : 0.0f);
+  scene_program_.set("u_shadow_slope_bias", cast ? 4.0f * (fit.texel + fit.softness) / fit.depth_range : 0.0f);
+  scene_program_.set("u_shadow_taps", cast ? options_.shadow_taps : 1);
   for (const DrawItem& item : items) {
     const Material& m = item.material;
     scene_program_.set("u_model", item.model);
@@ -184,6 +191,8 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
     scene_program_.set("u_grid_spacing", m.grid_spacing);
     scene_program_.set("u_local_scale", m.local_scale);
     scene_program_.set("u_local_offset", m.local_offset);
+    scene_program_.set("u_spin_axis", m.spin_axis);
+    scene_program_.set("u_spin_blur", m.spin_blur);
     mesh(item.shape).draw();
   }
 

@@ -10,7 +10,10 @@ extern "C" {
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <system_error>
+#include <thread>
 
 namespace stiction::render {
 namespace {
@@ -42,6 +45,18 @@ struct FormatDeleter {
 };
 
 }  // namespace
+
+int encoder_threads() {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  int renderer = cores;
+  if (const char* lp = std::getenv("LP_NUM_THREADS")) {
+    char* end = nullptr;
+    const long n = std::strtol(lp, &end, 10);
+    // 0: llvmpipe rasterizes on the calling thread.
+    if (end != lp && n >= 0) renderer = static_cast<int>(std::clamp<long>(n, 1, cores));
+  }
+  return std::max(1, cores - renderer);
+}
 
 struct VideoEncoder::State {
   std::unique_ptr<AVFormatContext, FormatDeleter> format;
@@ -91,6 +106,7 @@ VideoEncoder::VideoEncoder(std::filesystem::path path, const VideoOptions& optio
   if (s.format->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   av_opt_set(c->priv_data, "preset", options.preset.c_str(), 0);
   av_opt_set(c->priv_data, "crf", std::to_string(options.crf).c_str(), 0);
+  c->thread_count = options.threads > 0 ? options.threads : encoder_threads();
   rc = avcodec_open2(c, codec, nullptr);
   if (rc < 0) throw VideoError("cannot open the H.264 encoder: " + av_message(rc));
 
@@ -103,7 +119,11 @@ VideoEncoder::VideoEncoder(std::filesystem::path path, const VideoOptions& optio
 
   rc = avio_open(&s.format->pb, temp_.c_str(), AVIO_FLAG_WRITE);
   if (rc < 0) throw VideoError("cannot write " + path_.string() + ": " + av_message(rc));
-  rc = avformat_write_header(s.format.get(), nullptr);
+  // faststart: the muxer rewrites the file at the end with `moov` moved before `mdat`.
+  AVDictionary* muxer_options = nullptr;
+  av_dict_set(&muxer_options, "movflags", "+faststart", 0);
+  rc = avformat_write_header(s.format.get(), &muxer_options);
+  av_dict_free(&muxer_options);
   if (rc < 0) {
     s.format.reset();
     std::error_code ec;
