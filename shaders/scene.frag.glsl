@@ -25,6 +25,7 @@ uniform float u_fog_start;
 uniform float u_fog_end;
 uniform sampler2DShadow u_shadow_map;
 uniform int u_shadows;           // 0: nothing casts a visible shadow this frame
+uniform float u_shadow_extent;   // the map's used corner: [0, extent)^2
 uniform vec2 u_shadow_kernel;    // tap offset (the soft edge), map coordinates
 uniform float u_shadow_bias;     // depth bias, map depth units
 uniform float u_shadow_slope_bias;
@@ -52,7 +53,7 @@ float grid_lines(vec2 p, float width) {
 float shadow_factor(vec3 n) {
   if (u_shadows == 0) return 1.0;
   vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;
-  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0) return 1.0;
+  if (p.x <= 0.0 || p.x >= u_shadow_extent || p.y <= 0.0 || p.y >= u_shadow_extent) return 1.0;
   float slope = 1.0 - max(dot(n, u_light_dir), 0.0);
   float ref = min(p.z, 1.0) - u_shadow_bias - u_shadow_slope_bias * slope;
   if (u_shadow_taps <= 1) return texture(u_shadow_map, vec3(p.xy, ref));

@@ -140,11 +140,14 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
 }
 
 FrameRenderer::~FrameRenderer() {
-  // GL objects go before the context.
+  // GL objects go before the context, deleted in it.
+  context_->make_current();
   renderer_.reset();
 }
 
 void FrameRenderer::render(double t, image::Image& out, double speed) {
+  // Several FrameRenderers may live at once (tests, benchmarks): draw in our own context.
+  context_->make_current();
   const Bounds focus = camera_->follows_vertically() ? camera_->follow_bounds(t) : Bounds{};
   std::vector<DrawItem> items = build_items(scene_, poses_, t, focus);
   // The frame stands for 1 / fps of video, i.e. this much simulated time (open shutter).
@@ -178,9 +181,9 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   FrameRenderer renderer(describe_scene(*scene.network, scene.document), trajectory, settings);
   const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                                        settings.fps, settings.slow_motion);
-  const std::vector<FrameTime> times = warped_frame_times(
-      clock.start, renderer.poses().end_time(), clock.step, request.event_times,
-      settings.slow_motion_around_events, settings.event_slow_motion);
+  const std::vector<FrameTime> times =
+      warped_frame_times(clock.start, renderer.poses().end_time(), clock.step, request.event_times,
+                         settings.slow_motion_around_events, settings.event_slow_motion);
   const int count = static_cast<int>(times.size());
   std::error_code ec;
   fs::create_directories(request.out_dir, ec);
@@ -199,6 +202,7 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
     v.fps = settings.fps;
     v.crf = settings.crf;
     v.preset = settings.preset;
+    v.threads = settings.encoder_threads;
     encoder = std::make_unique<VideoEncoder>(request.out_dir / "video.mp4", v);
   }
 
@@ -211,7 +215,8 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
         break;
       }
       worker.recycle(frame);
-      renderer.render(times[static_cast<std::size_t>(i)].t, frame, times[static_cast<std::size_t>(i)].speed);
+      renderer.render(times[static_cast<std::size_t>(i)].t, frame,
+                      times[static_cast<std::size_t>(i)].speed);
       worker.push(i, std::move(frame));
       frame = image::Image();
       result.frames = i + 1;
@@ -222,7 +227,8 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
         p.elapsed_seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         p.frames_per_second = p.elapsed_seconds > 0.0 ? p.frames_done / p.elapsed_seconds : 0.0;
-        p.eta_seconds = p.frames_per_second > 0.0 ? (count - p.frames_done) / p.frames_per_second : 0.0;
+        p.eta_seconds =
+            p.frames_per_second > 0.0 ? (count - p.frames_done) / p.frames_per_second : 0.0;
         request.progress(p);
       }
     }

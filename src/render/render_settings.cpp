@@ -17,9 +17,8 @@ std::optional<TableReader> table(TableReader& root, std::string_view key) {
 }
 
 bool matches_signal(const std::string& signal, const std::vector<std::string>& columns) {
-  return std::any_of(columns.begin(), columns.end(), [&](const std::string& c) {
-    return c == signal || is_axis_of(c, signal);
-  });
+  return std::any_of(columns.begin(), columns.end(),
+                     [&](const std::string& c) { return c == signal || is_axis_of(c, signal); });
 }
 
 std::string join(const std::vector<std::string>& names) {
@@ -35,8 +34,9 @@ void read_render(TableReader& r, RenderSettings& s) {
     for (double v : size) {
       if (v != static_cast<double>(static_cast<long>(v)) || v < 16 || v > 7680 ||
           static_cast<long>(v) % 2 != 0) {
-        r.fail("size", "width and height must be even whole numbers of pixels in 16..7680 "
-                       "(H.264 with yuv420p needs even sizes)");
+        r.fail("size",
+               "width and height must be even whole numbers of pixels in 16..7680 "
+               "(H.264 with yuv420p needs even sizes)");
       }
     }
     s.width = static_cast<int>(size[0]);
@@ -50,9 +50,9 @@ void read_render(TableReader& r, RenderSettings& s) {
   s.codec = r.string("codec", s.codec);
   if (s.codec != "h264") r.fail("codec", "unknown codec '" + s.codec + "' (supported: h264)");
   s.preset = r.string("preset", s.preset);
-  static const std::vector<std::string> presets{"ultrafast", "superfast", "veryfast", "faster",
-                                                "fast",      "medium",    "slow",     "slower",
-                                                "veryslow"};
+  static const std::vector<std::string> presets{"ultrafast", "superfast", "veryfast",
+                                                "faster",    "fast",      "medium",
+                                                "slow",      "slower",    "veryslow"};
   if (std::find(presets.begin(), presets.end(), s.preset) == presets.end()) {
     r.fail("preset", "unknown preset '" + s.preset + "' (one of: " + join(presets) + ")");
   }
@@ -78,6 +78,9 @@ void read_render(TableReader& r, RenderSettings& s) {
   const long taps = r.integer("shadow_taps", s.shadow_taps);
   if (taps != 1 && taps != 4) r.fail("shadow_taps", "must be 1 or 4");
   s.shadow_taps = static_cast<int>(taps);
+  const long threads = r.integer("encoder_threads", s.encoder_threads);
+  if (threads < 0 || threads > 64) r.fail("encoder_threads", "must be 0 (automatic) or 1..64");
+  s.encoder_threads = static_cast<int>(threads);
   r.finish();
 }
 

@@ -13,8 +13,10 @@
 //                           # stick/slip event played `event_slow_motion` times slower
 //   event_slow_motion = 8   # how much slower, 1..100 (ramps in and out over half the window)
 //   msaa = 4                # samples per pixel: 1, 2 or 4
-//   shadow_map_size = 2048  # 0 turns shadows off; else a power of two 256..8192
+//   shadow_map_size = 2048  # 0 turns shadows off; else a power of two 256..8192: the most
+//                           # texels per side; each frame uses what the fitted region needs
 //   shadow_taps = 4         # 1 or 4 filtered shadow-map lookups per pixel
+//   encoder_threads = 0     # libx264 threads; 0: the cores the renderer leaves (at least 1)
 //
 //   [camera]
 //   position = [x, y, z]    # default: framed from the scene's bounds over the whole run
@@ -85,6 +87,7 @@ struct RenderSettings {
   int msaa = 4;
   int shadow_map_size = 2048;
   int shadow_taps = 4;
+  int encoder_threads = 0;  // 0: encoder_threads(); -1 (not a key): libx264's own choice
   CameraSettings camera;
   OverlaySettings overlay;
 };

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -56,13 +55,16 @@ Renderer::Renderer(const RendererOptions& options)
   }
   const int samples = options.msaa > 1 ? options.msaa : 0;
   glBindRenderbuffer(GL_RENDERBUFFER, msaa_colour_.get());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, options.width, options.height);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, options.width,
+                                   options.height);
   glBindRenderbuffer(GL_RENDERBUFFER, msaa_depth_.get());
   glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, options.width,
                                    options.height);
   glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_colour_.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                            msaa_colour_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                            msaa_depth_.get());
   check_framebuffer("colour");
 
   glBindRenderbuffer(GL_RENDERBUFFER, resolve_colour_.get());
@@ -85,7 +87,8 @@ Renderer::Renderer(const RendererOptions& options)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.get());
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_map_.get(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_map_.get(),
+                           0);
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
     check_framebuffer("shadow map");
@@ -94,7 +97,8 @@ Renderer::Renderer(const RendererOptions& options)
     shadow_map_ = make_texture();
     glBindTexture(GL_TEXTURE_2D, shadow_map_.get());
     const float one = 1.0f;
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, 1, 1, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, 1, 1, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                 &one);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
@@ -116,10 +120,14 @@ Renderer::Renderer(const RendererOptions& options)
 
 const Mesh& Renderer::mesh(Shape shape) const {
   switch (shape) {
-    case Shape::sphere: return sphere_;
-    case Shape::box: return box_;
-    case Shape::cylinder: return cylinder_;
-    default: return plane_;
+    case Shape::sphere:
+      return sphere_;
+    case Shape::box:
+      return box_;
+    case Shape::cylinder:
+      return cylinder_;
+    default:
+      return plane_;
   }
 }
 
@@ -127,8 +135,9 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
                     const std::vector<TrailVertex>& trail) {
   const float aspect = float(options_.width) / float(options_.height);
   const bool shadows = options_.shadow_map_size > 0;
-  const ShadowFit fit = shadows ? fit_shadow(items, camera, aspect, kLightDirection, options_.shadow_map_size)
-                                : ShadowFit{};
+  const ShadowFit fit =
+      shadows ? fit_shadow(items, camera, aspect, kLightDirection, options_.shadow_map_size)
+              : ShadowFit{};
   const bool cast = shadows && !fit.empty;
 
   glEnable(GL_DEPTH_TEST);
@@ -138,7 +147,13 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
 
   if (cast) {
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.get());
+    // The projection puts the fitted region in the corner [0, fit.size)^2 of the map: only
+    // that corner is cleared (with a border for the filter taps that reach past its edge:
+    // older, larger frames may have left depths there) and drawn.
     glViewport(0, 0, options_.shadow_map_size, options_.shadow_map_size);
+    const int used = std::min(options_.shadow_map_size, fit.size + 16);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, used, used);
     glClear(GL_DEPTH_BUFFER_BIT);
     // Casters poking out of the fitted depth range are clamped, not clipped.
     glEnable(GL_DEPTH_CLAMP);
@@ -150,6 +165,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
       mesh(item.shape).draw();
     }
     glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_SCISSOR_TEST);
   }
 
   glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
@@ -174,9 +190,13 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
   // The soft edge and the depth bias in world units, converted to the map's coordinates.
   const float side = cast ? fit.texel * float(options_.shadow_map_size) : 1.0f;
   scene_program_.set("u_shadows", cast ? 1 : 0);
+  scene_program_.set("u_shadow_extent",
+                     cast ? float(fit.size) / float(options_.shadow_map_size) : 1.0f);
   scene_program_.set("u_shadow_kernel", glm::vec2(cast ? fit.softness / side : 0.0f));
-  scene_program_.set("u_shadow_bias", cast ? (2.0f * fit.texel + 0.5f * fit.softness) / fit.depth_range : 0.0f);
-  scene_program_.set("u_shadow_slope_bias", cast ? 4.0f * (fit.texel + fit.softness) / fit.depth_range : 0.0f);
+  scene_program_.set("u_shadow_bias",
+                     cast ? (2.0f * fit.texel + 0.5f * fit.softness) / fit.depth_range : 0.0f);
+  scene_program_.set("u_shadow_slope_bias",
+                     cast ? 4.0f * (fit.texel + fit.softness) / fit.depth_range : 0.0f);
   scene_program_.set("u_shadow_taps", cast ? options_.shadow_taps : 1);
   for (const DrawItem& item : items) {
     const Material& m = item.material;

@@ -19,7 +19,7 @@ struct RendererOptions {
   int width = 1280;
   int height = 720;
   int msaa = 4;                // 1: no multisampling
-  int shadow_map_size = 2048;  // 0: no shadows
+  int shadow_map_size = 2048;  // 0: no shadows; else the most texels per side used
   int shadow_taps = 4;         // 1 or 4
   image::Rgba background{236, 239, 243, 255};
 };

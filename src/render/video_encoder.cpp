@@ -82,7 +82,8 @@ VideoEncoder::VideoEncoder(std::filesystem::path path, const VideoOptions& optio
   // (The level is process-wide in FFmpeg; only errors are wanted from it anywhere here.)
   if (av_log_get_level() > AV_LOG_ERROR) av_log_set_level(AV_LOG_ERROR);
   const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
-  if (!codec) throw VideoError("libavcodec has no libx264 encoder (Debian: libavcodec-extra59 or libx264)");
+  if (!codec)
+    throw VideoError("libavcodec has no libx264 encoder (Debian: libavcodec-extra59 or libx264)");
 
   AVFormatContext* format = nullptr;
   int rc = avformat_alloc_output_context2(&format, nullptr, "mp4", temp_.c_str());
@@ -106,7 +107,9 @@ VideoEncoder::VideoEncoder(std::filesystem::path path, const VideoOptions& optio
   if (s.format->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   av_opt_set(c->priv_data, "preset", options.preset.c_str(), 0);
   av_opt_set(c->priv_data, "crf", std::to_string(options.crf).c_str(), 0);
-  c->thread_count = options.threads > 0 ? options.threads : encoder_threads();
+  // -1: libavcodec/x264 choose (1.5 threads per core: oversubscribed beside the renderer).
+  c->thread_count =
+      options.threads > 0 ? options.threads : (options.threads < 0 ? 0 : encoder_threads());
   rc = avcodec_open2(c, codec, nullptr);
   if (rc < 0) throw VideoError("cannot open the H.264 encoder: " + av_message(rc));
 
@@ -180,8 +183,8 @@ void VideoEncoder::encode(const image::Image& image) {
   State& s = *state_;
   if (s.finished) throw VideoError("encode() after finish()");
   if (image.width != s.codec->width || image.height != s.codec->height) {
-    throw VideoError("frame size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                     " differs from the video's");
+    throw VideoError("frame size " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + " differs from the video's");
   }
   int rc = av_frame_make_writable(s.frame.get());
   if (rc < 0) throw VideoError("cannot reuse the frame: " + av_message(rc));
@@ -207,7 +210,9 @@ std::filesystem::path VideoEncoder::finish(const std::filesystem::path& final_pa
   const std::filesystem::path target = final_path.empty() ? path_ : final_path;
   std::error_code ec;
   std::filesystem::rename(temp_, target, ec);
-  if (ec) throw VideoError("cannot rename " + temp_.string() + " to " + target.string() + ": " + ec.message());
+  if (ec)
+    throw VideoError("cannot rename " + temp_.string() + " to " + target.string() + ": " +
+                     ec.message());
   s.finished = true;
   return target;
 }

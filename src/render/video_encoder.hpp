@@ -28,7 +28,8 @@ struct VideoOptions {
   double fps = 60.0;
   int crf = 20;
   std::string preset = "veryfast";
-  // libx264 threads; 0: encoder_threads() (the cores the renderer leaves over, at least 1).
+  // libx264 threads; 0: encoder_threads() (the cores the renderer leaves over, at least 1);
+  // -1: libx264's own default.
   int threads = 0;
 };
 
