@@ -14,6 +14,8 @@ uniform float u_checker_size;  // metres per square (ground)
 uniform float u_grid_spacing;  // metres between grid lines
 uniform float u_local_scale;   // object coordinates to metres
 uniform vec2 u_local_offset;
+uniform vec3 u_spin_axis;      // sphere pattern: spin axis (object coordinates)
+uniform float u_spin_blur;     // radians turned during the frame's exposure
 uniform float u_shininess;
 uniform float u_specular;
 uniform vec3 u_light_dir;      // unit vector towards the light
@@ -22,8 +24,12 @@ uniform vec3 u_background;
 uniform float u_fog_start;
 uniform float u_fog_end;
 uniform sampler2DShadow u_shadow_map;
-uniform vec2 u_shadow_texel;   // 1 / shadow map size
-uniform int u_shadow_taps;     // 1 or 4
+uniform int u_shadows;           // 0: nothing casts a visible shadow this frame
+uniform float u_shadow_extent;   // the map's used corner: [0, extent)^2
+uniform vec2 u_shadow_kernel;    // tap offset (the soft edge), map coordinates
+uniform float u_shadow_bias;     // depth bias, map depth units
+uniform float u_shadow_slope_bias;
+uniform int u_shadow_taps;       // 1 or 4
 
 out vec4 frag_colour;
 
@@ -42,24 +48,36 @@ float grid_lines(vec2 p, float width) {
   return line * clamp(1.0 - 4.0 * max(w.x, w.y), 0.0, 1.0);
 }
 
+// The map covers only where a visible shadow can fall (fitted each frame): outside it, lit.
+// Receivers beyond the map's far depth are behind every caster: their depth is clamped.
 float shadow_factor(vec3 n) {
+  if (u_shadows == 0) return 1.0;
   vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;
-  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
+  if (p.x <= 0.0 || p.x >= u_shadow_extent || p.y <= 0.0 || p.y >= u_shadow_extent) return 1.0;
   float slope = 1.0 - max(dot(n, u_light_dir), 0.0);
-  float bias = 0.0008 + 0.002 * slope;
-  float ref = p.z - bias;
+  float ref = min(p.z, 1.0) - u_shadow_bias - u_shadow_slope_bias * slope;
   if (u_shadow_taps <= 1) return texture(u_shadow_map, vec3(p.xy, ref));
   float s = 0.0;
-  s += texture(u_shadow_map, vec3(p.xy + vec2(-0.75, -0.25) * u_shadow_texel * 2.0, ref));
-  s += texture(u_shadow_map, vec3(p.xy + vec2(0.25, -0.75) * u_shadow_texel * 2.0, ref));
-  s += texture(u_shadow_map, vec3(p.xy + vec2(0.75, 0.25) * u_shadow_texel * 2.0, ref));
-  s += texture(u_shadow_map, vec3(p.xy + vec2(-0.25, 0.75) * u_shadow_texel * 2.0, ref));
+  s += texture(u_shadow_map, vec3(p.xy + vec2(-0.75, -0.25) * u_shadow_kernel, ref));
+  s += texture(u_shadow_map, vec3(p.xy + vec2(0.25, -0.75) * u_shadow_kernel, ref));
+  s += texture(u_shadow_map, vec3(p.xy + vec2(0.75, 0.25) * u_shadow_kernel, ref));
+  s += texture(u_shadow_map, vec3(p.xy + vec2(-0.25, 0.75) * u_shadow_kernel, ref));
   return 0.25 * s;
 }
 
 float smooth_sign(float x) {
   float w = max(fwidth(x), 1e-5);
   return clamp(x / w, -1.0, 1.0);
+}
+
+// +1 / -1 on alternating octants, smoothed over `w` (about a pixel).
+float octants(vec3 q, float w) {
+  vec3 s = clamp(q / w, -1.0, 1.0);
+  return s.x * s.y * s.z;
+}
+
+vec3 rotate(vec3 v, vec3 k, float a) {
+  return v * cos(a) + cross(k, v) * sin(a) + k * dot(k, v) * (1.0 - cos(a));
 }
 
 void main() {
@@ -77,6 +95,17 @@ void main() {
     // x-z plane and one on a meridian make the spin axis and the rotation angle readable.
     vec3 q = normalize(v_local);
     float s = smooth_sign(q.x) * smooth_sign(q.y) * smooth_sign(q.z);
+    if (u_spin_blur > 0.02) {
+      // Motion blur: the pattern averaged over the frame's rotation (spin cue, no aliasing).
+      float w = max(max(fwidth(q.x), fwidth(q.y)), max(fwidth(q.z), 1e-5));
+      int n = int(clamp(ceil(u_spin_blur / 0.05), 2.0, 48.0));
+      float sum = 0.0;
+      for (int i = 0; i < n; ++i) {
+        float a = u_spin_blur * ((float(i) + 0.5) / float(n) - 0.5);
+        sum += octants(rotate(q, u_spin_axis, a), w);
+      }
+      s = sum / float(n);
+    }
     albedo = mix(u_colour2, u_colour, 0.5 + 0.5 * s);
     float band_w = 0.06;
     float eq = abs(q.y);

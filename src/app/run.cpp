@@ -56,6 +56,9 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
   request.video = video;
   request.frames = frames;
   request.cancel = &sys::interrupt_flag();
+  for (const core::SlipHistory& h : result.slip_events) {  // time-warp around events
+    for (const core::SlipEvent& e : h.monitor.events()) request.event_times.push_back(e.time);
+  }
   if (progress) {
     bar = std::make_unique<ProgressBar>(video ? "render video" : "render frames");
     request.progress = [&bar](const render::RenderProgress& p) {

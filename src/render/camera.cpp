@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "render/framing.hpp"
 
 namespace stiction::render {
 
@@ -25,7 +26,8 @@ Camera frame_bounds(const Bounds& bounds, glm::vec3 direction, float fov_y_degre
   const glm::vec3 c = bounds.centre();
   float distance = 0.0f;
   for (int i = 0; i < 8; ++i) {
-    const glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x, (i & 2) ? bounds.max.y : bounds.min.y,
+    const glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x,
+                           (i & 2) ? bounds.max.y : bounds.min.y,
                            (i & 4) ? bounds.max.z : bounds.min.z);
     const glm::vec3 o = corner - c;
     // The corner's depth is distance + o.f; it must see |x| and |y| within the half-angles.
@@ -57,7 +59,8 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
     follow_origin_ = to_glm(poses.position(follow_, poses.start_time()));
     const Bounds b = body_bounds(scene, poses, poses.start_time());
     const glm::vec3 c = b.centre();
-    const float h = std::max(0.5f * std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z}), 0.02f);
+    const float h =
+        std::max(0.5f * std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z}), 0.02f);
     bounds.add(c - glm::vec3(3.5f * h, 2.0f * h, h));
     bounds.add(c + glm::vec3(3.5f * h, 2.0f * h, h));
     follow_region_ = bounds;
@@ -67,7 +70,20 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
   if (bounds.empty()) bounds.add(glm::vec3(0.0f));
   // A three-quarter view from the front (-y), slightly from +x, looking down ~28 degrees.
   const glm::vec3 direction = glm::normalize(glm::vec3(-0.30f, 1.0f, -0.55f));
-  base_ = frame_bounds(bounds, direction, static_cast<float>(settings.fov_degrees), aspect);
+  const float fov = static_cast<float>(settings.fov_degrees);
+  if (follow_ >= 0) {
+    base_ = frame_bounds(bounds, direction, fov, aspect);
+  } else {
+    // Every body at every time in view, framed by the bodies' own points (an arm fills the
+    // picture rather than the box around its sweep).
+    std::vector<glm::vec3> points = run_points(scene, poses, direction);
+    if (points.empty()) points.push_back(glm::vec3(0.0f));
+    base_ = frame_points(points, direction, fov, aspect);
+  }
+  // Following horizontally, the camera still moves vertically once the body is more than
+  // this far above or below where it started, so a body that drops stays in the frame.
+  vertical_dead_zone_ =
+      0.5f * std::tan(glm::radians(fov) * 0.5f) * glm::length(base_.eye - base_.target);
   if (settings.target) base_.target = to_glm(*settings.target);
   if (settings.position) base_.eye = to_glm(*settings.position);
   if (settings.position || settings.target) {
@@ -85,8 +101,9 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
 glm::vec3 CameraRig::shift(double t) const {
   if (follow_ < 0) return glm::vec3(0.0f);
   glm::vec3 s = to_glm(poses_.position(follow_, t)) - follow_origin_;
-  // By default horizontal motion only: a bounce does not shake the picture.
-  if (!follow_vertical_) s.z = 0.0f;
+  // By default horizontal motion only, so a bounce does not shake the picture; beyond the
+  // dead zone the camera follows the height too (a body falling off an edge stays in view).
+  if (!follow_vertical_) s.z -= std::clamp(s.z, -vertical_dead_zone_, vertical_dead_zone_);
   return s;
 }
 

@@ -1,6 +1,8 @@
-// Perspective camera, framed automatically from the scene's bounds or set by the scene file
-// ([camera] position/target/fov), optionally following one body's horizontal motion (or, with
-// follow_vertical, its motion along all three axes).
+// Perspective camera, framed automatically from the bodies' positions over the run (every
+// body stays in view) or set by the scene file ([camera] position/target/fov), optionally
+// following one body's horizontal motion (and its height once it leaves a dead zone of half
+// the picture's half-height, so a dropping body stays in the frame), or with
+// follow_vertical, its motion along all three axes.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -48,6 +50,7 @@ class CameraRig {
   bool follow_vertical_ = false;
   glm::vec3 follow_origin_{0};  // followed body's position at the start
   Bounds follow_region_;        // followed body's neighbourhood at the start
+  float vertical_dead_zone_ = 0.0f;  // height change (m) a horizontal follow lets pass
 };
 
 }  // namespace stiction::render

@@ -15,6 +15,9 @@
 #include "render/gl_context.hpp"
 #include "render/overlay.hpp"
 #include "render/renderer.hpp"
+#include "render/spin_blur.hpp"
+#include "render/time_warp.hpp"
+#include "render/trail.hpp"
 #include "render/video_encoder.hpp"
 #include "scene/scene.hpp"
 
@@ -130,44 +133,42 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
   renderer_ = std::make_unique<Renderer>(options);
   camera_ = std::make_unique<CameraRig>(settings.camera, scene_, poses_,
                                         float(settings.width) / float(settings.height));
-  if (settings.overlay.enabled) overlay_ = std::make_unique<Overlay>(settings.overlay, settings.height);
-  shadow_bounds_ = run_bounds(scene_, poses_);
-  if (settings.camera.follow.empty()) {
-    // Include the ground the camera sees near the bodies.
-    const glm::vec3 c = shadow_bounds_.centre();
-    const float r = shadow_bounds_.radius();
-    shadow_bounds_.add(c - glm::vec3(0.3f * r, 0.3f * r, 0.0f));
-    shadow_bounds_.add(c + glm::vec3(0.3f * r, 0.3f * r, 0.0f));
-  }
-  for (const auto& b : scene_.bodies) {
-    if (b.kind == BodyVisual::Kind::sphere) trail_width_ = static_cast<float>(0.15 * b.radius);
-    if (b.kind == BodyVisual::Kind::block) trail_width_ = static_cast<float>(0.3 * b.size.x());
+  if (settings.overlay.enabled) {
+    overlay_ = std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
+                                         settings.slow_motion_around_events > 0.0);
   }
 }
 
 FrameRenderer::~FrameRenderer() {
-  // GL objects go before the context.
+  // GL objects go before the context, deleted in it.
+  context_->make_current();
   renderer_.reset();
 }
 
-void FrameRenderer::render(double t, image::Image& out) {
+void FrameRenderer::render(double t, image::Image& out, double speed) {
+  // Several FrameRenderers may live at once (tests, benchmarks): draw in our own context.
+  context_->make_current();
   const Bounds focus = camera_->follows_vertically() ? camera_->follow_bounds(t) : Bounds{};
-  const std::vector<DrawItem> items = build_items(scene_, poses_, t, focus);
+  std::vector<DrawItem> items = build_items(scene_, poses_, t, focus);
+  // The frame stands for 1 / fps of video, i.e. this much simulated time (open shutter).
+  apply_spin_blur(items, poses_, t, speed / (settings_.fps * settings_.slow_motion));
   std::vector<TrailVertex> trail;
   if (settings_.overlay.trail) {
-    trail = build_trail(scene_, poses_, t, settings_.overlay.trail_seconds, trail_width_);
+    TrailOptions options;
+    options.seconds = settings_.overlay.trail_seconds;
+    options.thresholds = settings_.overlay.stick_thresholds;
+    options.default_threshold = settings_.overlay.default_stick_threshold;
+    options.contacts = settings_.overlay.trail_contacts;
+    trail = build_trails(scene_, poses_, t, options);
   }
-  // A camera following a body in 3D (a long descent) gets a shadow map fitted around the
-  // body each frame: fitted to the whole run, its texels could be metres wide.
-  const Bounds shadow_bounds = focus.empty() ? shadow_bounds_ : focus;
-  renderer_->draw(items, camera_->at(t), shadow_bounds, trail);
+  renderer_->draw(items, camera_->at(t), trail);
   renderer_->read_back(out);
-  if (overlay_) overlay_->draw(out, poses_, t);
+  if (overlay_) overlay_->draw(out, poses_, t, speed);
 }
 
-image::Image FrameRenderer::render(double t) {
+image::Image FrameRenderer::render(double t, double speed) {
   image::Image out;
-  render(t, out);
+  render(t, out, speed);
   return out;
 }
 
@@ -180,6 +181,10 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   FrameRenderer renderer(describe_scene(*scene.network, scene.document), trajectory, settings);
   const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                                        settings.fps, settings.slow_motion);
+  const std::vector<FrameTime> times =
+      warped_frame_times(clock.start, renderer.poses().end_time(), clock.step, request.event_times,
+                         settings.slow_motion_around_events, settings.event_slow_motion);
+  const int count = static_cast<int>(times.size());
   std::error_code ec;
   fs::create_directories(request.out_dir, ec);
   if (ec) throw VideoError("cannot create " + request.out_dir.string() + ": " + ec.message());
@@ -197,30 +202,33 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
     v.fps = settings.fps;
     v.crf = settings.crf;
     v.preset = settings.preset;
+    v.threads = settings.encoder_threads;
     encoder = std::make_unique<VideoEncoder>(request.out_dir / "video.mp4", v);
   }
 
   {
     FrameWorker worker(encoder.get(), frames_dir);
     image::Image frame;
-    for (int i = 0; i < clock.count; ++i) {
+    for (int i = 0; i < count; ++i) {
       if (request.cancel && request.cancel->load()) {
         result.interrupted = true;
         break;
       }
       worker.recycle(frame);
-      renderer.render(clock.time(i), frame);
+      renderer.render(times[static_cast<std::size_t>(i)].t, frame,
+                      times[static_cast<std::size_t>(i)].speed);
       worker.push(i, std::move(frame));
       frame = image::Image();
       result.frames = i + 1;
       if (request.progress) {
         RenderProgress p;
         p.frames_done = i + 1;
-        p.frame_count = clock.count;
+        p.frame_count = count;
         p.elapsed_seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         p.frames_per_second = p.elapsed_seconds > 0.0 ? p.frames_done / p.elapsed_seconds : 0.0;
-        p.eta_seconds = p.frames_per_second > 0.0 ? (clock.count - p.frames_done) / p.frames_per_second : 0.0;
+        p.eta_seconds =
+            p.frames_per_second > 0.0 ? (count - p.frames_done) / p.frames_per_second : 0.0;
         request.progress(p);
       }
     }

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "core/trajectory.hpp"
 #include "image/image.hpp"
@@ -43,6 +44,9 @@ struct RenderRequest {
   bool frames = false;  // OUT/frames/NNNNNN.png
   std::function<void(const RenderProgress&)> progress;  // called after each frame
   const std::atomic<bool>* cancel = nullptr;
+  // Stick/slip event times of the run: the video slows down around them when the settings'
+  // slow_motion_around_events is positive.
+  std::vector<double> event_times;
 };
 
 struct RenderResult {
@@ -76,9 +80,10 @@ class FrameRenderer {
   FrameRenderer(const FrameRenderer&) = delete;
   FrameRenderer& operator=(const FrameRenderer&) = delete;
 
-  // The frame at simulated time t, overlay included.
-  void render(double t, image::Image& out);
-  image::Image render(double t);
+  // The frame at simulated time t, overlay included. `speed` < 1: the frame is in a
+  // time-warped stretch (slow motion around an event); the overlay says so.
+  void render(double t, image::Image& out, double speed = 1.0);
+  image::Image render(double t, double speed = 1.0);
 
   const PoseTrack& poses() const { return poses_; }
   const RenderSettings& settings() const { return settings_; }
@@ -91,8 +96,6 @@ class FrameRenderer {
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<CameraRig> camera_;
   std::unique_ptr<Overlay> overlay_;
-  Bounds shadow_bounds_;
-  float trail_width_ = 0.01f;
 };
 
 RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& trajectory,

@@ -18,9 +18,8 @@ std::optional<TableReader> table(TableReader& root, std::string_view key) {
 }
 
 bool matches_signal(const std::string& signal, const std::vector<std::string>& columns) {
-  return std::any_of(columns.begin(), columns.end(), [&](const std::string& c) {
-    return c == signal || is_axis_of(c, signal);
-  });
+  return std::any_of(columns.begin(), columns.end(),
+                     [&](const std::string& c) { return c == signal || is_axis_of(c, signal); });
 }
 
 std::string join(const std::vector<std::string>& names) {
@@ -36,8 +35,9 @@ void read_render(TableReader& r, RenderSettings& s) {
     for (double v : size) {
       if (v != static_cast<double>(static_cast<long>(v)) || v < 16 || v > 7680 ||
           static_cast<long>(v) % 2 != 0) {
-        r.fail("size", "width and height must be even whole numbers of pixels in 16..7680 "
-                       "(H.264 with yuv420p needs even sizes)");
+        r.fail("size",
+               "width and height must be even whole numbers of pixels in 16..7680 "
+               "(H.264 with yuv420p needs even sizes)");
       }
     }
     s.width = static_cast<int>(size[0]);
@@ -51,14 +51,24 @@ void read_render(TableReader& r, RenderSettings& s) {
   s.codec = r.string("codec", s.codec);
   if (s.codec != "h264") r.fail("codec", "unknown codec '" + s.codec + "' (supported: h264)");
   s.preset = r.string("preset", s.preset);
-  static const std::vector<std::string> presets{"ultrafast", "superfast", "veryfast", "faster",
-                                                "fast",      "medium",    "slow",     "slower",
-                                                "veryslow"};
+  static const std::vector<std::string> presets{"ultrafast", "superfast", "veryfast",
+                                                "faster",    "fast",      "medium",
+                                                "slow",      "slower",    "veryslow"};
   if (std::find(presets.begin(), presets.end(), s.preset) == presets.end()) {
     r.fail("preset", "unknown preset '" + s.preset + "' (one of: " + join(presets) + ")");
   }
   s.slow_motion = r.positive("slow_motion", s.slow_motion);
   if (s.slow_motion < 1e-3 || s.slow_motion > 1e3) r.fail("slow_motion", "must be in 0.001..1000");
+  if (r.has("slow_motion_around_events")) {
+    s.slow_motion_around_events = r.number("slow_motion_around_events", 0.0);
+    if (!(s.slow_motion_around_events >= 0.0)) {
+      r.fail("slow_motion_around_events", "must be a duration in seconds, >= 0 (0: off)");
+    }
+  }
+  s.event_slow_motion = r.positive("event_slow_motion", s.event_slow_motion);
+  if (s.event_slow_motion < 1.0 || s.event_slow_motion > 100.0) {
+    r.fail("event_slow_motion", "must be in 1..100 (times slower around events)");
+  }
   const long msaa = r.integer("msaa", s.msaa);
   if (msaa != 1 && msaa != 2 && msaa != 4) r.fail("msaa", "must be 1, 2 or 4");
   s.msaa = static_cast<int>(msaa);
@@ -70,6 +80,9 @@ void read_render(TableReader& r, RenderSettings& s) {
   const long taps = r.integer("shadow_taps", s.shadow_taps);
   if (taps != 1 && taps != 4) r.fail("shadow_taps", "must be 1 or 4");
   s.shadow_taps = static_cast<int>(taps);
+  const long threads = r.integer("encoder_threads", s.encoder_threads);
+  if (threads < 0 || threads > 64) r.fail("encoder_threads", "must be 0 (automatic) or 1..64");
+  s.encoder_threads = static_cast<int>(threads);
   r.finish();
 }
 
@@ -107,6 +120,15 @@ void read_overlay(TableReader& r, OverlaySettings& o, const std::vector<std::str
   o.unit = r.string("unit", "");
   o.trail = r.boolean("trail", o.trail);
   o.trail_seconds = r.positive("trail_seconds", o.trail_seconds);
+  if (r.has("trail_contacts")) {
+    o.trail_contacts = r.strings("trail_contacts");
+    for (const std::string& c : o.trail_contacts) {
+      if (!columns.empty() && !matches_signal(c + ".slip", columns)) {
+        r.fail("trail_contacts", "no contact named '" + c + "' with a slip speed (" + c +
+                                     ".slip is not a signal of the scene)");
+      }
+    }
+  }
   r.finish();
 }
 
@@ -128,7 +150,10 @@ RenderSettings read_render_settings(const scene::Scene& scene) {
   for (const auto& a : scene.network->admittances()) bodies.push_back(a->name());
   std::vector<std::string> columns = scene.network->signal_columns();
   columns.insert(columns.begin(), "t");
-  return read_render_settings(scene.document, bodies, columns);
+  RenderSettings s = read_render_settings(scene.document, bodies, columns);
+  s.overlay.stick_thresholds = scene.run.stick_thresholds;
+  s.overlay.default_stick_threshold = scene.run.default_stick_threshold;
+  return s;
 }
 
 void check_frame_count(const scene::Scene& scene, const RenderSettings& s) {

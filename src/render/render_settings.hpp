@@ -9,9 +9,14 @@
 //   codec = "h264"          # only "h264" (libx264)
 //   preset = "veryfast"     # libx264 speed preset
 //   slow_motion = 1.0       # video seconds per simulated second (4 = four times slower)
+//   slow_motion_around_events = 0.0  # seconds of simulated time on each side of every
+//                           # stick/slip event played `event_slow_motion` times slower
+//   event_slow_motion = 8   # how much slower, 1..100 (ramps in and out over half the window)
 //   msaa = 4                # samples per pixel: 1, 2 or 4
-//   shadow_map_size = 2048  # 0 turns shadows off; else a power of two 256..8192
+//   shadow_map_size = 2048  # 0 turns shadows off; else a power of two 256..8192: the most
+//                           # texels per side; each frame uses what the fitted region needs
 //   shadow_taps = 4         # 1 or 4 filtered shadow-map lookups per pixel
+//   encoder_threads = 0     # libx264 threads; 0: the cores the renderer leaves (at least 1)
 //
 //   [camera]
 //   position = [x, y, z]    # default: framed from the scene's bounds over the whole run
@@ -26,10 +31,13 @@
 //   signal = "contact.slip" # a signal name; a vector signal shows its norm
 //   label = "slip speed"    # text shown before the value (default: the signal name)
 //   unit = "m/s"
-//   trail = true            # the path of the contact point over the last trail_seconds
+//   trail = true            # the path of each contact point over the last trail_seconds,
+//                           # green below the contact's stick_threshold, red above
 //   trail_seconds = 0.5
+//   trail_contacts = ["ground"]  # contacts with a trail (default: every contact)
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,6 +67,11 @@ struct OverlaySettings {
   std::string unit;
   bool trail = false;
   double trail_seconds = 0.5;
+  std::vector<std::string> trail_contacts;  // empty: every contact
+  // Not keys of [overlay]: the run's stick thresholds per contact (scene.run), which colour
+  // the trails as the events are detected.
+  std::map<std::string, double> stick_thresholds;
+  double default_stick_threshold = 1e-3;
 };
 
 // Frames of one video at most (about 4.6 hours at 60 fps); see docs/limits.md.
@@ -72,9 +85,12 @@ struct RenderSettings {
   std::string codec = "h264";
   std::string preset = "veryfast";
   double slow_motion = 1.0;
+  double slow_motion_around_events = 0.0;  // seconds; 0: off
+  double event_slow_motion = 8.0;
   int msaa = 4;
   int shadow_map_size = 2048;
   int shadow_taps = 4;
+  int encoder_threads = 0;  // 0: encoder_threads(); -1 (not a key): libx264's own choice
   CameraSettings camera;
   OverlaySettings overlay;
 };

@@ -2,9 +2,10 @@
 
 #include <cmath>
 #include <cstring>
-
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "render/shadow_fit.hpp"
 
 namespace stiction::render {
 namespace {
@@ -54,13 +55,16 @@ Renderer::Renderer(const RendererOptions& options)
   }
   const int samples = options.msaa > 1 ? options.msaa : 0;
   glBindRenderbuffer(GL_RENDERBUFFER, msaa_colour_.get());
-  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, options.width, options.height);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, options.width,
+                                   options.height);
   glBindRenderbuffer(GL_RENDERBUFFER, msaa_depth_.get());
   glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, options.width,
                                    options.height);
   glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_colour_.get());
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                            msaa_colour_.get());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                            msaa_depth_.get());
   check_framebuffer("colour");
 
   glBindRenderbuffer(GL_RENDERBUFFER, resolve_colour_.get());
@@ -83,7 +87,8 @@ Renderer::Renderer(const RendererOptions& options)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.get());
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_map_.get(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_map_.get(),
+                           0);
     glDrawBuffer(GL_NONE);
     glReadBuffer(GL_NONE);
     check_framebuffer("shadow map");
@@ -92,7 +97,8 @@ Renderer::Renderer(const RendererOptions& options)
     shadow_map_ = make_texture();
     glBindTexture(GL_TEXTURE_2D, shadow_map_.get());
     const float one = 1.0f;
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, 1, 1, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &one);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, 1, 1, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                 &one);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
@@ -114,38 +120,52 @@ Renderer::Renderer(const RendererOptions& options)
 
 const Mesh& Renderer::mesh(Shape shape) const {
   switch (shape) {
-    case Shape::sphere: return sphere_;
-    case Shape::box: return box_;
-    case Shape::cylinder: return cylinder_;
-    default: return plane_;
+    case Shape::sphere:
+      return sphere_;
+    case Shape::box:
+      return box_;
+    case Shape::cylinder:
+      return cylinder_;
+    default:
+      return plane_;
   }
 }
 
 void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
-                    const Bounds& shadow_bounds, const std::vector<TrailVertex>& trail) {
-  // Light: an orthographic box around the shadow bounds, seen from the light's direction.
-  const glm::vec3 c = shadow_bounds.empty() ? glm::vec3(0.0f) : shadow_bounds.centre();
-  const float r = shadow_bounds.empty() ? 1.0f : std::max(shadow_bounds.radius() * 1.05f, 0.05f);
-  const glm::vec3 light_up = std::abs(kLightDirection.z) > 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1);
-  const glm::mat4 light_view = glm::lookAt(c + kLightDirection * (2.0f * r), c, light_up);
-  const glm::mat4 light_view_proj = glm::ortho(-r, r, -r, r, 0.0f, 4.0f * r) * light_view;
+                    const std::vector<TrailVertex>& trail) {
+  const float aspect = float(options_.width) / float(options_.height);
+  const bool shadows = options_.shadow_map_size > 0;
+  const ShadowFit fit =
+      shadows ? fit_shadow(items, camera, aspect, kLightDirection, options_.shadow_map_size)
+              : ShadowFit{};
+  const bool cast = shadows && !fit.empty;
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
 
-  if (options_.shadow_map_size > 0) {
+  if (cast) {
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_.get());
+    // The projection puts the fitted region in the corner [0, fit.size)^2 of the map: only
+    // that corner is cleared (with a border for the filter taps that reach past its edge:
+    // older, larger frames may have left depths there) and drawn.
     glViewport(0, 0, options_.shadow_map_size, options_.shadow_map_size);
+    const int used = std::min(options_.shadow_map_size, fit.size + 16);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, 0, used, used);
     glClear(GL_DEPTH_BUFFER_BIT);
+    // Casters poking out of the fitted depth range are clamped, not clipped.
+    glEnable(GL_DEPTH_CLAMP);
     depth_program_.use();
-    depth_program_.set("u_light_view_proj", light_view_proj);
+    depth_program_.set("u_light_view_proj", fit.light_view_proj);
     for (const DrawItem& item : items) {
       if (!item.casts_shadow) continue;
       depth_program_.set("u_model", item.model);
       mesh(item.shape).draw();
     }
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_SCISSOR_TEST);
   }
 
   glBindFramebuffer(GL_FRAMEBUFFER, msaa_fbo_.get());
@@ -153,12 +173,11 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
   const image::Rgba bg = options_.background;
   glClearColor(bg.r / 255.0f, bg.g / 255.0f, bg.b / 255.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  const float aspect = float(options_.width) / float(options_.height);
   const glm::mat4 view_proj = camera.projection(aspect) * camera.view();
 
   scene_program_.use();
   scene_program_.set("u_view_proj", view_proj);
-  scene_program_.set("u_light_view_proj", light_view_proj);
+  scene_program_.set("u_light_view_proj", fit.light_view_proj);
   scene_program_.set("u_light_dir", kLightDirection);
   scene_program_.set("u_eye", camera.eye);
   scene_program_.set("u_background", linear(bg));
@@ -168,9 +187,17 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, shadow_map_.get());
   scene_program_.set("u_shadow_map", 0);
-  const int map = std::max(options_.shadow_map_size, 1);
-  scene_program_.set("u_shadow_texel", glm::vec2(1.0f / float(map)));
-  scene_program_.set("u_shadow_taps", options_.shadow_map_size > 0 ? options_.shadow_taps : 1);
+  // The soft edge and the depth bias in world units, converted to the map's coordinates.
+  const float side = cast ? fit.texel * float(options_.shadow_map_size) : 1.0f;
+  scene_program_.set("u_shadows", cast ? 1 : 0);
+  scene_program_.set("u_shadow_extent",
+                     cast ? float(fit.size) / float(options_.shadow_map_size) : 1.0f);
+  scene_program_.set("u_shadow_kernel", glm::vec2(cast ? fit.softness / side : 0.0f));
+  scene_program_.set("u_shadow_bias",
+                     cast ? (2.0f * fit.texel + 0.5f * fit.softness) / fit.depth_range : 0.0f);
+  scene_program_.set("u_shadow_slope_bias",
+                     cast ? 4.0f * (fit.texel + fit.softness) / fit.depth_range : 0.0f);
+  scene_program_.set("u_shadow_taps", cast ? options_.shadow_taps : 1);
   for (const DrawItem& item : items) {
     const Material& m = item.material;
     scene_program_.set("u_model", item.model);
@@ -184,6 +211,8 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
     scene_program_.set("u_grid_spacing", m.grid_spacing);
     scene_program_.set("u_local_scale", m.local_scale);
     scene_program_.set("u_local_offset", m.local_offset);
+    scene_program_.set("u_spin_axis", m.spin_axis);
+    scene_program_.set("u_spin_blur", m.spin_blur);
     mesh(item.shape).draw();
   }
 

@@ -19,7 +19,7 @@ struct RendererOptions {
   int width = 1280;
   int height = 720;
   int msaa = 4;                // 1: no multisampling
-  int shadow_map_size = 2048;  // 0: no shadows
+  int shadow_map_size = 2048;  // 0: no shadows; else the most texels per side used
   int shadow_taps = 4;         // 1 or 4
   image::Rgba background{236, 239, 243, 255};
 };
@@ -28,9 +28,10 @@ class Renderer {
  public:
   explicit Renderer(const RendererOptions& options);
 
-  // `shadow_bounds`: the region the shadow map covers (keep it fixed over a run, so shadows
-  // do not shimmer). `trail`: a triangle strip drawn unlit over the ground (may be empty).
-  void draw(const std::vector<DrawItem>& items, const Camera& camera, const Bounds& shadow_bounds,
+  // The shadow map is fitted to the casters and the visible ground each frame
+  // (render/shadow_fit.hpp). `trail`: a triangle strip drawn unlit over the ground (may be
+  // empty).
+  void draw(const std::vector<DrawItem>& items, const Camera& camera,
             const std::vector<TrailVertex>& trail = {});
   // Resolves the multisampled image and reads it into `out` (resized as needed).
   void read_back(image::Image& out);

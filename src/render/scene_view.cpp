@@ -525,6 +525,7 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
                      to_glm(poses.orientation(index, t)) *
                      glm::scale(glm::mat4(1.0f), glm::vec3(static_cast<float>(b.radius)));
         item.material.kind = MaterialKind::sphere_pattern;
+        item.body = index;
         item.material.colour = kSphereColour;
         item.material.colour2 = kSphereColour2;
         item.material.shininess = 48.0f;
@@ -664,40 +665,6 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
     }
   }
   return items;
-}
-
-std::vector<TrailVertex> build_trail(const SceneDescription& scene, const PoseTrack& poses,
-                                     double t, double seconds, float width) {
-  std::vector<TrailVertex> strip;
-  if (scene.contacts.empty()) return strip;
-  const ContactVisual& c = scene.contacts.front();
-  int body = -1;
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].name == c.body) body = static_cast<int>(i);
-  }
-  if (body < 0) return strip;
-  const double t0 = std::max(poses.start_time(), t - seconds);
-  const int steps = 96;
-  core::Vec3 previous = core::Vec3::Zero();
-  for (int i = 0; i <= steps; ++i) {
-    const double s = t0 + (t - t0) * i / steps;
-    const core::Vec3 p = poses.position(body, s) - c.radius * c.normal;
-    // Project onto the surface plane (slightly above it) so a bounce does not lift the trail.
-    core::Vec3 on = p - c.normal * (c.normal.dot(p));
-    for (const auto& surface : scene.surfaces) {
-      if ((surface.normal - c.normal).norm() < 1e-9) on += (surface.offset + 1e-3) * c.normal;
-    }
-    core::Vec3 dir = i == 0 ? core::Vec3(core::Vec3::UnitX()) : core::Vec3(on - previous);
-    if (dir.norm() < 1e-9) dir = core::Vec3::UnitX();
-    const core::Vec3 side = c.normal.cross(dir).normalized() * (0.5 * width);
-    const double slip = poses.signal(c.contact + ".slip", s);
-    const float k = std::isnan(slip) ? 0.0f : static_cast<float>(std::min(1.0, slip / 0.05));
-    const glm::vec3 colour = glm::mix(glm::vec3(0.05f, 0.55f, 0.15f), glm::vec3(0.85f, 0.05f, 0.05f), k);
-    strip.push_back({to_glm(on - side), colour});
-    strip.push_back({to_glm(on + side), colour});
-    previous = on;
-  }
-  return strip;
 }
 
 }  // namespace stiction::render

@@ -94,6 +94,10 @@ struct Material {
   float grid_spacing = 1.0f;    // metres between darker grid lines (checker)
   float local_scale = 1.0f;     // unit-shape coordinates -> metres (checker)
   glm::vec2 local_offset{0.0f}; // added after scaling, so squares align with the world
+  // Motion blur of the sphere pattern (render/spin_blur.hpp): the rotation during the
+  // frame's exposure, about `spin_axis` (object coordinates, unit), `spin_blur` radians.
+  glm::vec3 spin_axis{0.0f, 0.0f, 1.0f};
+  float spin_blur = 0.0f;
 };
 
 struct DrawItem {
@@ -101,6 +105,7 @@ struct DrawItem {
   glm::mat4 model{1.0f};  // unit shape -> world
   Material material;
   bool casts_shadow = true;
+  int body = -1;  // index into SceneDescription::bodies of the body drawn, or -1
 };
 
 struct Bounds {
@@ -164,14 +169,11 @@ Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double
 // Union of body_bounds over `samples` times spread over the run.
 Bounds run_bounds(const SceneDescription& scene, const PoseTrack& poses, int samples = 64);
 
-// Contact-point trail over [t - seconds, t] as a ribbon lying on the surface; the colour
-// shows the contact's slip speed (red: slipping, green: sticking). Empty if no contacts.
+// A vertex of the contact trails (render/trail.hpp builds them).
 struct TrailVertex {
   glm::vec3 position;
   glm::vec3 colour;
 };
-std::vector<TrailVertex> build_trail(const SceneDescription& scene, const PoseTrack& poses,
-                                     double t, double seconds, float width);
 
 glm::vec3 to_glm(const core::Vec3& v);
 

@@ -10,7 +10,10 @@ extern "C" {
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <system_error>
+#include <thread>
 
 #include "sys/temporaries.hpp"
 
@@ -44,6 +47,18 @@ struct FormatDeleter {
 };
 
 }  // namespace
+
+int encoder_threads() {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  int renderer = cores;
+  if (const char* lp = std::getenv("LP_NUM_THREADS")) {
+    char* end = nullptr;
+    const long n = std::strtol(lp, &end, 10);
+    // 0: llvmpipe rasterizes on the calling thread.
+    if (end != lp && n >= 0) renderer = static_cast<int>(std::clamp<long>(n, 1, cores));
+  }
+  return std::max(1, cores - renderer);
+}
 
 struct VideoEncoder::State {
   std::unique_ptr<AVFormatContext, FormatDeleter> format;
@@ -92,7 +107,8 @@ void VideoEncoder::open(const std::string& url, const VideoOptions& options) {
   // (The level is process-wide in FFmpeg; only errors are wanted from it anywhere here.)
   if (av_log_get_level() > AV_LOG_ERROR) av_log_set_level(AV_LOG_ERROR);
   const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
-  if (!codec) throw VideoError("libavcodec has no libx264 encoder (Debian: libavcodec-extra59 or libx264)");
+  if (!codec)
+    throw VideoError("libavcodec has no libx264 encoder (Debian: libavcodec-extra59 or libx264)");
 
   AVFormatContext* format = nullptr;
   int rc = avformat_alloc_output_context2(&format, nullptr, "mp4", url.c_str());
@@ -116,6 +132,9 @@ void VideoEncoder::open(const std::string& url, const VideoOptions& options) {
   if (s.format->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   av_opt_set(c->priv_data, "preset", options.preset.c_str(), 0);
   av_opt_set(c->priv_data, "crf", std::to_string(options.crf).c_str(), 0);
+  // -1: libavcodec/x264 choose (1.5 threads per core: oversubscribed beside the renderer).
+  c->thread_count =
+      options.threads > 0 ? options.threads : (options.threads < 0 ? 0 : encoder_threads());
   rc = avcodec_open2(c, codec, nullptr);
   if (rc < 0) throw VideoError("cannot open the H.264 encoder: " + av_message(rc));
 
@@ -128,7 +147,11 @@ void VideoEncoder::open(const std::string& url, const VideoOptions& options) {
 
   rc = avio_open(&s.format->pb, url.c_str(), AVIO_FLAG_WRITE);
   if (rc < 0) throw VideoError("cannot write " + path_.string() + ": " + av_message(rc));
-  rc = avformat_write_header(s.format.get(), nullptr);
+  // faststart: the muxer rewrites the file at the end with `moov` moved before `mdat`.
+  AVDictionary* muxer_options = nullptr;
+  av_dict_set(&muxer_options, "movflags", "+faststart", 0);
+  rc = avformat_write_header(s.format.get(), &muxer_options);
+  av_dict_free(&muxer_options);
   if (rc < 0) {
     s.format.reset();
     std::error_code ec;
@@ -186,8 +209,8 @@ void VideoEncoder::encode(const image::Image& image) {
   State& s = *state_;
   if (s.finished) throw VideoError("encode() after finish()");
   if (image.width != s.codec->width || image.height != s.codec->height) {
-    throw VideoError("frame size " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                     " differs from the video's");
+    throw VideoError("frame size " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + " differs from the video's");
   }
   int rc = av_frame_make_writable(s.frame.get());
   if (rc < 0) throw VideoError("cannot reuse the frame: " + av_message(rc));

@@ -1,7 +1,9 @@
 // H.264 (libx264) in MP4 through libavcodec/libavformat (FFmpeg 5.1 send/receive API),
 // yuv420p tagged BT.709 limited range. The file is written under a temporary name in the
 // same directory and renamed by finish(); an encoder destroyed without finish() deletes its
-// temporary file, so a partial video never looks complete. Not thread-safe: one thread
+// temporary file, so a partial video never looks complete. The file is written with
+// `+faststart` (the index, `moov`, before the media data, `mdat`) so a browser can start
+// playing it before it has downloaded all of it. Not thread-safe: one thread
 // encodes (render_outputs runs it on its own worker thread).
 #pragma once
 
@@ -26,7 +28,16 @@ struct VideoOptions {
   double fps = 60.0;
   int crf = 20;
   std::string preset = "veryfast";
+  // libx264 threads; 0: encoder_threads() (the cores the renderer leaves over, at least 1);
+  // -1: libx264's own default.
+  int threads = 0;
 };
+
+// Threads for the encoder when a renderer runs beside it: the machine's cores minus those
+// llvmpipe rasterizes with (LP_NUM_THREADS, default: all cores), at least one. x264's own
+// default (1.5 threads per core plus lookahead threads) oversubscribes the cores the
+// renderer is using and slows both down.
+int encoder_threads();
 
 class VideoEncoder {
  public:

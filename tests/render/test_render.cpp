@@ -1,10 +1,9 @@
 #include <catch2/catch.hpp>
-
 #include <filesystem>
 
 #include "image/compare.hpp"
-#include "render/camera.hpp"
 #include "image/png.hpp"
+#include "render/camera.hpp"
 #include "render/gl_context.hpp"
 #include "render/render_outputs.hpp"
 #include "render/render_settings.hpp"
@@ -87,7 +86,9 @@ TEST_CASE("golden: slope_hold block on its slope", "[render][golden]") {
   check_golden("render_slope_hold", renderer.render(0.5));
 }
 
-TEST_CASE("follow camera: horizontal by default, all three axes with follow_vertical", "[render]") {
+TEST_CASE(
+    "follow camera: horizontal with a vertical dead zone, all three axes with follow_vertical",
+    "[render]") {
   // A block sliding down the 20 degree slope of slope_hold's scene: it moves along x and z.
   const scene::Scene s = testing::make_scene(testing::slope_hold_toml(), "slope_hold");
   core::Trajectory tr({"t", "block.p.x", "block.p.y", "block.p.z"});
@@ -106,8 +107,19 @@ TEST_CASE("follow camera: horizontal by default, all three axes with follow_vert
     const CameraRig rig(settings, scene, poses, 16.0f / 9.0f);
     const glm::vec3 shift = rig.at(10.0).target - rig.at(0.0).target;
     CHECK(shift.x == Approx(moved.x).margin(1e-3));
-    CHECK(shift.z == 0.0f);  // a bounce (or a descent) does not move the camera
+    // A small height change (a bounce) does not move the camera ...
+    const glm::vec3 early = rig.at(0.2).target - rig.at(0.0).target;
+    CHECK(early.z == 0.0f);
+    CHECK(early.x > 0.0f);
+    // ... but the block dropping 25 m is followed, beyond a dead zone: it stays in view.
+    CHECK(shift.z < 0.0f);
+    CHECK(shift.z > moved.z);
     CHECK_FALSE(rig.follows_vertically());
+    const Camera c = rig.at(10.0);
+    const glm::vec4 clip = c.projection(16.0f / 9.0f) * c.view() *
+                           glm::vec4(moved + to_glm(poses.position(0, 0.0)), 1.0f);
+    CHECK(std::abs(clip.x / clip.w) < 1.0f);
+    CHECK(std::abs(clip.y / clip.w) < 1.0f);
   }
   settings.follow_vertical = true;
   const CameraRig rig(settings, scene, poses, 16.0f / 9.0f);

@@ -1,0 +1,159 @@
+#include "render/framing.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stiction::render {
+namespace {
+
+void add_cube(std::vector<glm::vec3>& points, glm::vec3 c, glm::vec3 half) {
+  for (int i = 0; i < 8; ++i) {
+    points.push_back(c + glm::vec3((i & 1) ? half.x : -half.x, (i & 2) ? half.y : -half.y,
+                                   (i & 4) ? half.z : -half.z));
+  }
+}
+
+}  // namespace
+
+std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrack& poses,
+                                   double t) {
+  std::vector<glm::vec3> points;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyVisual& b = scene.bodies[i];
+    const int index = static_cast<int>(i);
+    switch (b.kind) {
+      case BodyVisual::Kind::arm: {
+        // Joints and tip of the planar chain (as scene_view draws it), each with its width.
+        core::Vec3 p = b.base;
+        double phi = 0.0;
+        const float w0 = static_cast<float>(b.widths.front());
+        add_cube(points, to_glm(p), glm::vec3(w0));
+        for (std::size_t k = 0; k < b.lengths.size(); ++k) {
+          phi += poses.angle(index, static_cast<int>(k), t);
+          p += b.lengths[k] * core::Vec3(std::cos(phi), std::sin(phi), 0.0);
+          add_cube(points, to_glm(p), glm::vec3(static_cast<float>(b.widths[k])));
+        }
+        break;
+      }
+      case BodyVisual::Kind::sphere:
+        add_cube(points, to_glm(poses.position(index, t)), glm::vec3(static_cast<float>(b.radius)));
+        break;
+      case BodyVisual::Kind::box: {
+        const core::Vec3 c = poses.position(index, t);
+        const core::Quat q = poses.orientation(index, t);
+        for (int k = 0; k < 8; ++k) {
+          const core::Vec3 corner(((k & 1) ? 0.5 : -0.5) * b.size.x(),
+                                  ((k & 2) ? 0.5 : -0.5) * b.size.y(),
+                                  ((k & 4) ? 0.5 : -0.5) * b.size.z());
+          points.push_back(to_glm(c + q * corner));
+        }
+        break;
+      }
+      case BodyVisual::Kind::block: {
+        // A block sits on its surface: its centre is half its height along the normal.
+        const core::Vec3 c = poses.position(index, t) + 0.5 * b.size.z() * b.up;
+        add_cube(points, to_glm(c), glm::vec3(static_cast<float>(0.5 * b.size.norm())));
+        break;
+      }
+    }
+  }
+  for (const JointVisual& j : scene.joints) {
+    const core::Vec3 p = poses.position(j.child, t) + poses.orientation(j.child, t) * j.point;
+    add_cube(points, to_glm(p), glm::vec3(static_cast<float>(j.width)));
+  }
+  return points;
+}
+
+// The size of the bodies' pieces: a sphere's diameter, a free box's or block's largest side,
+// a link's width (a chain is framed by its reach, not by its size).
+float piece_size(const SceneDescription& scene) {
+  float size = 0.0f;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyVisual& b = scene.bodies[i];
+    const bool link =
+        std::any_of(scene.joints.begin(), scene.joints.end(), [&](const JointVisual& j) {
+          return j.child == static_cast<int>(i) || j.parent == static_cast<int>(i);
+        });
+    double s = 0.0;
+    switch (b.kind) {
+      case BodyVisual::Kind::sphere:
+        s = 2.0 * b.radius;
+        break;
+      case BodyVisual::Kind::box:
+        s = link ? b.size.minCoeff() : b.size.maxCoeff();
+        break;
+      case BodyVisual::Kind::block:
+        s = b.size.maxCoeff();
+        break;
+      case BodyVisual::Kind::arm:
+        s = *std::max_element(b.widths.begin(), b.widths.end());
+        break;
+    }
+    size = std::max(size, static_cast<float>(s));
+  }
+  return size;
+}
+
+std::vector<glm::vec3> run_points(const SceneDescription& scene, const PoseTrack& poses,
+                                  glm::vec3 direction, int samples) {
+  std::vector<glm::vec3> points;
+  Bounds all;
+  for (int i = 0; i < samples; ++i) {
+    const double t =
+        poses.start_time() + (poses.end_time() - poses.start_time()) * i / std::max(1, samples - 1);
+    const std::vector<glm::vec3> at = body_points(scene, poses, t);
+    for (const glm::vec3& p : at) all.add(p);
+    points.insert(points.end(), at.begin(), at.end());
+  }
+  // Some ground around bodies that barely move (a block at rest would fill the picture): a
+  // square six pieces wide around the centre of the run, facing the camera so that it is
+  // seen centred.
+  if (!all.empty()) {
+    const glm::vec3 f = glm::normalize(direction);
+    const glm::vec3 right = glm::normalize(glm::cross(f, glm::vec3(0, 0, 1)));
+    const glm::vec3 up = glm::cross(right, f);
+    const float h = 3.0f * piece_size(scene);
+    for (const glm::vec3 d : {h * right, -h * right, h * up, -h * up})
+      points.push_back(all.centre() + d);
+  }
+  return points;
+}
+
+Camera frame_points(const std::vector<glm::vec3>& points, glm::vec3 direction, float fov_y_degrees,
+                    float aspect, float margin) {
+  Camera camera;
+  camera.fov_y_degrees = fov_y_degrees;
+  if (points.empty()) return camera;
+  const glm::vec3 f = glm::normalize(direction);
+  const glm::vec3 right = glm::normalize(glm::cross(f, camera.up));
+  const glm::vec3 up = glm::cross(right, f);
+  const float ty = std::tan(glm::radians(fov_y_degrees) * 0.5f) * (1.0f - margin);
+  const float tx = ty * aspect;
+  glm::vec3 c0(0.0f);
+  for (const glm::vec3& p : points) c0 += p;
+  c0 /= static_cast<float>(points.size());
+  // With the eye at c0 + cx right + cy up - d f, point i (coordinates x, y, z along right,
+  // up, f) is in view if |x - cx| <= tx (d + z) and |y - cy| <= ty (d + z). For each axis,
+  // cx + tx d >= max(x - tx z) =: A and tx d - cx >= max(-x - tx z) =: B; the least d is
+  // (A + B) / (2 tx), with cx = (A - B) / 2.
+  float ax = -1e30f, bx = -1e30f, ay = -1e30f, by = -1e30f, radius = 0.0f;
+  for (const glm::vec3& p : points) {
+    const glm::vec3 o = p - c0;
+    const float x = glm::dot(o, right), y = glm::dot(o, up), z = glm::dot(o, f);
+    ax = std::max(ax, x - tx * z);
+    bx = std::max(bx, -x - tx * z);
+    ay = std::max(ay, y - ty * z);
+    by = std::max(by, -y - ty * z);
+    radius = std::max(radius, glm::length(o));
+  }
+  const float d = std::max({(ax + bx) / (2.0f * tx), (ay + by) / (2.0f * ty), 1e-3f});
+  const glm::vec3 target = c0 + 0.5f * (ax - bx) * right + 0.5f * (ay - by) * up;
+  camera.target = target;
+  camera.eye = target - f * d;
+  const float r = std::max(radius, 1e-3f);
+  camera.near_plane = std::max(1e-3f, 0.05f * (d - r));
+  camera.far_plane = d + 60.0f * r + 20.0f;
+  return camera;
+}
+
+}  // namespace stiction::render

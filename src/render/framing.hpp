@@ -1,0 +1,29 @@
+// Automatic framing from the bodies' own extreme points (not the corners of their bounding
+// box): an arm sweeping a quarter circle is framed by where its links actually are, so it
+// fills the picture instead of sitting in a corner of an empty box.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "render/camera.hpp"
+#include "render/scene_view.hpp"
+
+namespace stiction::render {
+
+// Points whose convex hull holds every body (and penalty joint) at time t.
+std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrack& poses, double t);
+
+// body_points at `samples` times spread over the run, and a square six of the bodies'
+// pieces wide facing a camera looking along `direction`, centred on them (ground around a
+// body at rest).
+std::vector<glm::vec3> run_points(const SceneDescription& scene, const PoseTrack& poses,
+                                  glm::vec3 direction, int samples = 96);
+
+// The closest camera looking along `direction` that shows every point with `margin` (the
+// fraction of the half-width and half-height of the view left free on the tightest side).
+// The camera is shifted sideways so the points' picture is centred; exact for perspective.
+Camera frame_points(const std::vector<glm::vec3>& points, glm::vec3 direction, float fov_y_degrees,
+                    float aspect, float margin = 0.12f);
+
+}  // namespace stiction::render

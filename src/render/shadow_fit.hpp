@@ -1,0 +1,37 @@
+// The directional light's shadow map fitted, every frame, to what can show a shadow: the
+// light-space footprint of the shadow casters, cut down to the part of the ground the camera
+// can see. The map's texels then stay small whatever the length of the run (no stair-stepped
+// shadow edges on a 13 m roll), and the soft edge is set in world units (a fixed fraction of
+// the viewing distance) rather than in texels, so a smaller map gives the same picture as
+// long as its texels stay well below that edge.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "render/camera.hpp"
+#include "render/scene_view.hpp"
+
+namespace stiction::render {
+
+struct ShadowFit {
+  bool empty = true;                // no caster can shadow anything visible
+  // World -> light clip space. x and y of the fitted region map to the corner
+  // [-1, -1 + 2 size / map_size] of clip space, i.e. to the texels [0, size) of the map.
+  glm::mat4 light_view_proj{1.0f};
+  int size = 0;                     // texels per side used (<= map_size)
+  float texel = 0.0f;               // world size of one texel
+  float depth_range = 1.0f;         // metres spanned by depth 0..1
+  float softness = 0.0f;            // world width of the filtered edge (tap offset)
+};
+
+// `aspect`: the frame's width / height; `map_size`: texels per side of the map, the most
+// that is used: the fit uses the power of two (>= 256) that makes a texel at most a quarter
+// of the soft edge, so the cost follows what the picture needs.
+ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, float aspect,
+                     glm::vec3 light_direction, int map_size);
+
+// World-space bounds of the unit shape of `item` under its model matrix.
+Bounds item_bounds(const DrawItem& item);
+
+}  // namespace stiction::render

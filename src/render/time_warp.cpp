@@ -1,0 +1,40 @@
+#include "render/time_warp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace stiction::render {
+
+double playback_speed(double t, const std::vector<double>& events, double window, double factor) {
+  if (window <= 0.0 || factor <= 1.0 || events.empty()) return 1.0;
+  double d = std::numeric_limits<double>::infinity();
+  for (double e : events) d = std::min(d, std::abs(t - e));
+  const double slow = 1.0 / factor;
+  if (d <= window) return slow;
+  const double ramp = 0.5 * window;
+  if (d >= window + ramp) return 1.0;
+  return slow + (1.0 - slow) * (d - window) / ramp;
+}
+
+std::vector<FrameTime> warped_frame_times(double start, double end, double step,
+                                          const std::vector<double>& events, double window,
+                                          double factor) {
+  std::vector<FrameTime> frames;
+  if (!(step > 0.0)) return frames;
+  if (window <= 0.0 || factor <= 1.0 || events.empty()) {
+    const int count = static_cast<int>(std::floor((end - start) / step + 1e-6)) + 1;
+    frames.reserve(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) frames.push_back({start + step * i, 1.0});
+    return frames;
+  }
+  double t = start;
+  while (t <= end + 1e-6 * step) {
+    const double speed = playback_speed(t, events, window, factor);
+    frames.push_back({std::min(t, end), speed});
+    t += step * speed;
+  }
+  return frames;
+}
+
+}  // namespace stiction::render
