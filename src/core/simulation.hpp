@@ -30,6 +30,8 @@ struct RunOptions {
   // Slip speed below which a contact or joint counts as stuck, per impedance name.
   std::map<std::string, double> stick_thresholds;
   double default_stick_threshold = 1e-3;  // m/s or rad/s
+  // Sticks shorter than this are not reported as events (SlipMonitor); negative: one step.
+  double event_resolution = -1.0;
 };
 
 struct SlipHistory {
