@@ -11,6 +11,7 @@
 #include "app/commands.hpp"
 #include "app/interrupted_run.hpp"
 #include "app/output_dir.hpp"
+#include "app/event_lines.hpp"
 #include "app/progress.hpp"
 #include "app/run_support.hpp"
 #include "app/verify_settings.hpp"
@@ -139,13 +140,7 @@ int run_command(const RunArguments& args) {
     std::printf("%s: %s, dt = %g s, %ld steps, %d rows in %.3f s\n", scene.name.c_str(),
                 run.integrator.c_str(), run.dt, result.steps, result.trajectory.row_count(),
                 result.wall_seconds);
-    for (const auto& [contact, entry] : summary["events"].items()) {
-      if (entry["stick_time"].is_null()) {
-        std::printf("  %s: no stick\n", contact.c_str());
-      } else {
-        std::printf("  %s: stick at t = %.6g s\n", contact.c_str(), entry["stick_time"].get<double>());
-      }
-    }
+    for (const std::string& line : event_lines(summary["events"])) std::printf("  %s\n", line.c_str());
     std::printf("  wrote %s and %s\n", (out / "trajectory.csv").c_str(), (out / "summary.json").c_str());
     std::fflush(stdout);
   }

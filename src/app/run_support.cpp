@@ -59,6 +59,8 @@ std::map<std::string, double> event_times(const core::RunResult& result) {
   for (const core::SlipHistory& h : result.slip_events) {
     const double t = h.monitor.stick_time();
     if (t >= 0.0) events[h.component + ".stick_time"] = t;
+    const double slip = h.monitor.first_slip();
+    if (slip >= 0.0) events[h.component + ".slip_time"] = slip;  // labelled "<element> slip"
   }
   return events;
 }

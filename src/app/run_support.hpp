@@ -31,7 +31,8 @@ bool show_progress(bool quiet);
 // core::simulate with a progress bar on stderr when `progress` is set.
 core::RunResult simulate_scene(scene::Scene& scene, bool progress);
 
-// "<impedance>.stick_time" -> first stick time, for every element that stuck.
+// "<impedance>.stick_time" -> first stick time, for every element that stuck, and
+// "<impedance>.slip_time" -> first slip time, for every element that slipped.
 std::map<std::string, double> event_times(const core::RunResult& result);
 
 // The step to suggest after an instability, checked by a trial run (app/suggest_step.hpp).

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
@@ -39,11 +40,23 @@ double median(std::vector<double> values) {
 
 bool is_fixed_step(const std::string& integrator) { return integrator != "rk4_adaptive"; }
 
-// What the study needs from one reference-like run: the key columns and the stick times.
+// What the study needs from one reference-like run: the key columns and the event times.
 struct Measured {
   std::vector<std::vector<double>> key;  // per key signal, per row
-  std::vector<double> stick_times;       // per slip component, NaN: none
+  std::vector<double> event_times;       // per measured event, NaN: none
 };
+
+// The event kinds measured per element: its first stick and its first slip.
+constexpr const char* kEventKinds[] = {"stick", "slip"};
+
+double first_event(const core::RunResult& run, const std::string& element, const std::string& kind) {
+  for (const auto& history : run.slip_events) {
+    if (history.component != element) continue;
+    const double t = kind == "stick" ? history.monitor.stick_time() : history.monitor.first_slip();
+    return t >= 0.0 ? t : kNaN;
+  }
+  return kNaN;
+}
 
 class Study {
  public:
@@ -63,7 +76,9 @@ class Study {
     }
     for (const auto& name : result_.key_signals) key_columns_.push_back(index_of(columns, name));
     for (const auto& imp : scene_.network->impedances()) {
-      if (imp->has_slip()) result_.slip_components.push_back(imp->name());
+      if (!imp->has_slip()) continue;
+      result_.slip_components.push_back(imp->name());
+      for (const char* kind : kEventKinds) events_.push_back({imp->name(), kind});
     }
     integrators_ = options.integrators.empty() ? core::integrator_names() : options.integrators;
     const auto known = core::integrator_names();
@@ -125,15 +140,7 @@ class Study {
     Measured m;
     const core::Trajectory& tr = run.trajectory;
     for (int c : key_columns_) m.key.push_back(tr.column(c));
-    for (const auto& name : result_.slip_components) {
-      double t = kNaN;
-      for (const auto& history : run.slip_events) {
-        if (history.component == name && history.monitor.stick_time() >= 0.0) {
-          t = history.monitor.stick_time();
-        }
-      }
-      m.stick_times.push_back(t);
-    }
+    for (const auto& [element, kind] : events_) m.event_times.push_back(first_event(run, element, kind));
     return m;
   }
 
@@ -211,26 +218,41 @@ class Study {
     }
     result_.reference_steps = ref.steps;
     result_.reference_wall_seconds = ref.wall_seconds;
+    // Measured from now on: the events the reference has.
+    const Measured all = measure(ref);
+    std::vector<std::pair<std::string, std::string>> present;
+    for (std::size_t i = 0; i < events_.size(); ++i) {
+      if (std::isnan(all.event_times[i])) continue;
+      present.push_back(events_[i]);
+      result_.event_names.push_back(events_[i].first + " " + events_[i].second);
+      result_.reference_event_times.push_back(all.event_times[i]);
+    }
+    events_ = std::move(present);
     reference_ = measure(ref);
-    result_.reference_stick_times = reference_.stick_times;
     set_scales();
     // The reference's own error: rk4 at twice its step against it.
     core::RunResult check = core::simulate(*scene_.network, options_for("rk4", 2.0 * h, 0.0));
     if (check.instability) {
-      result_.reference_noise = result_.reference_stick_noise = kNaN;
+      result_.reference_noise = result_.reference_event_noise = kNaN;
     } else {
       const Measured m = measure(check);
       result_.reference_noise = key_error(signal_errors(m, 2.0 * h)).first;
-      result_.reference_stick_noise = result_.slip_components.empty() ? kNaN : 0.0;
-      for (std::size_t i = 0; i < m.stick_times.size(); ++i) {
-        const double rel = std::abs(m.stick_times[i] - reference_.stick_times[i]) /
-                           std::abs(reference_.stick_times[i]);
-        if (!(rel <= result_.reference_stick_noise)) result_.reference_stick_noise = rel;
+      result_.reference_event_noise = events_.empty() ? kNaN : 0.0;
+      for (std::size_t i = 0; i < m.event_times.size(); ++i) {
+        const double rel = std::abs(m.event_times[i] - reference_.event_times[i]) /
+                           std::abs(reference_.event_times[i]);
+        if (!(rel <= result_.reference_event_noise)) result_.reference_event_noise = rel;
       }
     }
-    say("reference: " + std::to_string(ref.steps) + " steps in " + format_g(ref.wall_seconds) +
-        " s; rk4 at 2x its step differs by " + format_g(result_.reference_noise) +
-        " (key error), " + format_g(result_.reference_stick_noise) + " (stick time, relative)");
+    std::string line = "reference: " + std::to_string(ref.steps) + " steps in " +
+                       format_g(ref.wall_seconds) + " s; rk4 at 2x its step differs by " +
+                       format_g(result_.reference_noise) + " (key error)";
+    if (!events_.empty()) {
+      line += std::isnan(result_.reference_event_noise)
+                  ? ", events not measured (unstable)"
+                  : ", " + format_g(result_.reference_event_noise) + " (event times, relative)";
+    }
+    say(line);
   }
 
   // One grid point: a first run, then repeats for the timing if they are cheap.
@@ -260,27 +282,27 @@ class Study {
     row.wall_seconds = median(walls);
 
     const Measured m = measure(first);
-    const std::size_t slips = result_.slip_components.size();
+    const std::size_t events = events_.size();
     if (first.instability) {
       row.signal_errors.assign(result_.key_signals.size(), kNaN);
       row.key_error = kNaN;
-      row.stick_times.assign(slips, kNaN);
-      row.stick_errors.assign(slips, kNaN);
-      row.stick_relative_errors.assign(slips, kNaN);
-      row.max_stick_relative_error = kNaN;
+      row.event_times.assign(events, kNaN);
+      row.event_errors.assign(events, kNaN);
+      row.event_relative_errors.assign(events, kNaN);
+      row.max_event_relative_error = kNaN;
     } else {
       row.signal_errors = signal_errors(m, is_fixed_step(integrator) ? dt : 0.0);
       std::tie(row.key_error, row.worst_signal) = key_error(row.signal_errors);
-      row.stick_times = m.stick_times;
-      row.max_stick_relative_error = slips == 0 ? kNaN : 0.0;
-      for (std::size_t i = 0; i < slips; ++i) {
-        const double ref = reference_.stick_times[i];
-        const double err = std::abs(m.stick_times[i] - ref);
-        row.stick_errors.push_back(err);
-        row.stick_relative_errors.push_back(err / std::abs(ref));
-        // A missing stick (NaN) makes the row's event error NaN: it missed the event.
-        if (!(row.stick_relative_errors.back() <= row.max_stick_relative_error)) {
-          row.max_stick_relative_error = row.stick_relative_errors.back();
+      row.event_times = m.event_times;
+      row.max_event_relative_error = events == 0 ? kNaN : 0.0;
+      for (std::size_t i = 0; i < events; ++i) {
+        const double ref = reference_.event_times[i];
+        const double err = std::abs(m.event_times[i] - ref);
+        row.event_errors.push_back(err);
+        row.event_relative_errors.push_back(err / std::abs(ref));
+        // A missing event (NaN) makes the row's event error NaN: it missed the event.
+        if (!(row.event_relative_errors.back() <= row.max_event_relative_error)) {
+          row.max_event_relative_error = row.event_relative_errors.back();
         }
       }
     }
@@ -291,8 +313,13 @@ class Study {
       line += "unstable at t = " + format_g(row.instability->time) + " s in '" +
               row.instability->component + "'";
     } else {
-      line += format_g(row.wall_seconds) + " s, key error " + format_g(row.key_error) +
-              ", stick error " + format_g(row.max_stick_relative_error) + " (relative)";
+      line += format_g(row.wall_seconds) + " s, key error " + format_g(row.key_error);
+      for (std::size_t i = 0; i < events_.size(); ++i) {
+        line += ", " + result_.event_names[i] + " " +
+                (std::isnan(row.event_times[i]) ? std::string("missed")
+                                                : "error " + format_g(row.event_relative_errors[i]) +
+                                                      " (relative)");
+      }
     }
     say(line);
     result_.rows.push_back(row);
@@ -440,6 +467,7 @@ class Study {
   std::vector<std::string> integrators_;
   std::vector<int> key_columns_;
   Measured reference_;
+  std::vector<std::pair<std::string, std::string>> events_;  // (element, kind) measured
   StudyResult result_;
 };
 

@@ -4,9 +4,9 @@
 // this process and measured: wall time of the simulation alone (median of repeats), steps,
 // network evaluations, the largest error of the scene's key signals (`*.p.*`, `*.v.*` of
 // bodies, `*.theta.*` of arms and joints) over the common output rows against a reference
-// run (rk4 at a much smaller step), and the error of the first stick time of each contact
-// or joint against the reference's. A run that goes unstable is a row with status
-// `unstable`, never an error. Then, for each fixed-step integrator, the largest stable step
+// run (rk4 at a much smaller step), and the errors of the events of each contact or joint
+// (its first stick and its first slip, whichever the reference has) against the
+// reference's. A run that goes unstable is a row with status `unstable`, never an error. Then, for each fixed-step integrator, the largest stable step
 // is found by bisection over whole runs of the scene and set beside the one predicted by
 // core::predict_step_limit from the linearized step map.
 //
@@ -61,12 +61,12 @@ struct StudyRow {
   // max over key signals of signal_error / scale of the signal (see StudyResult::key_scales).
   double key_error = 0.0;
   std::string worst_signal;
-  // Per slip component (StudyResult::slip_components): first stick time (NaN: none) and
-  // its error against the reference's, absolute (s) and relative (to the reference time).
-  std::vector<double> stick_times;
-  std::vector<double> stick_errors;
-  std::vector<double> stick_relative_errors;
-  double max_stick_relative_error = 0.0;  // NaN when a stick time is missing
+  // Per event (StudyResult::event_names): its time in this run (NaN: none) and the error
+  // against the reference's, absolute (s) and relative (to the reference time).
+  std::vector<double> event_times;
+  std::vector<double> event_errors;
+  std::vector<double> event_relative_errors;
+  double max_event_relative_error = 0.0;  // NaN when an event is missing or there are none
 };
 
 // Observed order of one fixed-step integrator: least-squares slope of log(key error)
@@ -102,13 +102,16 @@ struct StudyResult {
   // Key error of rk4 at 2 x reference_dt against the reference: errors near this are the
   // reference's own, so they are left out of the order fits.
   double reference_noise = 0.0;
-  // Likewise for the stick times: the largest relative difference of rk4 at 2 x
-  // reference_dt from the reference (NaN without slip components).
-  double reference_stick_noise = 0.0;
+  // Likewise for the event times: the largest relative difference of rk4 at 2 x
+  // reference_dt from the reference (NaN without events).
+  double reference_event_noise = 0.0;
   std::vector<std::string> key_signals;
   std::vector<double> key_scales;  // max |value| of each key signal's vector in the reference
-  std::vector<std::string> slip_components;
-  std::vector<double> reference_stick_times;  // NaN: no stick in the reference
+  std::vector<std::string> slip_components;  // elements with a slip speed
+  // The events measured: "<element> stick" (its first stick) and "<element> slip" (its first
+  // slip), for each one the reference has, with the reference's times.
+  std::vector<std::string> event_names;
+  std::vector<double> reference_event_times;
   std::vector<StudyRow> rows;
   std::vector<OrderEstimate> orders;
   std::vector<StabilityLimit> limits;

@@ -38,9 +38,9 @@ std::string csv_field(const std::string& text) {
   return out;
 }
 
-double max_stick_error(const StudyRow& row) {
-  double worst = row.stick_errors.empty() ? NAN : 0.0;
-  for (double e : row.stick_errors) {
+double max_event_error(const StudyRow& row) {
+  double worst = row.event_errors.empty() ? NAN : 0.0;
+  for (double e : row.event_errors) {
     if (!(e <= worst)) worst = e;
   }
   return worst;
@@ -65,10 +65,13 @@ std::string study_csv(const StudyResult& r) {
   std::string out = "integrator,dt,tolerance,status,unstable_time,unstable_component,steps,"
                     "evaluations,wall_seconds,repeats,key_error,worst_signal";
   for (const auto& s : r.key_signals) out += ",error_" + s;
-  for (const auto& c : r.slip_components) {
-    out += ",stick_time_" + c;
-    out += ",stick_error_" + c;
-    out += ",stick_relative_error_" + c;
+  for (const auto& name : r.event_names) {
+    // "ground stick" -> stick_time_ground, stick_error_ground, stick_relative_error_ground
+    const std::size_t space = name.rfind(' ');
+    const std::string element = name.substr(0, space), kind = name.substr(space + 1);
+    out += ',' + csv_field(kind + "_time_" + element);
+    out += ',' + csv_field(kind + "_error_" + element);
+    out += ',' + csv_field(kind + "_relative_error_" + element);
   }
   out += '\n';
   for (const auto& row : r.rows) {
@@ -81,10 +84,10 @@ std::string study_csv(const StudyResult& r) {
     out += ',' + num(row.wall_seconds, 6) + ',' + std::to_string(row.repeats);
     out += ',' + num(row.key_error, 6) + ',' + csv_field(row.worst_signal);
     for (double e : row.signal_errors) out += ',' + num(e, 6);
-    for (std::size_t i = 0; i < r.slip_components.size(); ++i) {
-      out += ',' + num(row.stick_times[i], 10);
-      out += ',' + num(row.stick_errors[i], 6);
-      out += ',' + num(row.stick_relative_errors[i], 6);
+    for (std::size_t i = 0; i < r.event_names.size(); ++i) {
+      out += ',' + num(row.event_times[i], 10);
+      out += ',' + num(row.event_errors[i], 6);
+      out += ',' + num(row.event_relative_errors[i], 6);
     }
     out += '\n';
   }
@@ -98,25 +101,29 @@ std::string study_markdown(const StudyResult& r) {
   md += "Reference: **" + r.reference_integrator + " at dt = " + num(r.reference_dt) + " s** (" +
         num(r.scene_dt / r.reference_dt, 3) + "x finer than the scene's), " +
         std::to_string(r.reference_steps) + " steps, " + num(r.reference_wall_seconds, 3) +
-        " s. rk4 at twice that step differs from it by " + num(r.reference_noise, 3) + " (key error)" +
-        (r.slip_components.empty() ? std::string() : " and " + num(r.reference_stick_noise, 3) + " (stick time, relative)") +
+        " s. rk4 at twice that step differs from it by " + cell(r.reference_noise, 3) + " (key error)" +
+        (r.event_names.empty() ? std::string() : " and " + cell(r.reference_event_noise, 3) + " (event times, relative)") +
         ": errors near these measure the reference as much as the run.\n\n";
   md += "Key error: max over the key signals (" + join(r.key_signals, ", ") +
         ") of max |x - x_ref| over the common output rows (for a fixed step, the rows that fall on one "
         "of its steps: the others are interpolated linearly between steps), divided by the signal's "
         "scale (the largest |value| of its vector in the reference). ";
-  if (!r.slip_components.empty()) {
-    md += "Stick error: first stick time of each contact/joint against the reference's (";
+  if (!r.event_names.empty()) {
+    md += "Event error: the first stick and the first slip of each contact/joint, those the "
+          "reference has, against the reference's (";
     std::vector<std::string> refs;
-    for (std::size_t i = 0; i < r.slip_components.size(); ++i) {
-      refs.push_back(r.slip_components[i] + " " + num(r.reference_stick_times[i], 7) + " s");
+    for (std::size_t i = 0; i < r.event_names.size(); ++i) {
+      refs.push_back(r.event_names[i] + " " + cell(r.reference_event_times[i], 7) + " s");
     }
-    md += join(refs, ", ") + "); the worst of them, absolute and relative to the reference time. ";
+    md += join(refs, ", ") + "); the worst of them, absolute and relative to the reference time "
+          "(each one in the table \"Event errors\" below). ";
+  } else if (!r.slip_components.empty()) {
+    md += "Event error: none measured, the reference has no stick and no slip event. ";
   }
   md += "Wall time: the simulation alone, median of the repeats (rep).\n\n";
 
   md += "| integrator | dt [s] | status | steps | evaluations | wall [ms] | rep | key error | worst signal "
-        "| stick error [s] | stick error (rel) |\n";
+        "| event error [s] | event error (rel) |\n";
   md += "|---|---:|---|---:|---:|---:|---:|---:|---|---:|---:|\n";
   for (const auto& row : r.rows) {
     std::string status = row.status;
@@ -127,7 +134,35 @@ std::string study_markdown(const StudyResult& r) {
           std::to_string(row.steps) + " | " + std::to_string(row.evaluations) + " | " +
           cell(1e3 * row.wall_seconds, 3) + " | " + std::to_string(row.repeats) + " | " +
           cell(row.key_error) + " | " + (row.worst_signal.empty() ? "–" : row.worst_signal) +
-          " | " + cell(max_stick_error(row)) + " | " + cell(row.max_stick_relative_error) + " |\n";
+          " | " + cell(max_event_error(row)) + " | " + cell(row.max_event_relative_error) + " |\n";
+  }
+
+  if (!r.event_names.empty()) {
+    md += "\n## Event errors\n\nEach event's time and its error relative to the reference's "
+          "time (– where the run has no such event).\n\n| integrator | dt [s] |";
+    std::string rule = "|---|---:|";
+    for (const auto& name : r.event_names) {
+      md += ' ';
+      md += name;
+      md += " [s] | ";
+      md += name;
+      md += " (rel) |";
+      rule += "---:|---:|";
+    }
+    md += '\n';
+    md += rule;
+    md += '\n';
+    for (const auto& row : r.rows) {
+      md += "| " + row.integrator + " | " + step_cell(row) + " |";
+      for (std::size_t i = 0; i < r.event_names.size(); ++i) {
+        md += ' ';
+        md += cell(row.event_times[i], 7);
+        md += " | ";
+        md += cell(row.event_relative_errors[i]);
+        md += " |";
+      }
+      md += "\n";
+    }
   }
 
   if (!r.orders.empty()) {
@@ -172,7 +207,7 @@ std::string study_markdown(const StudyResult& r) {
 
 image::Image work_precision_figure(const StudyResult& r, text::Font& font) {
   plot::Figure figure;
-  figure.panels.reserve(2);  // `key` and `stick` point into it
+  figure.panels.reserve(2);  // `key` and `events` point into it
   figure.title = "Work-precision: " + r.scene + " (reference rk4, dt = " + num(r.reference_dt, 3) + " s)";
   // The figure's horizontal axis is linear only: it carries log10 of the cost.
   figure.x_label = "Cost: log\u2081\u2080(wall time of the simulation / 1 s)";
@@ -180,12 +215,12 @@ image::Image work_precision_figure(const StudyResult& r, text::Font& font) {
   plot::Panel& key = figure.panels.emplace_back();
   key.label = "Key-signal error (relative)";
   key.log = true;
-  plot::Panel* stick = nullptr;
-  if (!r.slip_components.empty()) {
-    stick = &figure.panels.emplace_back();
-    stick->label = "Stick-time error (relative)";
-    stick->log = true;
-    stick->references.push_back({1e-4, "1e-4"});
+  plot::Panel* events = nullptr;
+  if (!r.event_names.empty()) {
+    events = &figure.panels.emplace_back();
+    events->label = "Event-time error (relative, worst)";
+    events->log = true;
+    events->references.push_back({1e-4, "1e-4"});
   }
   // Keep the order of first appearance of the integrators.
   std::vector<std::string> integrators;
@@ -209,10 +244,10 @@ image::Image work_precision_figure(const StudyResult& r, text::Font& font) {
       ks.x.push_back(x);
       ks.y.push_back(row->key_error > 0.0 ? row->key_error : NAN);
       ss.x.push_back(x);
-      ss.y.push_back(row->max_stick_relative_error > 0.0 ? row->max_stick_relative_error : NAN);
+      ss.y.push_back(row->max_event_relative_error > 0.0 ? row->max_event_relative_error : NAN);
     }
     key.series.push_back(std::move(ks));
-    if (stick != nullptr) stick->series.push_back(std::move(ss));
+    if (events != nullptr) events->series.push_back(std::move(ss));
   }
   return plot::render(figure, font);
 }

@@ -1,47 +1,241 @@
 #include "core/events.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace stiction::core {
+namespace {
 
-void SlipMonitor::observe(double t, const Vec3& slip) {
+// Speed of the fitted curve s = s_ref |(t - t0) / (t_ref - t0)|^p at t; zero on the far
+// side of t0 (before it for an onset, after it for a stick).
+double fitted_speed(double t, double t0, double p, double t_ref, double s_ref, bool growing) {
+  const double sigma = growing ? t - t0 : t0 - t;
+  const double sigma_ref = growing ? t_ref - t0 : t0 - t_ref;
+  if (sigma <= 0.0) return 0.0;
+  if (sigma_ref <= 0.0) return s_ref;
+  return s_ref * std::pow(sigma / sigma_ref, p);
+}
+
+}  // namespace
+
+const char* SlipMonitor::name(State s) {
+  switch (s) {
+    case State::stick:
+      return "stick";
+    case State::slip:
+      return "slip";
+    case State::open:
+      return "open";
+  }
+  return "stick";
+}
+
+bool SlipMonitor::fit_zero(const std::vector<Sample>& samples, bool growing, double& t0,
+                           double& p) {
+  const std::size_t n = samples.size();
+  if (n < 2) return false;
+  const Sample& ref = growing ? samples.front() : samples.back();
+  double slope = 0.0;
+  double curvature = 0.0;
+  if (n == 2) {
+    slope = (samples[1].s - samples[0].s) / (samples[1].t - samples[0].t);
+  } else {
+    // The quadratic through the three samples (Newton's divided differences).
+    const Sample& a = samples[n - 3];
+    const Sample& b = samples[n - 2];
+    const Sample& c = samples[n - 1];
+    const double f_ab = (b.s - a.s) / (b.t - a.t);
+    const double f_bc = (c.s - b.s) / (c.t - b.t);
+    const double f_abc = (f_bc - f_ab) / (c.t - a.t);
+    slope = f_ab + f_abc * (2.0 * ref.t - a.t - b.t);
+    curvature = 2.0 * f_abc;
+  }
+  // The speed must move away from zero (onset) or toward it (stick).
+  if (growing ? !(slope > 0.0) : !(slope < 0.0)) return false;
+  const double a_ratio = ref.s / std::abs(slope);  // s / |s'| = |t - t0| / p
+  p = 1.0;
+  if (curvature > 0.0) {
+    const double b_ratio = std::abs(slope) / curvature;  // |s'| / s'' = |t - t0| / (p - 1)
+    p = b_ratio > a_ratio ? b_ratio / (b_ratio - a_ratio) : 3.0;
+    p = std::clamp(p, 1.0, 3.0);
+  }
+  const double reach = p * a_ratio;
+  t0 = growing ? ref.t - reach : ref.t + reach;
+  return std::isfinite(t0);
+}
+
+void SlipMonitor::observe(double t, const Vec3& slip, bool open, bool held) {
   const double speed = slip.norm();
-  const bool above = speed > threshold_;
-  if (seen_ > 0) {
-    const bool reversed = sliding_ && above && slip.dot(v1_) < 0.0;
-    if (reversed) {
-      // Passed through zero within the step: interpolate the zero of the speed, which
-      // falls and rises back as |v| does.
-      const double t_zero = t1_ + s1_ / (s1_ + speed) * (t - t1_);
-      events_.push_back({"stick", t_zero});
-      events_.push_back({"slip", t_zero});
-    } else if (sliding_ && !above) {
-      double t_stick = t1_ + (s1_ - threshold_) / (s1_ - speed) * (t - t1_);
-      if (seen_ >= 2 && s2_ > s1_) {
-        // The line through the last two sliding steps. Its zero is the stick time if the
-        // line itself falls below the threshold within this step, i.e. the slip is
-        // decelerating steadily however far below the threshold zero lies; a drop faster
-        // than the line (an impact) keeps the threshold crossing.
-        const double slope = (s2_ - s1_) / (t1_ - t2_);
-        if (s1_ - slope * (t - t1_) <= threshold_) t_stick = t1_ + s1_ / slope;
-      }
-      events_.push_back({"stick", t_stick});
-    } else if (!sliding_ && above) {
-      events_.push_back({"slip", t1_ + (threshold_ - s1_) / (speed - s1_) * (t - t1_)});
+  const State now = open ? State::open : (speed > threshold_ && !held ? State::slip : State::stick);
+  if (!started_) {
+    started_ = true;
+    state_ = initial_state_ = now;
+    initial_ = name(now);
+    t_first_ = t;
+    if (now == State::slip) sliding_ = {{t, speed}};
+    t1_ = t;
+    s1_ = speed;
+    v1_ = slip;
+    return;
+  }
+  // What waited for this step.
+  if (stick_pending_) {
+    if (now != State::stick) {
+      settle_pending_stick(false);
+    } else if (t >= stick_fit_) {
+      settle_pending_stick(true);
     }
   }
-  sliding_ = above;
-  t2_ = t1_;
-  s2_ = s1_;
+  if (slip_pending_) {
+    if (now == State::slip) onset_.push_back({t, speed});
+    if (now != State::slip || onset_.size() >= 3) settle_pending_slip();
+  }
+
+  switch (state_) {
+    case State::slip:
+      if (now == State::slip) {
+        // A reversal between two sliding steps passed through zero within the step: a
+        // stick of zero length, not reported; the fit starts again from here.
+        if (slip.dot(v1_) < 0.0) sliding_.clear();
+        sliding_.push_back({t, speed});
+        if (sliding_.size() > 3) sliding_.erase(sliding_.begin());
+      } else if (now == State::stick) {
+        double t0 = 0.0;
+        double p = 1.0;
+        if (speed > threshold_) {
+          // Held by its law above the threshold (a stuck spring vibrating): the switch lies
+          // in this step, at the fitted zero if that falls in it.
+          const bool fits = fit_zero(sliding_, false, t0, p) && t0 <= t;
+          commit(State::stick, fits ? std::max(t0, t1_) : t);
+          sliding_.clear();
+          break;
+        }
+        const double crossing = t1_ + (s1_ - threshold_) / (s1_ - speed) * (t - t1_);
+        const bool fits =
+            fit_zero(sliding_, false, t0, p) &&
+            fitted_speed(t, t0, p, sliding_.back().t, sliding_.back().s, false) <= threshold_;
+        if (!fits) {
+          commit(State::stick, crossing);
+        } else if (t0 <= t) {
+          commit(State::stick, std::max(t0, t1_));
+        } else {
+          stick_pending_ = true;
+          stick_raw_ = crossing;
+          stick_fit_ = t0;
+        }
+        sliding_.clear();
+      } else {
+        commit(State::open, t);  // lift-off
+        sliding_.clear();
+      }
+      break;
+    case State::stick:
+      if (now == State::slip && s1_ > threshold_) {
+        // Released by its law while already faster than the threshold: no onset to fit.
+        commit(State::slip, t);
+        sliding_ = {{t, speed}};
+      } else if (now == State::slip) {
+        slip_pending_ = true;
+        slip_raw_ = t1_ + (threshold_ - s1_) / (speed - s1_) * (t - t1_);
+        slip_before_t_ = t1_;
+        onset_ = {{t, speed}};
+        sliding_ = {{t, speed}};
+      } else if (now == State::open) {
+        commit(State::open, t);
+      }
+      break;
+    case State::open:
+      if (now != State::open) {
+        commit(now, t);  // touch-down, stuck or sliding
+        if (now == State::slip) sliding_ = {{t, speed}};
+      }
+      break;
+  }
+  state_ = now;
   t1_ = t;
   s1_ = speed;
   v1_ = slip;
-  ++seen_;
 }
 
-double SlipMonitor::stick_time() const {
+void SlipMonitor::settle_pending_stick(bool reached) {
+  stick_pending_ = false;
+  commit(State::stick, reached ? stick_fit_ : stick_raw_);
+}
+
+void SlipMonitor::settle_pending_slip() {
+  slip_pending_ = false;
+  double time = slip_raw_;
+  double t0 = 0.0;
+  double p = 1.0;
+  if (fit_zero(onset_, true, t0, p) &&
+      fitted_speed(slip_before_t_, t0, p, onset_.front().t, onset_.front().s, true) <= threshold_) {
+    time = std::min(t0, slip_raw_);
+  }
+  onset_.clear();
+  commit(State::slip, time);
+}
+
+void SlipMonitor::finish() {
+  if (stick_pending_) settle_pending_stick(false);
+  if (slip_pending_) settle_pending_slip();
+}
+
+SlipMonitor::State SlipMonitor::state_of(const SlipEvent& e) {
+  if (e.kind == "slip") return State::slip;
+  if (e.kind == "open") return State::open;
+  return State::stick;
+}
+
+void SlipMonitor::commit(State kind, double time) {
+  const double last = events_.empty() ? t_first_ : events_.back().time;
+  time = std::max(time, last);
+  const State previous = events_.empty() ? initial_state_ : state_of(events_.back());
+  if (previous == kind) return;
+  if (previous == State::stick && (time <= last || time - last < resolution_)) {
+    // A stick too short to report: the states on either side of it join.
+    if (events_.empty()) {  // at the start: the element is in `kind` from the first step
+      initial_state_ = kind;
+      initial_ = name(kind);
+      return;
+    }
+    const State before =
+        events_.size() >= 2 ? state_of(events_[events_.size() - 2]) : initial_state_;
+    if (before == kind) {  // slip, short stick, slip: one slip
+      events_.pop_back();
+    } else if (before == State::open) {  // touch-down, short stick, then `kind`
+      events_.back().kind = name(kind);
+    } else {  // slip, short stick, lift-off: the slip lasts until the lift-off
+      events_.back() = {name(kind), time};
+    }
+    return;
+  }
+  events_.push_back({name(kind), time});
+}
+
+std::vector<SlipInterval> SlipMonitor::intervals() const {
+  std::vector<SlipInterval> out;
+  if (!started_) return out;
+  std::string kind = initial_;
+  double start = t_first_;
+  for (const SlipEvent& e : events_) {
+    out.push_back({kind, start, e.time});
+    kind = e.kind;
+    start = e.time;
+  }
+  out.push_back({kind, start, std::max(start, t1_)});
+  return out;
+}
+
+double SlipMonitor::first(const char* kind) const {
   for (const auto& e : events_) {
-    if (e.kind == "stick") return e.time;
+    if (e.kind == kind) return e.time;
+  }
+  return -1.0;
+}
+
+double SlipMonitor::last_stick() const {
+  for (auto it = events_.rbegin(); it != events_.rend(); ++it) {
+    if (it->kind == "stick") return it->time;
   }
   return -1.0;
 }

@@ -1,13 +1,30 @@
-// Stick/slip events of a contact or joint, detected at every integration step from its
-// slip velocity: "stick" when the slip stops (its speed falls below the threshold after
-// sliding, or its direction reverses between two steps, i.e. it passed through zero, as in
-// a bounce), "slip" when the speed rises above the threshold again (a bouncing body that
-// lands again, a joint pushed past its limit).
-// A stick time is the zero crossing of the straight line through the last two sliding
-// steps: while a contact slides, friction is saturated and the slip speed falls linearly,
-// so this removes the bias of the threshold (about threshold / slope), whatever the step.
-// Where the line does not reach the threshold within the step of the detection (the speed
-// dropped faster: an impact), the threshold crossing is used.
+// Stick/slip events of a contact or joint, detected at every integration step from its slip
+// velocity (and, for contacts, whether the normal force is zero).
+//
+// The model: an element is at every moment in one state, `stick` (slip speed at or below the
+// threshold, or held by its friction law: Kikuuwe friction within its limit), `slip` (above
+// it) or, for a contact, `open` (normal force zero: nothing to stick or slip on). Its events are
+// the moments it changes state, so they are time-ordered and never two of one kind in a row; an
+// `open` event is a lift-off, the `stick` or `slip` event after it a touch-down. The state at t = 0
+// is `initial_state()`, not an event.
+//
+// Times. A state change is seen at the end of the step in which the speed crosses the
+// threshold; the threshold biases that moment (the speed is not zero yet when it falls
+// under the threshold, and already nonzero when it rises over it). Both directions get the
+// same correction: the speed near the crossing is fitted by s = c |t - t0|^p from the last
+// (stick) or first (slip) three sliding steps, p in [1, 3] from the ratio of the first two
+// derivatives (p = 1: constant deceleration, a sphere sliding to rolling; p = 2: a force
+// ramped through the friction limit, a torque ramp), and t0 is the event time. The fit is
+// used only where the speed follows it across the crossing step (a drop faster than the fit,
+// an impact, keeps the threshold crossing), and t0 always lies between the neighbouring
+// events: a stick time past the end of its step waits until a step reaches it with the
+// element still stuck (else the crossing is used), a slip onset is never earlier than the
+// previous event. A reversal of the slip direction between two sliding steps is passing
+// through zero, not a stick. Touch-down and lift-off are placed at the end of the first step
+// with the new contact state.
+//
+// Resolution: a stick shorter than `resolution` (default one step), or of zero length, is not
+// reported: the slip (or the touch-down) around it continues.
 #pragma once
 
 #include <string>
@@ -18,26 +35,76 @@
 namespace stiction::core {
 
 struct SlipEvent {
-  std::string kind;  // "stick" or "slip"
+  std::string kind;  // "stick", "slip" or "open"
   double time = 0.0;
+};
+
+// One stretch of a single state, from one event (or t = 0) to the next (or the end).
+struct SlipInterval {
+  std::string kind;
+  double start = 0.0;
+  double end = 0.0;
+  double duration() const { return end - start; }
 };
 
 class SlipMonitor {
  public:
-  explicit SlipMonitor(double threshold) : threshold_(threshold) {}
-  void observe(double t, const Vec3& slip);
+  explicit SlipMonitor(double threshold, double resolution = 0.0)
+      : threshold_(threshold), resolution_(resolution) {}
+  // The state at step end t: slip velocity, whether the contact is open, and whether the
+  // element's friction law holds it stuck (Kikuuwe friction within its limit: regime 1),
+  // which makes it stick even above the threshold (a stuck contact's spring vibrating).
+  void observe(double t, const Vec3& slip, bool open = false, bool held = false);
+  // Settles what still waits for later steps (at the end of a run); observe() may go on.
+  void finish();
+
   double threshold() const { return threshold_; }
+  double resolution() const { return resolution_; }
   const std::vector<SlipEvent>& events() const { return events_; }
-  // First stick event, or a negative value if the pair never stuck after sliding.
-  double stick_time() const;
+  // State at the first observation ("stick", "slip" or "open"; empty before any).
+  const std::string& initial_state() const { return initial_; }
+  // The states from t = 0 to the last observation, each with its duration.
+  std::vector<SlipInterval> intervals() const;
+  // First stick event (kept for compatibility), or a negative value if none.
+  double stick_time() const { return first("stick"); }
+  double first_slip() const { return first("slip"); }
+  double last_stick() const;
 
  private:
+  struct Sample {
+    double t = 0.0;
+    double s = 0.0;
+  };
+  enum class State { stick, slip, open };
+  static const char* name(State s);
+  static State state_of(const SlipEvent& e);
+  double first(const char* kind) const;
+  // Appends an event, applying the order and the resolution (drops short sticks).
+  void commit(State kind, double time);
+  void settle_pending_stick(bool reached);
+  void settle_pending_slip();
+  // Zero time t0 of s = c |t - t0|^p fitted to the samples; `growing`: the speed rises away
+  // from t0 (slip onset, fit at the first sample) or falls toward it (stick, at the last).
+  // Returns false when the samples do not fit such a curve.
+  static bool fit_zero(const std::vector<Sample>& samples, bool growing, double& t0, double& p);
+
   double threshold_;
-  bool sliding_ = false;
-  int seen_ = 0;
-  Vec3 v1_ = Vec3::Zero();  // slip at the previous step
-  double t1_ = 0, s1_ = 0;  // previous step: time, speed
-  double t2_ = 0, s2_ = 0;  // the step before it
+  double resolution_;
+  bool started_ = false;
+  State state_ = State::stick;          // at the last observation
+  State initial_state_ = State::stick;  // at the first, after dropping a short first stick
+  std::string initial_;
+  double t_first_ = 0.0;
+  double t1_ = 0.0, s1_ = 0.0;  // the previous observation
+  Vec3 v1_ = Vec3::Zero();
+  std::vector<Sample> sliding_;  // the last (up to 3) samples of the current slip
+
+  bool stick_pending_ = false;  // a stick whose fitted time lies past the last step
+  double stick_raw_ = 0.0, stick_fit_ = 0.0;
+  bool slip_pending_ = false;  // a slip onset waiting for its first sliding samples
+  double slip_raw_ = 0.0, slip_before_t_ = 0.0;
+  std::vector<Sample> onset_;
+
   std::vector<SlipEvent> events_;
 };
 

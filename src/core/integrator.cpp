@@ -150,35 +150,122 @@ void SymplecticEulerStepper::step(Network& network, double t, double T, Vec& x) 
 
 AdaptiveRk4Stepper::AdaptiveRk4Stepper(int state_dim, double initial_dt, double tolerance)
     : rk4_(rk4_tableau(), state_dim), h_(initial_dt), tolerance_(tolerance),
-      full_(state_dim), half_(state_dim) {}
+      full_(state_dim), half_(state_dim), mid_(state_dim), probe_(state_dim),
+      floor_(Vec::Ones(state_dim)) {}
+
+double AdaptiveRk4Stepper::error_of(Network& network, double t, double h, const Vec& x) {
+  full_ = x;
+  rk4_.step(network, t, h, full_);
+  half_ = x;
+  rk4_.step(network, t, h / 2, half_);
+  mid_ = half_;
+  rk4_.step(network, t + h / 2, h / 2, half_);
+  evaluations_ = rk4_.evaluations();
+  // Richardson: the error of the two half steps is about (half - full) / 15.
+  double error = 0.0;
+  for (int i = 0; i < x.size(); ++i) {
+    const double scale = tolerance_ * (floor_[i] + std::abs(half_[i]));
+    error = std::max(error, std::abs(half_[i] - full_[i]) / (15.0 * scale));
+  }
+  return std::isfinite(error) ? error : 1e10;
+}
+
+void AdaptiveRk4Stepper::set_error_floors(Network& network, const Vec& x) {
+  // Each entry's error is measured against tolerance * (floor + |x_i|), floor 1 (mixed
+  // absolute/relative), except the spring state e of clamping friction, whose natural size
+  // is F / K (~3e-7 m for the sphere): against 1 its error would never count, and a large
+  // step that swings e from +F/K to -F/K (through a stick and out again) would pass.
+  floor_.setOnes();
+  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
+    const Impedance& imp = *network.impedances()[i];
+    const Slot s = network.impedance_slot(i);
+    if (!imp.clamps_friction() || s.state_size == 0 || !(imp.stiffness() > 0.0)) continue;
+    // friction_cap_energy = F^2 / K.
+    const double cap = imp.friction_cap_energy(network.impedance_input(i, x));
+    const double size = std::sqrt(cap / imp.stiffness());
+    if (size > 0.0 && size < 1.0) floor_.segment(s.state_offset, s.state_size).setConstant(size);
+  }
+}
+
+bool AdaptiveRk4Stepper::same_regimes(Network& network, const Vec& a, std::size_t a_regimes,
+                                      const Vec& b, double tau) {
+  if (network.regime_signature(b, tau) != a_regimes) return false;
+  // A clamping friction element sliding at both ends whose slip reversed passed through
+  // zero, where its friction holds: a switch there and back within the step. (A stuck
+  // element's spring vibrating reverses all the time; that is no switch.)
+  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
+    const Impedance& imp = *network.impedances()[i];
+    if (!imp.has_slip() || !imp.clamps_friction()) continue;
+    const Slot s = network.impedance_slot(i);
+    const Vec3 before = imp.slip_velocity(network.impedance_input(i, a));
+    if (imp.regime(network.impedance_input(i, a), a.segment(s.state_offset, s.state_size), tau) != 2) {
+      continue;
+    }
+    if (imp.slip_velocity(network.impedance_input(i, b)).dot(before) < 0.0) return false;
+  }
+  return true;
+}
+
+double AdaptiveRk4Stepper::switch_point(Network& network, double t, double h, const Vec& x,
+                                        std::size_t start_regimes) {
+  // Bisection on the step length: the longest step whose end is still in the start's
+  // regimes, to within `precision`. Regimes are classified with the trial step h as tau
+  // throughout, so that the comparison depends on the state alone.
+  const double precision = std::max(kSwitchPrecision * h, 1e-13 * std::max(1.0, std::abs(t)));
+  double lo = 0.0, hi = h;
+  while (hi - lo > precision) {
+    const double mid = 0.5 * (lo + hi);
+    probe_ = x;
+    rk4_.step(network, t, mid, probe_);
+    if (same_regimes(network, x, start_regimes, probe_, h)) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  evaluations_ = rk4_.evaluations();
+  return lo > 0.0 ? lo : hi;  // land just before the switch, or cross it if it is at t
+}
 
 double AdaptiveRk4Stepper::advance(Network& network, double t, double limit, Vec& x) {
+  set_error_floors(network, x);
   for (;;) {
     const double h = std::min(h_, limit);
-    full_ = x;
-    rk4_.step(network, t, h, full_);
-    half_ = x;
-    rk4_.step(network, t, h / 2, half_);
-    rk4_.step(network, t + h / 2, h / 2, half_);
-    evaluations_ = rk4_.evaluations();
-    // Richardson: the error of the two half steps is about (half - full) / 15.
-    double error = 0.0;
-    for (int i = 0; i < x.size(); ++i) {
-      const double scale = tolerance_ * (1.0 + std::abs(half_[i]));
-      error = std::max(error, std::abs(half_[i] - full_[i]) / (15.0 * scale));
-    }
-    if (!std::isfinite(error)) error = 1e10;
+    const double error = error_of(network, t, h, x);
     const double factor = std::clamp(0.9 * std::pow(std::max(error, 1e-10), -0.2), 0.2, 4.0);
-    if (error <= 1.0) {
-      x = half_;
-      // A step cut short by the limit says little about the next one: keep h_ then.
-      if (h >= h_) h_ = h * factor;
-      return h;
+    if (error > 1.0) {
+      h_ = h * factor;
+      if (h_ < 1e-14 * std::max(1.0, std::abs(t))) {
+        throw std::runtime_error("rk4_adaptive: step size underflow");
+      }
+      continue;
     }
-    h_ = h * factor;
-    if (h_ < 1e-14 * std::max(1.0, std::abs(t))) {
-      throw std::runtime_error("rk4_adaptive: step size underflow");
+    // A step across a change of regime (an element sticks, slips, touches down or lifts
+    // off) is not taken as it is: the two estimates of the error may agree on a wrong
+    // answer there (both keep a slow residual slip of a friction element at a large step).
+    // The switch is located and the step ends just before it; the next, short step crosses
+    // it, and the controller grows the step again from there.
+    if (!crossing_) {
+      const std::size_t start_regimes = network.regime_signature(x, h);
+      if (!same_regimes(network, x, start_regimes, mid_, h) ||
+          !same_regimes(network, x, start_regimes, half_, h)) {
+        const double land = switch_point(network, t, h, x, start_regimes);
+        ++switches_;
+        if (land < h) {
+          const double taken = land;
+          error_of(network, t, taken, x);  // the step to the switch, with its two halves
+          x = half_;
+          crossing_ = true;
+          h_ = std::max(2.0 * kSwitchPrecision * h, 1e-13 * std::max(1.0, std::abs(t)));
+          return taken;
+        }
+      }
     }
+    crossing_ = false;
+    x = half_;
+    // A step cut short by the limit says little about the next one: keep h_ then.
+    if (h >= h_) h_ = h * factor;
+    return h;
   }
 }
 

@@ -13,7 +13,10 @@
 //   impedance states as forward Euler does; positions then move with the new velocities.
 // - Adaptive RK4 (step doubling): one step of h and two of h/2, both with the paper's stage
 //   sizes for their own step; their difference estimates the error; the two half steps are
-//   kept. The step grows or shrinks to keep the error at the tolerance.
+//   kept. The step grows or shrinks to keep the error at the tolerance. A step whose end
+//   has an element in another regime than its start (Impedance::regime: stuck, sliding,
+//   open) is not accepted as it is: the switch is located by bisection of the step, the
+//   step ends just before it and a short one crosses it (docs/study.md).
 #pragma once
 
 #include <memory>
@@ -104,13 +107,31 @@ class AdaptiveRk4Stepper final : public Stepper {
   const std::string& name() const override { return name_; }
   int order() const override { return 4; }
   double advance(Network& network, double t, double limit, Vec& x) override;
+  // Changes of regime located so far (each cost a bisection of the step).
+  long switches() const { return switches_; }
 
  private:
+  // Relative precision (of the trial step) to which a change of regime is located.
+  static constexpr double kSwitchPrecision = 1e-4;
+  // One step of h and two of h/2 from x into full_ and half_; the scaled error estimate.
+  double error_of(Network& network, double t, double h, const Vec& x);
+  // Per state entry, the size below which its error counts as absolute (see the .cpp).
+  void set_error_floors(Network& network, const Vec& x);
+  // Whether state b has every element in the regime it has at a (signature a_regimes,
+  // Network::regime_signature with tau), and no slip velocity reversed from a to b.
+  static bool same_regimes(Network& network, const Vec& a, std::size_t a_regimes, const Vec& b,
+                           double tau);
+  // The step from (t, x) that lands just before the first change of regime within h.
+  double switch_point(Network& network, double t, double h, const Vec& x, std::size_t start_regimes);
+
   std::string name_ = "rk4_adaptive";
   RungeKuttaStepper rk4_;
   double h_;
   double tolerance_;
-  Vec full_, half_;
+  Vec full_, half_, mid_, probe_;  // mid_: after the first half step
+  Vec floor_;
+  bool crossing_ = false;  // the next step crosses a located switch: not located again
+  long switches_ = 0;
 };
 
 // euler | symplectic_euler | heun | rk4 use dt; rk4_adaptive uses dt as its first step and

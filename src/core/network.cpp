@@ -287,6 +287,13 @@ Vec3 Network::slip_velocity(int impedance, ConstVecRef x) {
   return impedances_[impedance]->slip_velocity(x_hat);
 }
 
+ConstVecRef Network::impedance_input(int impedance, ConstVecRef x) {
+  const Slot& s = impedance_slots_[impedance];
+  auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+  maps_[impedance]->motion(x, x_hat);
+  return x_hat;
+}
+
 std::size_t Network::regime_signature(ConstVecRef x, double tau) {
   std::size_t signature = 0;
   for (std::size_t i = 0; i < impedances_.size(); ++i) {

@@ -58,6 +58,8 @@ class Network {
 
   // Slip velocity of impedance i (which must have has_slip()) at state x.
   Vec3 slip_velocity(int impedance, ConstVecRef x);
+  // Impedance i's input x_hat at state x (the map's Psi), valid until the next call.
+  ConstVecRef impedance_input(int impedance, ConstVecRef x);
 
   // Regimes of all impedances at (x; tau) folded into one number: equal numbers mean the
   // same smooth piece of the system (see Impedance::regime).

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/run_limits.hpp"
+#include "core/contact.hpp"
 
 namespace stiction::core {
 namespace {
@@ -148,7 +149,26 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     emitted = true;
   };
 
+  // Elements with a slip speed, and for contacts the capability that says when they are open.
   std::vector<int> slipping;
+  std::vector<const NormalContact*> contacts;
+  const double resolution = options.event_resolution >= 0.0 ? options.event_resolution : T;
+  // `tau`: the step just taken, with which a Kikuuwe element tells stuck from sliding.
+  auto observe_slip = [&](std::size_t m, double time, const Vec& state, double tau) {
+    const int i = slipping[m];
+    const Impedance& imp = *network.impedances()[i];
+    SlipMonitor& monitor = result.slip_events[m].monitor;
+    const ConstVecRef x_hat = network.impedance_input(i, state);
+    const bool open = contacts[m] != nullptr && !(contacts[m]->contact_normal_force(x_hat) > 0.0);
+    const Vec3 slip = imp.slip_velocity(x_hat);
+    // Held stuck by its law above the threshold: asked only then (it costs an evaluation).
+    bool held = false;
+    if (!open && imp.clamps_friction() && slip.norm() > monitor.threshold()) {
+      const Slot s = network.impedance_slot(i);
+      held = imp.regime(x_hat, state.segment(s.state_offset, s.state_size), tau) == 1;
+    }
+    monitor.observe(time, slip, open, held);
+  };
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
     const auto& imp = *network.impedances()[i];
     if (!imp.has_slip()) continue;
@@ -156,8 +176,9 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     const double threshold =
         it != options.stick_thresholds.end() ? it->second : options.default_stick_threshold;
     slipping.push_back(i);
-    result.slip_events.push_back({imp.name(), SlipMonitor(threshold)});
-    result.slip_events.back().monitor.observe(0.0, network.slip_velocity(i, x));
+    contacts.push_back(dynamic_cast<const NormalContact*>(&imp));
+    result.slip_events.push_back({imp.name(), SlipMonitor(threshold, resolution)});
+    observe_slip(slipping.size() - 1, 0.0, x, T);
   }
 
   InstabilityMonitor monitor(network, options, x);
@@ -201,17 +222,17 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
       }
     }
 
-    for (std::size_t m = 0; m < slipping.size(); ++m) {
-      result.slip_events[m].monitor.observe(t_now, network.slip_velocity(slipping[m], x));
-    }
+    for (std::size_t m = 0; m < slipping.size(); ++m) observe_slip(m, t_now, x, t_now - t);
 
     // Samples that fall in (t, t_now]: interpolate between the signals at both ends.
     bool have_prev = false;
     bool have_now = false;
     while (sample < total_samples && sample * sample_period <= t_now + 1e-9 * T) {
       const double ts = sample * sample_period;
+      // Signals with the step actually taken over (t, t_now] (rk4_adaptive varies it).
+      const double tau = fixed_step ? T : h;
       if (!have_now) {
-        network.write_signals(t_now, x, T, row_now);
+        network.write_signals(t_now, x, tau, row_now);
         have_now = true;
       }
       const double alpha = (ts - t) / (t_now - t);
@@ -219,7 +240,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
         emit(ts, row_now);
       } else {
         if (!have_prev) {
-          network.write_signals(t, x_prev, T, row_prev);
+          network.write_signals(t, x_prev, tau, row_prev);
           for (int c : wrapped) row_now[c] = unwrap_toward(row_now[c], row_prev[c]);
           have_prev = true;
         }
@@ -230,6 +251,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     if (progress && (k + 1) % progress_every == 0) progress(t_now / end);
     t = t_now;
   }
+  for (auto& history : result.slip_events) history.monitor.finish();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -34,6 +34,8 @@ struct RunOptions {
   // When set and true, the run stops after the current step and
   // reports itself interrupted (checked every few steps; see app/interrupt.hpp).
   const std::atomic<bool>* stop = nullptr;
+  // Sticks shorter than this are not reported as events (SlipMonitor); negative: one step.
+  double event_resolution = -1.0;
 };
 
 struct SlipHistory {

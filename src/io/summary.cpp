@@ -10,11 +10,27 @@ nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histori
   for (const core::SlipHistory& h : histories) {
     nlohmann::ordered_json entry;
     entry["threshold"] = h.monitor.threshold();
-    const double stick = h.monitor.stick_time();
-    entry["stick_time"] = stick >= 0.0 ? nlohmann::ordered_json(stick) : nlohmann::ordered_json(nullptr);
+    entry["resolution"] = h.monitor.resolution();
+    auto time_or_null = [](double t) {
+      return t >= 0.0 ? nlohmann::ordered_json(t) : nlohmann::ordered_json(nullptr);
+    };
+    entry["stick_time"] = time_or_null(h.monitor.stick_time());  // = first_stick, kept
+    entry["first_stick"] = time_or_null(h.monitor.stick_time());
+    entry["last_stick"] = time_or_null(h.monitor.last_stick());
+    entry["first_slip"] = time_or_null(h.monitor.first_slip());
+    entry["initial"] = h.monitor.initial_state();
     entry["events"] = nlohmann::ordered_json::array();
+    std::string previous = h.monitor.initial_state();
     for (const core::SlipEvent& e : h.monitor.events()) {
-      entry["events"].push_back({{"kind", e.kind}, {"time", e.time}});
+      nlohmann::ordered_json event{{"kind", e.kind}, {"time", e.time}};
+      if (previous == "open") event["touch_down"] = true;
+      entry["events"].push_back(std::move(event));
+      previous = e.kind;
+    }
+    entry["intervals"] = nlohmann::ordered_json::array();
+    for (const core::SlipInterval& i : h.monitor.intervals()) {
+      entry["intervals"].push_back(
+          {{"kind", i.kind}, {"start", i.start}, {"end", i.end}, {"duration", i.duration()}});
     }
     events[h.component] = std::move(entry);
   }

@@ -24,8 +24,12 @@ struct RunDescription {
   std::optional<double> suggested_dt;              // reported with an instability
 };
 
-// {"<contact>": {"threshold": ..., "stick_time": first stick or null,
-//                "events": [{"kind": "stick"|"slip", "time": ...}, ...]}}
+// {"<contact>": {"threshold": ..., "resolution": ..., "stick_time": first stick or null
+//                (compatibility; = first_stick), "first_stick", "last_stick", "first_slip"
+//                (each a time or null), "initial": state at t = 0,
+//                "events": [{"kind": "stick"|"slip"|"open", "time": ...,
+//                            "touch_down": true after an "open"}, ...],
+//                "intervals": [{"kind", "start", "end", "duration"}, ...]}}
 nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histories);
 
 nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunResult& result);

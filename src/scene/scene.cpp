@@ -83,6 +83,9 @@ core::RunOptions read_simulation(TableReader& root) {
   run.output_rate = sim->positive("output_rate", run.output_rate);
   run.energy_growth_limit = sim->positive("energy_growth_limit", run.energy_growth_limit);
   if (const auto violation = core::check_run_limits(run)) sim->fail(violation->key, violation->message);
+  if (sim->has("event_resolution")) {
+    run.event_resolution = sim->non_negative("event_resolution", run.event_resolution);
+  }
   sim->finish();
   return run;
 }

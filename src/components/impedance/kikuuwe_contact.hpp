@@ -17,6 +17,7 @@
 
 #include "components/impedance/contact_law.hpp"
 #include "components/impedance/surface_extent.hpp"
+#include "core/contact.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -35,7 +36,7 @@ struct KikuuweContactParams {
   Eigen::Vector2d initial_e = Eigen::Vector2d::Zero();  // friction state at t = 0 (m)
 };
 
-class KikuuweContact final : public core::Impedance {
+class KikuuweContact final : public core::Impedance, public core::NormalContact {
  public:
   KikuuweContact(std::string name, const KikuuweContactParams& params);
   std::string_view type() const override { return "kikuuwe_contact"; }
@@ -69,6 +70,7 @@ class KikuuweContact final : public core::Impedance {
                               core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref, core::VecRef u,
                               core::VecRef y_dot) const override;
   double friction_cap_energy(core::ConstVecRef x_hat) const override;
+  double contact_normal_force(core::ConstVecRef x_hat) const override { return normal_force(x_hat); }
   const KikuuweContactParams& params() const { return params_; }
   const core::Vec3& tangent1() const { return t1_; }
   const core::Vec3& tangent2() const { return t2_; }

@@ -16,6 +16,7 @@
 
 #include "components/impedance/contact_law.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
+#include "core/contact.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -39,7 +40,7 @@ struct SurfaceState {
   double angle = 0.0, speed = 0.0;
 };
 
-class MovingContact final : public core::Impedance {
+class MovingContact final : public core::Impedance, public core::NormalContact {
  public:
   MovingContact(std::string name, const KikuuweContactParams& params, const SurfaceMotion& motion,
                 double radius);
@@ -68,6 +69,10 @@ class MovingContact final : public core::Impedance {
   double friction_cap_energy(core::ConstVecRef x_hat) const override;
   bool is_source() const override { return true; }
   double power_in(core::ConstVecRef x_hat, core::ConstVecRef u) const override;
+  // Open while the point is off the surface or outside its extent: no stick or slip events.
+  double contact_normal_force(core::ConstVecRef x_hat) const override {
+    return normal_force(touch(x_hat));
+  }
 
   SurfaceState surface(double s) const;
   // Distance the belt has moved by time s (integral of its speed; 0 without a belt), for

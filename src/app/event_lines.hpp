@@ -1,0 +1,16 @@
+// The lines `stiction run` prints about the events of each element with a slip speed: its
+// first stick and first slip, or that it never sticks or never slips (from summary.json's
+// `events`, so the terminal and the file say the same).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace stiction::app {
+
+// One line per element, without a trailing newline, e.g.
+// "ground: first stick at t = 0.58436 s, never slips (starts open; 3 touch-downs)".
+std::vector<std::string> event_lines(const nlohmann::ordered_json& events);
+
+}  // namespace stiction::app
