@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/plot_outputs.hpp"
 #include "app/progress.hpp"
 #include "app/run_support.hpp"
+#include "core/column_info.hpp"
 #include "core/simulation.hpp"
 #include "image/image.hpp"
 #include "io/atomic_file.hpp"
@@ -40,19 +42,6 @@ void remove_old_frames(const fs::path& frames_dir) {
     if (std::regex_match(entry.path().filename().string(), frame_name)) old.push_back(entry.path());
   }
   for (const fs::path& p : old) fs::remove(p, ec);
-}
-
-// Writes every plot; returns the files written.
-std::vector<fs::path> write_plots(const std::vector<plot::PlotSpec>& specs,
-                                  const core::RunResult& result, const fs::path& dir) {
-  const std::map<std::string, double> events = event_times(result);
-  std::vector<fs::path> written;
-  for (const plot::PlotSpec& spec : specs) {
-    const fs::path png = dir / (spec.name + ".png");
-    plot::write_plot(spec, result.trajectory, events, png);
-    written.push_back(png);
-  }
-  return written;
 }
 
 render::RenderResult write_video(const scene::Scene& scene, const core::RunResult& result,
@@ -89,7 +78,7 @@ int run_command(const RunArguments& args) {
   columns.insert(columns.begin(), "t");
   std::vector<plot::PlotSpec> plot_specs =
       plot::read_plot_specs(scene.document, scene.path.string(), columns);
-  if (plot_specs.empty()) plot_specs = plot::default_plot_specs(columns);
+  if (plot_specs.empty()) plot_specs = plot::default_plot_specs(core::column_infos(*scene.network));
 
   const fs::path out = args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out);
   std::error_code ec;
@@ -108,6 +97,7 @@ int run_command(const RunArguments& args) {
   description.state_dim = scene.network->state_dim();
   if (run.tolerance > 0.0) description.tolerance = run.tolerance;
   if (result.instability) description.suggested_dt = suggested_dt(scene);
+  description.columns = core::column_infos(*scene.network);
 
   const auto summary = io::make_summary(description, result);
   io::write_csv(result.trajectory, out / "trajectory.csv");
@@ -140,7 +130,8 @@ int run_command(const RunArguments& args) {
 
   if (!args.no_plots) {
     try {
-      const std::vector<fs::path> plots = write_plots(plot_specs, result, out / "plots");
+      const std::vector<fs::path> plots =
+          write_run_plots(plot_specs, result, out / "plots", args.plot_format);
       if (!args.quiet) {
         for (const fs::path& p : plots) std::printf("  wrote %s\n", p.c_str());
         std::fflush(stdout);
@@ -149,6 +140,9 @@ int run_command(const RunArguments& args) {
       std::fprintf(stderr, "error: plots: %s\n", e.what());
       return kExitFailure;
     } catch (const image::ImageError& e) {
+      std::fprintf(stderr, "error: plots: %s\n", e.what());
+      return kExitFailure;
+    } catch (const io::IoError& e) {
       std::fprintf(stderr, "error: plots: %s\n", e.what());
       return kExitFailure;
     }

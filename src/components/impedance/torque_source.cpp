@@ -14,9 +14,13 @@ void TorqueSource::evaluate(double t, core::ConstVecRef /*x_hat*/, core::ConstVe
 }
 
 std::vector<core::SignalInfo> TorqueSource::signals() const {
-  if (profiles_.size() == 1) return {{signal_name_, {}}};
+  const std::string description = "prescribed torque applied to the driven side";
+  if (profiles_.size() == 1) {
+    return {{.name = signal_name_, .unit = "N·m", .frame = "joint", .description = description}};
+  }
   const int n = static_cast<int>(profiles_.size());
-  return {{signal_name_, n == 3 ? core::xyz_axes() : core::index_axes(n)}};
+  return {{.name = signal_name_, .axes = n == 3 ? core::xyz_axes() : core::index_axes(n),
+           .unit = "N·m", .frame = "world", .description = description}};
 }
 
 void TorqueSource::write_signals(core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,
