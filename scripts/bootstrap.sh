@@ -8,7 +8,8 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libtomlplusplus-dev libmuparser-dev nlohmann-json3-dev libcli11-dev
   catch2 libbenchmark-dev
-  libosmesa6-dev libglm-dev libpng-dev libfreetype-dev
+  libosmesa6-dev libglm-dev libpng-dev libfreetype-dev libcairo2-dev
+  poppler-utils librsvg2-bin
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   python3
   clang-14 libclang-rt-14-dev

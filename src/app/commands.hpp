@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "plot/figure.hpp"
+
 namespace stiction::app {
 
 // Exit codes (DESIGN section 3).
@@ -29,13 +31,20 @@ struct RunArguments {
   std::vector<std::string> overrides;
   bool quiet = false;
   bool no_video = false, no_plots = false, frames = false;
+  std::optional<plot::Format> plot_format;  // --plot-format: overrides every plot's format
 };
 
 // `stiction compare SCENE SCENE...`: runs each scene (no video) and writes OUT/compare.png.
+// A scene argument may carry overrides of its own: "sphere_roll@ground.mu=0.2@sphere.mass=1"
+// (KEY=VALUE as for --set, each after an '@'). Runs are labelled by scene name plus the
+// overrides in which they differ from the others.
 struct CompareArguments {
   std::vector<std::string> scenes;
   std::string out;                     // empty: out/compare/
   std::vector<std::string> overrides;  // applied to every scene
+  std::vector<std::string> signals;    // empty: the default comparison
+  std::optional<double> duration;
+  std::optional<plot::Format> plot_format;
   bool quiet = false;
 };
 

@@ -13,6 +13,7 @@
 #include "app/commands.hpp"
 #include "core/integrator.hpp"
 #include "io/atomic_file.hpp"
+#include "plot/figure.hpp"
 #include "scene/toml_reader.hpp"
 #include "sys/interrupt.hpp"
 
@@ -63,6 +64,11 @@ int dispatch(int argc, char** argv) {
   run->add_flag("--no-plots", run_args.no_plots, "do not draw plots");
   run->add_flag("--frames", run_args.frames, "also write frames/NNNNNN.png");
   run->add_flag("--quiet", run_args.quiet, "print nothing but errors");
+  std::string plot_format;
+  CLI::Option* plot_format_opt =
+      run->add_option("--plot-format", plot_format,
+                      "png, svg or pdf: the format of every plot (default: each plot's own, PNG)")
+          ->check(CLI::IsMember({"png", "svg", "pdf"}));
 
   std::string check_scene;
   CLI::App* check = cli.add_subcommand("check", "validate a scene, print its state layout and dt advice");
@@ -113,6 +119,17 @@ int dispatch(int argc, char** argv) {
                       "KEY=VALUE: set a dotted key of every scene to a TOML value (repeatable)")
       ->allow_extra_args(false);
   compare->add_flag("--quiet", compare_args.quiet, "print nothing but errors");
+  compare->add_option("--signals", compare_args.signals,
+                      "comma-separated signals or groups to compare, e.g. sphere.v.x,ground.slip")
+      ->delimiter(',');
+  double compare_duration = 0.0;
+  CLI::Option* compare_duration_opt =
+      compare->add_option("--duration", compare_duration, "simulated time in s of every run")
+          ->check(CLI::PositiveNumber);
+  std::string compare_format;
+  CLI::Option* compare_format_opt =
+      compare->add_option("--plot-format", compare_format, "png (default), svg or pdf")
+          ->check(CLI::IsMember({"png", "svg", "pdf"}));
 
   app::VerifyArguments verify_args;
   CLI::App* verify = cli.add_subcommand(
@@ -150,9 +167,14 @@ int dispatch(int argc, char** argv) {
     if (dt_opt->count() > 0) run_args.dt = dt;
     if (duration_opt->count() > 0) run_args.duration = duration;
     if (tolerance_opt->count() > 0) run_args.tolerance = tolerance;
+    if (plot_format_opt->count() > 0) run_args.plot_format = plot::parse_format(plot_format);
     return app::run_command(run_args);
   }
-  if (*compare) return app::compare_command(compare_args);
+  if (*compare) {
+    if (compare_duration_opt->count() > 0) compare_args.duration = compare_duration;
+    if (compare_format_opt->count() > 0) compare_args.plot_format = plot::parse_format(compare_format);
+    return app::compare_command(compare_args);
+  }
   if (*verify) return app::verify_command(verify_args);
   if (*study) {
     if (reference_dt_opt->count() > 0) study_args.reference_dt = reference_dt;

@@ -9,12 +9,14 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "app/event_lines.hpp"
 #include "app/interrupted_run.hpp"
 #include "app/output_dir.hpp"
-#include "app/event_lines.hpp"
+#include "app/plot_outputs.hpp"
 #include "app/progress.hpp"
 #include "app/run_support.hpp"
 #include "app/verify_settings.hpp"
+#include "core/column_info.hpp"
 #include "core/simulation.hpp"
 #include "image/image.hpp"
 #include "io/atomic_file.hpp"
@@ -34,18 +36,6 @@ namespace stiction::app {
 namespace fs = std::filesystem;
 namespace {
 
-// Writes every plot; returns the files written. Stops between two plots on an interrupt.
-std::vector<fs::path> write_plots(const std::vector<plot::PlotSpec>& specs,
-                                  const core::RunResult& result, const fs::path& dir) {
-  const std::map<std::string, double> events = event_times(result);
-  std::vector<fs::path> written;
-  for (const plot::PlotSpec& spec : specs) {
-    if (sys::interrupted()) break;
-    const fs::path png = dir / (spec.name + ".png");
-    plot::write_plot(spec, result.trajectory, events, png);
-    written.push_back(png);
-  }
-  return written;
 }
 
 render::RenderResult write_video(const scene::Scene& scene, const core::RunResult& result,
@@ -85,7 +75,7 @@ int run_command(const RunArguments& args) {
   columns.insert(columns.begin(), "t");
   std::vector<plot::PlotSpec> plot_specs =
       plot::read_plot_specs(scene.document, scene.path.string(), columns);
-  if (plot_specs.empty()) plot_specs = plot::default_plot_specs(columns);
+  if (plot_specs.empty()) plot_specs = plot::default_plot_specs(core::column_infos(*scene.network));
   read_verify_settings(scene.document, run.duration);  // [verify]: same errors as check/verify
 
   // Interrupted while loading: nothing was written, nothing to keep.
@@ -109,6 +99,7 @@ int run_command(const RunArguments& args) {
     suggestion = suggested_dt(scene);
     description.suggested_dt = suggestion->dt;
   }
+  description.columns = core::column_infos(*scene.network);
 
   auto summary = io::make_summary(description, result);
   io::write_csv(result.trajectory, out / "trajectory.csv");
@@ -147,7 +138,8 @@ int run_command(const RunArguments& args) {
 
   if (!args.no_plots) {
     try {
-      const std::vector<fs::path> plots = write_plots(plot_specs, result, out / "plots");
+      const std::vector<fs::path> plots =
+          write_run_plots(plot_specs, result, out / "plots", args.plot_format);
       for (const fs::path& p : plots) out.wrote(p);
       if (sys::interrupted()) {
         write_summary("plots");
@@ -161,6 +153,9 @@ int run_command(const RunArguments& args) {
       std::fprintf(stderr, "error: plots: %s\n", e.what());
       return kExitFailure;
     } catch (const image::ImageError& e) {
+      std::fprintf(stderr, "error: plots: %s\n", e.what());
+      return kExitFailure;
+    } catch (const io::IoError& e) {
       std::fprintf(stderr, "error: plots: %s\n", e.what());
       return kExitFailure;
     }

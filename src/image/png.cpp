@@ -35,7 +35,7 @@ void on_png_error(png_structp png, png_const_charp message) {
 void on_png_warning(png_structp, png_const_charp) {}
 
 // Only trivially destructible locals live in this frame: libpng may longjmp out of it.
-bool encode(std::FILE* file, const Image& image, PngSpeed speed, ErrorSink& sink) {
+bool encode(std::FILE* file, const Image& image, PngSpeed speed, double dpi, ErrorSink& sink) {
   png_structp png =
       png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, on_png_error, on_png_warning);
   if (!png) {
@@ -57,6 +57,10 @@ bool encode(std::FILE* file, const Image& image, PngSpeed speed, ErrorSink& sink
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
                static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB_ALPHA,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (dpi > 0.0) {
+    const auto per_metre = static_cast<png_uint_32>(dpi / 0.0254 + 0.5);
+    png_set_pHYs(png, info, per_metre, per_metre, PNG_RESOLUTION_METER);
+  }
   png_write_info(png, info);
   for (int y = 0; y < image.height; ++y) {
     png_write_row(png, image.data(0, y));
@@ -68,7 +72,8 @@ bool encode(std::FILE* file, const Image& image, PngSpeed speed, ErrorSink& sink
 
 }  // namespace
 
-void write_png(const std::filesystem::path& path, const Image& image, PngSpeed speed) {
+void write_png(const std::filesystem::path& path, const Image& image, PngSpeed speed,
+               double dpi) {
   if (image.empty()) throw ImageError("cannot write an empty image to " + path.string());
   sys::Temporary created;
   try {
@@ -88,7 +93,7 @@ void write_png(const std::filesystem::path& path, const Image& image, PngSpeed s
       sys::forget_temporary(temp);
       throw ImageError("cannot write " + path.string() + ": " + why);
     }
-    ok = encode(file.get(), image, speed, sink);
+    ok = encode(file.get(), image, speed, dpi, sink);
     if (ok && (std::fflush(file.get()) != 0 || std::ferror(file.get()))) {
       std::snprintf(sink.message, sizeof sink.message, "%s", std::strerror(errno));
       ok = false;

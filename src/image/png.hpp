@@ -13,9 +13,11 @@ enum class PngSpeed {
   small,  // zlib level 6, adaptive filters: smaller files, for goldens and figures
 };
 
-// Throws ImageError (with the path and the reason) on any failure.
+// Throws ImageError (with the path and the reason) on any failure. A positive `dpi` is
+// written as the image's resolution (pHYs chunk, pixels per metre), so that a figure of
+// 1600 pixels at 300 dpi is placed 5.33 inches wide by a word processor or LaTeX.
 void write_png(const std::filesystem::path& path, const Image& image,
-               PngSpeed speed = PngSpeed::fast);
+               PngSpeed speed = PngSpeed::fast, double dpi = 0.0);
 // Reads any PNG (grey, palette, 16-bit, with or without alpha) as RGBA8.
 Image read_png(const std::filesystem::path& path);
 

@@ -1,5 +1,6 @@
 #include "io/csv_writer.hpp"
 
+#include <algorithm>
 #include <charconv>
 
 #include "io/atomic_file.hpp"
@@ -10,6 +11,12 @@ void append_number(std::string& out, double v) {
   char buffer[32];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
   out.append(buffer, result.ptr);
+  // "0" or "12" would read back as integers (pandas makes such a column int64): a number
+  // without a point, exponent or letter (nan, inf) gets ".0" (DESIGN section 4).
+  if (std::find_if(buffer, result.ptr, [](char c) { return c != '-' && (c < '0' || c > '9'); }) ==
+      result.ptr) {
+    out += ".0";
+  }
 }
 
 namespace {

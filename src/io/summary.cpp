@@ -37,6 +37,15 @@ nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histori
   return events;
 }
 
+nlohmann::ordered_json column_table(const std::vector<core::ColumnInfo>& columns) {
+  nlohmann::ordered_json table = nlohmann::ordered_json::array();
+  for (const core::ColumnInfo& c : columns) {
+    table.push_back(
+        {{"name", c.name}, {"unit", c.unit}, {"frame", c.frame}, {"description", c.description}});
+  }
+  return table;
+}
+
 nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunResult& result) {
   nlohmann::ordered_json s;
   s["scene"] = run.scene;
@@ -58,6 +67,7 @@ nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunRe
     for (int c = 0; c < tr.column_count(); ++c) final_row[tr.columns()[c]] = tr.at(last, c);
   }
   s["final"] = std::move(final_row);
+  if (!run.columns.empty()) s["columns"] = column_table(run.columns);
   s["events"] = slip_events(result.slip_events);
   if (result.instability) {
     nlohmann::ordered_json inst;

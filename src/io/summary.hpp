@@ -4,11 +4,11 @@
 
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
+#include "core/column_info.hpp"
 #include "core/simulation.hpp"
 
 namespace stiction::io {
@@ -20,8 +20,9 @@ struct RunDescription {
   double duration = 0.0;
   double output_rate = 0.0;
   int state_dim = 0;
-  std::optional<double> tolerance;                 // rk4_adaptive only
-  std::optional<double> suggested_dt;              // reported with an instability
+  std::optional<double> tolerance;          // rk4_adaptive only
+  std::optional<double> suggested_dt;       // reported with an instability
+  std::vector<core::ColumnInfo> columns{};  // `columns`: one per CSV column, t first
 };
 
 // {"<contact>": {"threshold": ..., "resolution": ..., "stick_time": first stick or null
@@ -31,6 +32,9 @@ struct RunDescription {
 //                            "touch_down": true after an "open"}, ...],
 //                "intervals": [{"kind", "start", "end", "duration"}, ...]}}
 nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histories);
+
+// [{"name", "unit", "frame", "description"}, ...] in CSV column order.
+nlohmann::ordered_json column_table(const std::vector<core::ColumnInfo>& columns);
 
 nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunResult& result);
 

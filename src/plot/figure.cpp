@@ -1,11 +1,22 @@
 #include "plot/figure.hpp"
 
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <ctime>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
+#include "image/png.hpp"
+#include "io/atomic_file.hpp"
+#include "plot/cairo_font.hpp"
 #include "plot/ticks.hpp"
 
 namespace stiction::plot {
@@ -19,6 +30,7 @@ constexpr Rgba kFrame{60, 60, 60, 255};
 constexpr Rgba kGrid{222, 222, 222, 255};
 constexpr Rgba kMinorGrid{240, 240, 240, 255};
 constexpr Rgba kEvent{80, 80, 80, 255};
+constexpr Rgba kSlipEvent{178, 34, 34, 255};
 constexpr Rgba kLegendBox{255, 255, 255, 235};
 constexpr Rgba kLegendFrame{190, 190, 190, 255};
 
@@ -168,11 +180,153 @@ std::string axis_title(const std::string& label, const std::string& unit, int ex
   return label + " [" + bracket + "]";
 }
 
+struct Stroke {
+  Rgba colour{0, 0, 0, 255};
+  double width = 2.0;
+  std::vector<double> dash;  // pixels; empty: solid
+};
+
+struct Extent {
+  double width = 0.0;                            // advance
+  double ascent = 0.0;                           // of the glyphs present (ink)
+  double line_ascent = 0.0, line_descent = 0.0;  // the font's, at this size
+};
+
+// Drawing and measuring through one cairo context, recording every text box it draws.
+class Painter {
+ public:
+  Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout) : cr_(cr), layout_(layout) {
+    cairo_set_font_face(cr_, font.face());
+    cairo_font_options_t* options = cairo_font_options_create();
+    // Unhinted metrics: the same advances on every surface, so PNG, SVG and PDF lay out alike.
+    cairo_font_options_set_hint_metrics(options, CAIRO_HINT_METRICS_OFF);
+    cairo_font_options_set_hint_style(options, CAIRO_HINT_STYLE_SLIGHT);
+    cairo_font_options_set_antialias(options, CAIRO_ANTIALIAS_GRAY);
+    cairo_set_font_options(cr_, options);
+    cairo_font_options_destroy(options);
+    cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+    cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+  }
+
+  Extent measure(const std::string& text, double size) {
+    cairo_set_font_size(cr_, size);
+    cairo_font_extents_t font;
+    cairo_font_extents(cr_, &font);
+    cairo_text_extents_t ink;
+    cairo_text_extents(cr_, text.c_str(), &ink);
+    return {ink.x_advance, -ink.y_bearing, font.ascent, font.descent};
+  }
+
+  // Text at the pen origin (x, baseline); rotated: reads bottom to top, the pen origin at the
+  // bottom end of the baseline. Returns the recorded box.
+  Rect text(const std::string& s, double x, double baseline, double size, Rgba colour,
+            TextRole role, int panel, bool rotated = false) {
+    const Extent e = measure(s, size);
+    set_colour(colour);
+    cairo_save(cr_);
+    cairo_translate(cr_, x, baseline);
+    if (rotated) cairo_rotate(cr_, -0.5 * std::acos(-1.0));
+    cairo_move_to(cr_, 0.0, 0.0);
+    cairo_show_text(cr_, s.c_str());
+    cairo_new_path(cr_);
+    cairo_restore(cr_);
+    const Rect box =
+        rotated ? Rect{x - e.line_ascent, baseline - e.width, x + e.line_descent, baseline}
+                : Rect{x, baseline - e.line_ascent, x + e.width, baseline + e.line_descent};
+    layout_.texts.push_back({s, role, box, panel});
+    return box;
+  }
+
+  void polyline(const std::vector<Point>& points, const Stroke& stroke) {
+    bool open = false;
+    for (const Point& p : points) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+        open = false;
+        continue;
+      }
+      if (open) {
+        cairo_line_to(cr_, p.x, p.y);
+      } else {
+        cairo_move_to(cr_, p.x, p.y);
+        open = true;
+      }
+    }
+    apply(stroke);
+    cairo_stroke(cr_);
+  }
+  void line(Point a, Point b, const Stroke& stroke) { polyline({a, b}, stroke); }
+  void fill_rect(const Rect& r, Rgba colour) {
+    cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+    set_colour(colour);
+    cairo_fill(cr_);
+  }
+  void stroke_rect(const Rect& r, const Stroke& stroke) {
+    cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+    apply(stroke);
+    cairo_stroke(cr_);
+  }
+  void clip(const Rect& r) {
+    cairo_save(cr_);
+    cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+    cairo_clip(cr_);
+  }
+  void unclip() { cairo_restore(cr_); }
+
+ private:
+  void set_colour(Rgba c) {
+    cairo_set_source_rgba(cr_, c.r / 255.0, c.g / 255.0, c.b / 255.0, c.a / 255.0);
+  }
+  void apply(const Stroke& stroke) {
+    set_colour(stroke.colour);
+    cairo_set_line_width(cr_, stroke.width);
+    // A dot is an "on" length of zero with round caps; cairo drops such pieces between
+    // longer dashes, so they get a length too small to see.
+    std::vector<double> dash = stroke.dash;
+    for (std::size_t i = 0; i < dash.size(); i += 2) dash[i] = std::max(dash[i], 0.01);
+    cairo_set_dash(cr_, dash.empty() ? nullptr : dash.data(), static_cast<int>(dash.size()), 0.0);
+  }
+
+  cairo_t* cr_;
+  FigureLayout& layout_;
+};
+
+// Byte offsets where UTF-8 code points start.
+std::vector<std::size_t> code_point_starts(const std::string& s) {
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if ((static_cast<unsigned char>(s[i]) & 0xC0) != 0x80) starts.push_back(i);
+  }
+  return starts;
+}
+
+// The text itself if it fits in max_width, else its beginning and end around "…", as long as
+// fits (both halves kept, since long names differ at either end: a component and a signal).
+std::string fit(Painter& painter, const std::string& text, double size, double max_width) {
+  if (painter.measure(text, size).width <= max_width) return text;
+  const std::vector<std::size_t> starts = code_point_starts(text);
+  const int n = static_cast<int>(starts.size());
+  auto shortened = [&](int keep) {
+    const int head = (keep + 1) / 2, tail = keep / 2;
+    return text.substr(0, head < n ? starts[head] : text.size()) + "\u2026" +
+           text.substr(tail > 0 ? starts[n - tail] : text.size());
+  };
+  int lo = 0, hi = n - 1;  // largest `keep` that fits, by bisection
+  while (lo < hi) {
+    const int mid = (lo + hi + 1) / 2;
+    if (painter.measure(shortened(mid), size).width <= max_width) {
+      lo = mid;
+    } else {
+      hi = mid - 1;
+    }
+  }
+  return shortened(lo);
+}
+
 // Splits text into lines no longer than max_width, breaking at spaces; the bracketed unit
-// part moves to its own line first.
-std::vector<std::string> wrap(text::Font& font, const std::string& text, double max_width,
-                              const text::TextStyle& style) {
-  if (font.measure(text, style).width <= max_width) return {text};
+// part moves to its own line first. A word longer than a line is shortened with "…".
+std::vector<std::string> wrap(Painter& painter, const std::string& text, double max_width,
+                              double size, std::size_t max_lines) {
+  if (painter.measure(text, size).width <= max_width) return {text};
   std::vector<std::string> words;
   std::size_t start = 0;
   while (start < text.size()) {
@@ -195,7 +349,7 @@ std::vector<std::string> wrap(text::Font& font, const std::string& text, double 
   for (const std::string& g : groups) {
     const std::string candidate = current.empty() ? g : current + " " + g;
     const bool unit = g.front() == '[';
-    if (!current.empty() && (unit || font.measure(candidate, style).width > max_width)) {
+    if (!current.empty() && (unit || painter.measure(candidate, size).width > max_width)) {
       lines.push_back(current);
       current = g;
     } else {
@@ -203,17 +357,34 @@ std::vector<std::string> wrap(text::Font& font, const std::string& text, double 
     }
   }
   if (!current.empty()) lines.push_back(current);
+  // Too many lines: the unit line stays, the words before it join into one shortened line.
+  if (lines.size() > max_lines && max_lines >= 2) {
+    const bool unit_last = lines.back().front() == '[';
+    std::string rest;
+    for (std::size_t i = 0; i + (unit_last ? 1 : 0) < lines.size(); ++i) {
+      rest += (rest.empty() ? "" : " ") + lines[i];
+    }
+    std::vector<std::string> joined{rest};
+    if (unit_last) joined.push_back(lines.back());
+    lines = std::move(joined);
+  }
+  for (std::string& line : lines) line = fit(painter, line, size, max_width);
   return lines;
 }
 
-// Legend box size for a panel's labelled series.
-struct LegendLayout {
+// A panel's legend: entries, their (possibly shortened) labels and the box size.
+struct Legend {
   std::vector<int> entries;  // series indices, then -1 - k for reference line k
-  double width = 0.0, height = 0.0, row = 0.0, sample = 0.0, pad = 0.0;
+  std::vector<std::string> labels;
+  double size = 0.0;  // font size
+  double width = 0.0, height = 0.0, row = 0.0, sample = 0.0, pad = 0.0, column = 0.0;
+  int columns = 1, rows = 0;
+  bool outside = false;
 };
 
-LegendLayout legend_layout(const Panel& panel, text::Font& font, const Metrics& m) {
-  LegendLayout L;
+Legend make_legend(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
+                   double max_height) {
+  Legend L;
   for (std::size_t i = 0; i < panel.series.size(); ++i) {
     if (!panel.series[i].label.empty()) L.entries.push_back(static_cast<int>(i));
   }
@@ -224,17 +395,29 @@ LegendLayout legend_layout(const Panel& panel, text::Font& font, const Metrics& 
     L.entries.clear();  // one series: the axis label already names it
     return L;
   }
-  const text::TextStyle style{m.legend(), kText, text::Rotation::none};
+  const int n = static_cast<int>(L.entries.size());
+  L.pad = 12 * m.s;
+  L.sample = 56 * m.s;
+  // Shrink the font (to 75%) before adding columns.
+  for (L.size = m.legend();; L.size *= 0.9) {
+    L.row = 1.45 * L.size;
+    const double fixed = L.pad * 1.4;
+    const int fit_rows = std::max(1, static_cast<int>((max_height - fixed) / L.row));
+    L.columns = (n + fit_rows - 1) / fit_rows;
+    if (L.columns == 1 || L.size < 0.76 * m.legend()) break;
+  }
+  L.rows = (n + L.columns - 1) / L.columns;
+  const double text_room =
+      std::max(40 * m.s, max_width / L.columns - L.pad - L.sample - 12 * m.s - L.pad);
   double text_width = 0.0;
   for (int i : L.entries) {
     const std::string& label = i >= 0 ? panel.series[i].label : panel.references[-1 - i].label;
-    text_width = std::max(text_width, font.measure(label, style).width);
+    L.labels.push_back(fit(painter, label, L.size, text_room));
+    text_width = std::max(text_width, painter.measure(L.labels.back(), L.size).width);
   }
-  L.pad = 12 * m.s;
-  L.sample = 56 * m.s;
-  L.row = 1.45 * m.legend();
-  L.width = L.pad + L.sample + 12 * m.s + text_width + L.pad;
-  L.height = L.pad * 0.8 + L.row * L.entries.size() + L.pad * 0.6;
+  L.column = L.sample + 12 * m.s + text_width + L.pad;
+  L.width = L.pad + L.columns * L.column;
+  L.height = L.pad * 0.8 + L.row * L.rows + L.pad * 0.6;
   return L;
 }
 
@@ -261,6 +444,10 @@ double occupancy(const std::vector<std::vector<Point>>& lines, const Rect& r) {
     for (std::size_t i = 1; i < pts.size(); ++i) {
       const Point a = pts[i - 1], b = pts[i];
       if (!std::isfinite(a.x + a.y + b.x + b.y)) continue;
+      if (std::max(a.x, b.x) < r.x0 || std::min(a.x, b.x) > r.x1 || std::max(a.y, b.y) < r.y0 ||
+          std::min(a.y, b.y) > r.y1) {
+        continue;
+      }
       const double len = std::hypot(b.x - a.x, b.y - a.y);
       const int steps = std::max(1, static_cast<int>(len / 2.0));
       for (int k = 0; k < steps; ++k) {
@@ -274,6 +461,14 @@ double occupancy(const std::vector<std::vector<Point>>& lines, const Rect& r) {
 }
 
 LineStyle reference_style() { return LineStyle{kEvent, {5, 4}, 2.0}; }
+
+Stroke event_stroke(const std::string& kind, double s) {
+  if (kind == "slip") return Stroke{kSlipEvent, 2.0 * s, {14 * s, 5 * s, 2 * s, 5 * s}};
+  return Stroke{kEvent, 2.0 * s, {9 * s, 6 * s}};
+}
+Rgba event_colour(const std::string& kind) { return kind == "slip" ? kSlipEvent : kEvent; }
+
+constexpr int kMaxEventRows = 3;
 
 }  // namespace
 
@@ -293,21 +488,40 @@ LineStyle series_style(int index) {
   return style;
 }
 
-image::Image render(const Figure& figure, text::Font& font) {
+std::optional<Format> parse_format(const std::string& name) {
+  std::string lower;
+  for (char c : name) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == "png") return Format::png;
+  if (lower == "svg") return Format::svg;
+  if (lower == "pdf") return Format::pdf;
+  return std::nullopt;
+}
+
+const char* extension(Format format) {
+  switch (format) {
+    case Format::svg:
+      return ".svg";
+    case Format::pdf:
+      return ".pdf";
+    case Format::png:
+      break;
+  }
+  return ".png";
+}
+
+FigureLayout draw(const Figure& figure, cairo_t* cr) {
   if (figure.width < 200 || figure.height < 150 || figure.width > 16384 || figure.height > 16384) {
     throw std::invalid_argument("figure size must be between 200x150 and 16384x16384 pixels");
   }
-  image::Image img(figure.width, figure.height, kWhite);
-  Canvas canvas(img);
+  FigureLayout layout;
+  layout.width = figure.width;
+  layout.height = figure.height;
+  const CairoFont font = CairoFont::open_default();
+  Painter painter(cr, font, layout);
+  painter.fill_rect(
+      Rect{0, 0, static_cast<double>(figure.width), static_cast<double>(figure.height)}, kWhite);
   const Metrics m{std::min(figure.width / 1600.0, figure.height / 1000.0)};
   const double s = m.s;
-
-  const text::TextStyle title_style{m.title(), kText, text::Rotation::none};
-  const text::TextStyle label_style{m.label(), kText, text::Rotation::none};
-  const text::TextStyle ylabel_style{m.label(), kText, text::Rotation::ccw90};
-  const text::TextStyle tick_style{m.tick(), kText, text::Rotation::none};
-  const text::TextStyle legend_style{m.legend(), kText, text::Rotation::none};
-  const text::TextStyle event_style{m.event(), kEvent, text::Rotation::none};
 
   // ---- The shared horizontal axis range.
   std::vector<double> xs;
@@ -325,19 +539,26 @@ image::Image render(const Figure& figure, text::Font& font) {
   }
 
   // ---- Vertical layout.
-  const text::Extent title_extent = font.measure("Hg", title_style);
-  const text::Extent tick_extent = font.measure("0123456789", tick_style);
-  const text::Extent label_extent = font.measure("Hg[]", label_style);
-  const text::Extent event_extent = font.measure("Hg", event_style);
+  const Extent tick_extent = painter.measure("0123456789", m.tick());
+  const Extent label_extent = painter.measure("Hg[]", m.label());
+  const Extent event_extent = painter.measure("Hg", m.event());
   const double label_line = label_extent.line_ascent + label_extent.line_descent;
+  const double margin_width = figure.width - 2 * m.margin();
+  // The title: shrunk to 70% if need be, then shortened.
+  double title_size = m.title();
+  std::string title = figure.title;
+  while (!title.empty() && painter.measure(title, title_size).width > margin_width &&
+         title_size > 0.7 * m.title()) {
+    title_size *= 0.95;
+  }
+  title = fit(painter, title, title_size, margin_width);
+  const Extent title_extent = painter.measure("Hg", title_size);
   double top = m.margin();
   double title_baseline = 0.0;
-  if (!figure.title.empty()) {
+  if (!title.empty()) {
     title_baseline = top + title_extent.line_ascent;
     top = title_baseline + title_extent.line_descent + 14 * s;
   }
-  // Event labels go in rows above the top panel; rows are decided once x pixels are known,
-  // so reserve the rows now from a first, conservative estimate (one row per two events).
   const std::size_t event_count = figure.events.size();
   const double event_row = event_extent.line_ascent + event_extent.line_descent + 4 * s;
   int event_rows = event_count == 0 ? 0 : 1;
@@ -346,205 +567,321 @@ image::Image render(const Figure& figure, text::Font& font) {
                                  tick_extent.line_descent + m.tick_length() + 4 * s;
   const std::size_t n_panels = std::max<std::size_t>(1, figure.panels.size());
   const double gap = 26 * s;
+  const Panel empty_panel;
+  auto panel_at = [&](std::size_t p) -> const Panel& {
+    return p < figure.panels.size() ? figure.panels[p] : empty_panel;
+  };
 
-  // Horizontal tick labels determine the right margin; compute them first.
-  const int x_target = std::max(3, static_cast<int>(figure.width / (190 * s)));
-  Ticks x_loose = nice_ticks(x_lo, x_hi, x_target);
-  Ticks x_ticks = x_loose;
-  x_ticks.values.clear();
-  for (double v : x_loose.values) {
-    if (in_range(v, x_lo, x_hi)) x_ticks.values.push_back(v);
+  // Event kinds and the key that explains their line styles (used when not every event gets
+  // a label).
+  std::vector<std::string> kinds;
+  for (const EventMarker& e : figure.events) {
+    const std::string kind = e.kind.empty() ? "event" : e.kind;
+    if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) kinds.push_back(kind);
   }
-  if (x_ticks.values.empty()) x_ticks.values = {x_lo, x_hi};
-  x_ticks.lo = x_ticks.values.front();
-  x_ticks.hi = x_ticks.values.back();
-  const TickLabels x_labels = format_ticks(x_ticks);
-  const double right =
-      figure.width -
-      std::max(m.margin() + 10 * s,
-               0.5 * font.measure(x_labels.labels.back(), tick_style).width + m.margin());
+  const double key_sample = 30 * s;
+  double key_width = 0.0;
+  for (const std::string& k : kinds) {
+    key_width += key_sample + 6 * s + painter.measure(k, m.event()).width + 16 * s;
+  }
 
-  // Event label rows: place greedily once the horizontal mapping is known; this needs the left
-  // margin, which needs the y tick labels, which need the panel heights. Iterate twice.
-  double left = 0.0;
+  // Passes: the layout depends on itself (left margin <- tick labels <- panel height <- event
+  // rows <- horizontal mapping <- margins; legends beside the axes move the right edge).
+  double left = 0.0, right = 0.0;
   std::vector<Rect> frames;
   std::vector<YAxis> y_axes;
   std::vector<std::vector<std::string>> y_titles;
-  std::vector<int> event_row_of(event_count, 0);
-  for (int pass = 0; pass < 2; ++pass) {
+  std::vector<int> event_row_of(event_count, -1);  // -1: unlabelled
+  bool with_key = false;
+  std::vector<Legend> legends(n_panels);
+  std::vector<bool> outside(n_panels, false);
+  Ticks x_ticks;
+  TickLabels x_labels;
+  std::vector<std::vector<std::vector<Point>>> lines(n_panels);
+  for (int pass = 0; pass < 4; ++pass) {
     const double panels_top = top + event_rows * event_row + (event_rows ? 6 * s : 0.0);
     const double panels_bottom = figure.height - bottom_reserved;
-    const double panel_h =
-        (panels_bottom - panels_top - gap * (n_panels - 1)) / static_cast<double>(n_panels);
-    const int y_target = std::clamp(static_cast<int>(panel_h / (58 * s)), 3, 8);
+    const double panel_h = std::max(
+        10.0, (panels_bottom - panels_top - gap * (n_panels - 1)) / static_cast<double>(n_panels));
+    const int y_target = std::clamp(static_cast<int>(panel_h / (58 * s)), 2, 8);
     y_axes.clear();
     y_titles.clear();
     double tick_width = 0.0;
     std::size_t max_lines = 1;
     for (std::size_t p = 0; p < n_panels; ++p) {
-      const Panel empty_panel;
-      const Panel& panel = p < figure.panels.size() ? figure.panels[p] : empty_panel;
-      YAxis y = make_y_axis(panel, x_lo, x_hi, y_target);
+      YAxis y = make_y_axis(panel_at(p), x_lo, x_hi, y_target);
       for (const TickMark& t : y.ticks) {
         if (!t.label.empty())
-          tick_width = std::max(tick_width, font.measure(t.label, tick_style).width);
+          tick_width = std::max(tick_width, painter.measure(t.label, m.tick()).width);
       }
-      y_titles.push_back(
-          wrap(font, axis_title(panel.label, panel.unit, y.exponent), 0.96 * panel_h, label_style));
+      y_titles.push_back(wrap(painter, axis_title(panel_at(p).label, panel_at(p).unit, y.exponent),
+                              0.96 * panel_h, m.label(), std::max<std::size_t>(1, 2)));
       max_lines = std::max(max_lines, y_titles.back().size());
       y_axes.push_back(std::move(y));
     }
     left = m.margin() + max_lines * label_line + 10 * s + tick_width + m.tick_length() + 2 * s;
+
+    // Horizontal ticks: as many as fit without their labels touching.
+    double outside_width = 0.0;
+    for (std::size_t p = 0; p < n_panels; ++p) {
+      if (outside[p]) outside_width = std::max(outside_width, legends[p].width + 16 * s);
+    }
+    for (int x_target = std::max(3, static_cast<int>(figure.width / (190 * s)));; --x_target) {
+      const Ticks loose = nice_ticks(x_lo, x_hi, x_target);
+      x_ticks = loose;
+      x_ticks.values.clear();
+      for (double v : loose.values) {
+        if (in_range(v, x_lo, x_hi)) x_ticks.values.push_back(v);
+      }
+      if (x_ticks.values.empty()) x_ticks.values = {x_lo, x_hi};
+      x_ticks.lo = x_ticks.values.front();
+      x_ticks.hi = x_ticks.values.back();
+      x_labels = format_ticks(x_ticks);
+      right = figure.width - outside_width -
+              std::max(m.margin() + 10 * s,
+                       0.5 * painter.measure(x_labels.labels.back(), m.tick()).width + m.margin());
+      const Axis probe{x_lo, x_hi, false, left, right};
+      bool crowded = false;
+      for (std::size_t i = 1; i < x_ticks.values.size(); ++i) {
+        const double room = probe.map(x_ticks.values[i]) - probe.map(x_ticks.values[i - 1]);
+        const double need = 0.5 * (painter.measure(x_labels.labels[i], m.tick()).width +
+                                   painter.measure(x_labels.labels[i - 1], m.tick()).width) +
+                            0.8 * m.tick();
+        if (room < need) crowded = true;
+      }
+      if (!crowded || x_target <= 2) break;
+    }
+
     frames.clear();
     for (std::size_t p = 0; p < n_panels; ++p) {
       const double y0 = panels_top + p * (panel_h + gap);
       frames.push_back(
           Rect{std::round(left), std::round(y0), std::round(right), std::round(y0 + panel_h)});
     }
-    // Rows for event labels, centred on their lines, no overlaps within a row.
-    Axis x_axis{x_lo, x_hi, false, frames[0].x0, frames[0].x1};
-    std::vector<std::vector<std::pair<double, double>>> rows;
-    for (std::size_t e = 0; e < event_count; ++e) {
-      const double w = font.measure(figure.events[e].label, event_style).width;
-      const double cx = x_axis.map(figure.events[e].x);
-      double a = std::clamp(cx - 0.5 * w, m.margin(), figure.width - m.margin() - w);
-      double b = a + w;
-      std::size_t row = 0;
-      for (; row < rows.size(); ++row) {
-        bool free = true;
-        for (auto [u, v] : rows[row]) {
-          if (a < v + 16 * s && b > u - 16 * s) free = false;
+    const Axis x_axis{x_lo, x_hi, false, frames[0].x0, frames[0].x1};
+
+    // Legends: inside where the least data is; beside the axes when data is everywhere.
+    bool moved = false;
+    for (std::size_t p = 0; p < n_panels; ++p) {
+      const Rect& f = frames[p];
+      YAxis& y = y_axes[p];
+      y.axis.p0 = f.y1;
+      y.axis.p1 = f.y0;
+      lines[p].clear();
+      for (const Series& series : panel_at(p).series)
+        lines[p].push_back(to_pixels(series, x_axis, y.axis));
+      const double inside_width = 0.6 * f.width(), inside_height = f.height() - 28 * s;
+      if (!outside[p]) {
+        legends[p] = make_legend(panel_at(p), painter, m, inside_width, inside_height);
+        if (legends[p].entries.empty()) continue;
+        const Legend& L = legends[p];
+        double best = std::numeric_limits<double>::infinity();
+        const double inset = 14 * s;
+        const double cx = 0.5 * (f.x0 + f.x1 - L.width);
+        for (const Rect& c : std::array<Rect, 6>{{
+                 {f.x1 - inset - L.width, f.y0 + inset, f.x1 - inset, f.y0 + inset + L.height},
+                 {f.x0 + inset, f.y0 + inset, f.x0 + inset + L.width, f.y0 + inset + L.height},
+                 {f.x1 - inset - L.width, f.y1 - inset - L.height, f.x1 - inset, f.y1 - inset},
+                 {f.x0 + inset, f.y1 - inset - L.height, f.x0 + inset + L.width, f.y1 - inset},
+                 {cx, f.y0 + inset, cx + L.width, f.y0 + inset + L.height},
+                 {cx, f.y1 - inset - L.height, cx + L.width, f.y1 - inset},
+             }}) {
+          best = std::min(best, occupancy(lines[p], c));
         }
-        if (free) break;
+        const bool too_big = L.columns > 1 || L.height > inside_height;
+        if (best > 0.0 || too_big) {
+          outside[p] = true;
+          moved = true;
+        }
       }
-      if (row == rows.size()) rows.emplace_back();
-      rows[row].push_back({a, b});
-      event_row_of[e] = static_cast<int>(row);
+      if (outside[p]) {
+        const double room = figure.width - m.margin() - (f.x1 + 16 * s);
+        legends[p] = make_legend(panel_at(p), painter, m, std::max(room, 0.22 * figure.width),
+                                 f.height() + gap - 4 * s);
+        legends[p].outside = true;
+      }
     }
-    const int needed = static_cast<int>(rows.size());
-    if (needed == event_rows) break;
+
+    // Rows for event labels, centred on their lines, no overlaps within a row; the key of the
+    // line styles takes the right end of the first row when some label does not fit.
+    auto place_events = [&](bool key) {
+      std::vector<std::vector<std::pair<double, double>>> rows(1);
+      if (key)
+        rows[0].push_back({figure.width - m.margin() - key_width, figure.width - m.margin()});
+      std::vector<int> row_of(event_count, -1);
+      bool all = true;
+      std::vector<std::size_t> order(event_count);
+      for (std::size_t e = 0; e < event_count; ++e) order[e] = e;
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return figure.events[a].x < figure.events[b].x;
+      });
+      for (std::size_t e : order) {
+        const double cx = x_axis.map(figure.events[e].x);
+        if (!std::isfinite(cx) || cx < frames[0].x0 - 1 || cx > frames[0].x1 + 1) continue;
+        const double w = painter.measure(figure.events[e].label, m.event()).width;
+        const double a = std::clamp(cx - 0.5 * w, m.margin(), figure.width - m.margin() - w);
+        const double b = a + w;
+        std::size_t row = 0;
+        for (; row < rows.size(); ++row) {
+          bool free = true;
+          for (auto [u, v] : rows[row]) {
+            if (a < v + 16 * s && b > u - 16 * s) free = false;
+          }
+          if (free) break;
+        }
+        if (row == rows.size()) {
+          if (static_cast<int>(rows.size()) == kMaxEventRows) {
+            all = false;
+            continue;
+          }
+          rows.emplace_back();
+        }
+        rows[row].push_back({a, b});
+        row_of[e] = static_cast<int>(row);
+      }
+      event_row_of = row_of;
+      return std::make_pair(all, static_cast<int>(event_count == 0 ? 0 : rows.size()));
+    };
+    auto [all_labelled, needed] = place_events(false);
+    with_key = !all_labelled;
+    if (with_key) needed = place_events(true).second;
+    if (needed == event_rows && !moved) break;
     event_rows = needed;
   }
 
   const Axis x_axis{x_lo, x_hi, false, frames[0].x0, frames[0].x1};
 
   // ---- Title.
-  if (!figure.title.empty()) {
-    const double w = font.measure(figure.title, title_style).width;
+  if (!title.empty()) {
+    const double w = painter.measure(title, title_size).width;
     const double cx = 0.5 * (frames[0].x0 + frames[0].x1);
-    font.draw(img, figure.title,
-              std::clamp(cx - 0.5 * w, m.margin(), figure.width - w - m.margin()), title_baseline,
-              title_style);
+    painter.text(title, std::clamp(cx - 0.5 * w, m.margin(), figure.width - w - m.margin()),
+                 title_baseline, title_size, kText, TextRole::title, -1);
   }
 
   const Stroke frame_stroke{kFrame, m.frame_width(), {}};
   const Stroke grid_stroke{kGrid, m.grid_width(), {}};
   const Stroke minor_stroke{kMinorGrid, m.grid_width(), {}};
-  const Stroke event_stroke{kEvent, 2.0 * s, {9 * s, 6 * s}};
+  std::vector<Rect> tick_label_boxes;  // of every panel: thinned so that none touch
 
   for (std::size_t p = 0; p < n_panels; ++p) {
-    const Panel empty_panel;
-    const Panel& panel = p < figure.panels.size() ? figure.panels[p] : empty_panel;
+    const Panel& panel = panel_at(p);
     const Rect& f = frames[p];
-    YAxis& y = y_axes[p];
-    y.axis.p0 = f.y1;
-    y.axis.p1 = f.y0;
+    const YAxis& y = y_axes[p];
+    const int pi = static_cast<int>(p);
+    layout.panels.push_back(f);
 
     // Grid.
     for (const TickMark& t : y.ticks) {
       const double py = std::round(y.axis.map(t.value)) + 0.5;
-      canvas.line({f.x0, py}, {f.x1, py}, t.label.empty() ? minor_stroke : grid_stroke);
+      painter.line({f.x0, py}, {f.x1, py}, t.label.empty() ? minor_stroke : grid_stroke);
     }
     for (double v : x_ticks.values) {
       const double px = std::round(x_axis.map(v)) + 0.5;
-      canvas.line({px, f.y0}, {px, f.y1}, grid_stroke);
+      painter.line({px, f.y0}, {px, f.y1}, grid_stroke);
     }
     // Events.
     for (const EventMarker& e : figure.events) {
       const double px = x_axis.map(e.x);
       if (!std::isfinite(px) || px < f.x0 || px > f.x1) continue;
-      canvas.line({px, f.y0}, {px, f.y1}, event_stroke);
+      painter.line({px, f.y0}, {px, f.y1}, event_stroke(e.kind, s));
     }
     // Reference lines under the data.
     const Stroke reference_stroke = make_stroke(reference_style(), s);
     for (const ReferenceLine& r : panel.references) {
       const double py = y.axis.map(r.y);
       if (!std::isfinite(py) || py < f.y0 || py > f.y1) continue;
-      canvas.line({f.x0, py}, {f.x1, py}, reference_stroke);
+      painter.line({f.x0, py}, {f.x1, py}, reference_stroke);
     }
     // Data, clipped to the frame.
-    std::vector<std::vector<Point>> lines;
-    canvas.set_clip(f);
+    painter.clip(f);
     for (std::size_t i = 0; i < panel.series.size(); ++i) {
       const Series& series = panel.series[i];
       const LineStyle style = series.style ? *series.style : series_style(static_cast<int>(i));
-      lines.push_back(to_pixels(series, x_axis, y.axis));
-      canvas.polyline(lines.back(), make_stroke(style, s));
+      painter.polyline(lines[p][i], make_stroke(style, s));
+      layout.series.push_back(series.source.empty() ? series.label : series.source);
     }
-    canvas.reset_clip();
+    painter.unclip();
     // Frame and ticks.
     const Rect crisp{f.x0 + 0.5, f.y0 + 0.5, f.x1 - 0.5, f.y1 - 0.5};
-    canvas.stroke_rect(crisp, frame_stroke);
+    painter.stroke_rect(crisp, frame_stroke);
     for (const TickMark& t : y.ticks) {
       const double py = std::round(y.axis.map(t.value)) + 0.5;
       const double len = t.label.empty() ? 0.55 * m.tick_length() : m.tick_length();
-      canvas.line({f.x0, py}, {f.x0 + len, py}, frame_stroke);
-      canvas.line({f.x1 - len, py}, {f.x1, py}, frame_stroke);
+      painter.line({f.x0, py}, {f.x0 + len, py}, frame_stroke);
+      painter.line({f.x1 - len, py}, {f.x1, py}, frame_stroke);
       if (t.label.empty()) continue;
-      const double w = font.measure(t.label, tick_style).width;
+      const double w = painter.measure(t.label, m.tick()).width;
       const double baseline = py + 0.5 * tick_extent.ascent;
-      font.draw(img, t.label, f.x0 - m.tick_length() - w, baseline, tick_style);
+      const Rect box{f.x0 - m.tick_length() - w, baseline - tick_extent.line_ascent - 1 * s,
+                     f.x0 - m.tick_length(), baseline + tick_extent.line_descent + 1 * s};
+      if (std::any_of(tick_label_boxes.begin(), tick_label_boxes.end(),
+                      [&](const Rect& r) { return r.overlaps(box); })) {
+        continue;  // the tick stays, its label would touch a neighbour's
+      }
+      tick_label_boxes.push_back(box);
+      painter.text(t.label, box.x0, baseline, m.tick(), kText, TextRole::tick_label, pi);
     }
     for (double v : x_ticks.values) {
       const double px = std::round(x_axis.map(v)) + 0.5;
-      canvas.line({px, f.y1 - m.tick_length()}, {px, f.y1}, frame_stroke);
-      canvas.line({px, f.y0}, {px, f.y0 + m.tick_length()}, frame_stroke);
+      painter.line({px, f.y1 - m.tick_length()}, {px, f.y1}, frame_stroke);
+      painter.line({px, f.y0}, {px, f.y0 + m.tick_length()}, frame_stroke);
     }
     // Vertical axis title, centred on the panel, one rotated line per wrapped line.
     const std::vector<std::string>& title_lines = y_titles[p];
     for (std::size_t k = 0; k < title_lines.size(); ++k) {
-      const double w = font.measure(title_lines[k], ylabel_style).width;
+      const double w = painter.measure(title_lines[k], m.label()).width;
       const double baseline_x = m.margin() + label_extent.line_ascent + k * label_line;
-      font.draw(img, title_lines[k], baseline_x, 0.5 * (f.y0 + f.y1) + 0.5 * w, ylabel_style);
+      painter.text(title_lines[k], baseline_x, 0.5 * (f.y0 + f.y1) + 0.5 * w, m.label(), kText,
+                   TextRole::axis_label, pi, true);
     }
-    // Legend in the corner with the least data under it.
-    const LegendLayout L = legend_layout(panel, font, m);
-    if (!L.entries.empty()) {
+    // Legend.
+    const Legend& L = legends[p];
+    if (L.entries.empty()) continue;
+    Rect box;
+    if (L.outside) {
+      box = Rect{f.x1 + 16 * s, f.y0, f.x1 + 16 * s + L.width, f.y0 + L.height};
+    } else {
       const double inset = 14 * s;
-      const std::array<Rect, 4> corners{{
+      const double cx = 0.5 * (f.x0 + f.x1 - L.width);
+      const std::array<Rect, 6> corners{{
           {f.x1 - inset - L.width, f.y0 + inset, f.x1 - inset, f.y0 + inset + L.height},
           {f.x0 + inset, f.y0 + inset, f.x0 + inset + L.width, f.y0 + inset + L.height},
           {f.x1 - inset - L.width, f.y1 - inset - L.height, f.x1 - inset, f.y1 - inset},
           {f.x0 + inset, f.y1 - inset - L.height, f.x0 + inset + L.width, f.y1 - inset},
+          {cx, f.y0 + inset, cx + L.width, f.y0 + inset + L.height},
+          {cx, f.y1 - inset - L.height, cx + L.width, f.y1 - inset},
       }};
-      Rect box = corners[0];
+      box = corners[0];
       double best = std::numeric_limits<double>::infinity();
       for (const Rect& c : corners) {
-        const double occ = occupancy(lines, c);
+        const double occ = occupancy(lines[p], c);
         if (occ < best - 0.5) {
           best = occ;
           box = c;
         }
       }
-      box = Rect{std::round(box.x0), std::round(box.y0), std::round(box.x1), std::round(box.y1)};
-      canvas.fill_rect(box, kLegendBox);
-      canvas.stroke_rect(Rect{box.x0 + 0.5, box.y0 + 0.5, box.x1 - 0.5, box.y1 - 0.5},
-                         Stroke{kLegendFrame, std::max(1.0, 1.2 * s), {}});
-      const text::Extent le = font.measure("Hg", legend_style);
-      for (std::size_t k = 0; k < L.entries.size(); ++k) {
-        const int entry = L.entries[k];
-        const std::string& label =
-            entry >= 0 ? panel.series[entry].label : panel.references[-1 - entry].label;
-        LineStyle style = reference_style();
-        if (entry >= 0) {
-          style = panel.series[entry].style ? *panel.series[entry].style : series_style(entry);
-        }
-        const double row_top = box.y0 + 0.8 * L.pad + k * L.row;
-        const double cy = row_top + 0.5 * L.row;
-        canvas.line({box.x0 + L.pad, cy}, {box.x0 + L.pad + L.sample, cy}, make_stroke(style, s));
-        font.draw(img, label, box.x0 + L.pad + L.sample + 12 * s,
-                  cy + 0.5 * (le.line_ascent - le.line_descent) - 1 * s, legend_style);
+    }
+    box = Rect{std::round(box.x0), std::round(box.y0), std::round(box.x1), std::round(box.y1)};
+    layout.legends.push_back(box);
+    layout.legend_outside.push_back(L.outside);
+    painter.fill_rect(box, kLegendBox);
+    painter.stroke_rect(Rect{box.x0 + 0.5, box.y0 + 0.5, box.x1 - 0.5, box.y1 - 0.5},
+                        Stroke{kLegendFrame, std::max(1.0, 1.2 * s), {}});
+    const Extent le = painter.measure("Hg", L.size);
+    for (std::size_t k = 0; k < L.entries.size(); ++k) {
+      const int entry = L.entries[k];
+      LineStyle style = reference_style();
+      if (entry >= 0) {
+        style = panel.series[entry].style ? *panel.series[entry].style : series_style(entry);
       }
+      const int column = static_cast<int>(k) / L.rows, row = static_cast<int>(k) % L.rows;
+      const double x0 = box.x0 + L.pad + column * L.column;
+      const double cy = box.y0 + 0.8 * L.pad + row * L.row + 0.5 * L.row;
+      painter.line({x0, cy}, {x0 + L.sample, cy}, make_stroke(style, s));
+      painter.text(L.labels[k], x0 + L.sample + 12 * s,
+                   cy + 0.5 * (le.line_ascent - le.line_descent) - 1 * s, L.size, kText,
+                   TextRole::legend_entry, pi);
     }
   }
 
@@ -553,28 +890,144 @@ image::Image render(const Figure& figure, text::Font& font) {
   const double tick_baseline = bottom.y1 + m.tick_length() + tick_extent.line_ascent;
   for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
     const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
-    const double w = font.measure(x_labels.labels[i], tick_style).width;
-    font.draw(img, x_labels.labels[i], px - 0.5 * w, tick_baseline, tick_style);
+    const double w = painter.measure(x_labels.labels[i], m.tick()).width;
+    painter.text(x_labels.labels[i], px - 0.5 * w, tick_baseline, m.tick(), kText,
+                 TextRole::tick_label, static_cast<int>(n_panels) - 1);
   }
-  const std::string x_title = axis_title(figure.x_label, figure.x_unit, x_labels.exponent);
-  const double xw = font.measure(x_title, label_style).width;
-  font.draw(img, x_title, 0.5 * (bottom.x0 + bottom.x1) - 0.5 * xw,
-            tick_baseline + tick_extent.line_descent + 8 * s + label_extent.line_ascent,
-            label_style);
+  const std::string x_title =
+      fit(painter, axis_title(figure.x_label, figure.x_unit, x_labels.exponent), m.label(),
+          bottom.width());
+  const double xw = painter.measure(x_title, m.label()).width;
+  painter.text(x_title, 0.5 * (bottom.x0 + bottom.x1) - 0.5 * xw,
+               tick_baseline + tick_extent.line_descent + 8 * s + label_extent.line_ascent,
+               m.label(), kText, TextRole::axis_label, -1);
 
-  // ---- Event labels above the top panel.
+  // ---- Event labels above the top panel (row 0 right above it, later rows above that).
   const double rows_bottom = frames[0].y0 - 6 * s;
+  auto row_baseline = [&](int row) {
+    return rows_bottom - event_extent.line_descent - 2 * s - row * event_row;
+  };
   for (std::size_t e = 0; e < event_count; ++e) {
-    const double w = font.measure(figure.events[e].label, event_style).width;
+    if (event_row_of[e] < 0) continue;
+    const double w = painter.measure(figure.events[e].label, m.event()).width;
     const double cx = x_axis.map(figure.events[e].x);
-    if (!std::isfinite(cx)) continue;
     const double a = std::clamp(cx - 0.5 * w, m.margin(), figure.width - m.margin() - w);
-    // Row 0 sits right above the panel, later rows above it.
-    const double baseline =
-        rows_bottom - event_extent.line_descent - 2 * s - event_row_of[e] * event_row;
-    font.draw(img, figure.events[e].label, a, baseline, event_style);
+    painter.text(figure.events[e].label, a, row_baseline(event_row_of[e]), m.event(),
+                 event_colour(figure.events[e].kind), TextRole::event_label, -1);
+  }
+  if (with_key) {
+    double x = figure.width - m.margin() - key_width;
+    const double baseline = row_baseline(0);
+    const double cy = baseline - 0.35 * event_extent.line_ascent;
+    for (const std::string& k : kinds) {
+      painter.line({x, cy}, {x + key_sample, cy}, event_stroke(k, s));
+      x += key_sample + 6 * s;
+      x = painter.text(k, x, baseline, m.event(), event_colour(k), TextRole::note, -1).x1 + 16 * s;
+    }
+  }
+  return layout;
+}
+
+namespace {
+
+image::Image to_image(cairo_surface_t* surface) {
+  cairo_surface_flush(surface);
+  const int w = cairo_image_surface_get_width(surface), h = cairo_image_surface_get_height(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+  image::Image img(w, h);
+  for (int y = 0; y < h; ++y) {
+    const auto* row =
+        reinterpret_cast<const std::uint32_t*>(data + static_cast<std::size_t>(y) * stride);
+    for (int x = 0; x < w; ++x) {
+      // Premultiplied ARGB in native byte order; the figure is opaque (white background).
+      const std::uint32_t p = row[x];
+      img.set(x, y,
+              Rgba{static_cast<std::uint8_t>(p >> 16), static_cast<std::uint8_t>(p >> 8),
+                   static_cast<std::uint8_t>(p), 255});
+    }
   }
   return img;
+}
+
+struct SurfaceDeleter {
+  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+};
+struct ContextDeleter {
+  void operator()(cairo_t* c) const { cairo_destroy(c); }
+};
+using SurfacePtr = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
+using ContextPtr = std::unique_ptr<cairo_t, ContextDeleter>;
+
+cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+// Draws into a vector surface writing into `bytes`, scaled from pixels by `scale`.
+FigureLayout draw_vector(const Figure& figure, cairo_surface_t* surface, double scale) {
+  ContextPtr cr(cairo_create(surface));
+  cairo_scale(cr.get(), scale, scale);
+  FigureLayout layout = draw(figure, cr.get());
+  cr.reset();
+  cairo_surface_finish(surface);
+  if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
+    throw io::IoError(std::string("cairo: ") +
+                      cairo_status_to_string(cairo_surface_status(surface)));
+  }
+  return layout;
+}
+
+}  // namespace
+
+image::Image render(const Figure& figure, FigureLayout* layout) {
+  if (figure.width < 200 || figure.height < 150 || figure.width > 16384 || figure.height > 16384) {
+    throw std::invalid_argument("figure size must be between 200x150 and 16384x16384 pixels");
+  }
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, figure.width, figure.height));
+  ContextPtr cr(cairo_create(surface.get()));
+  FigureLayout drawn = draw(figure, cr.get());
+  cr.reset();
+  if (layout) *layout = std::move(drawn);
+  return to_image(surface.get());
+}
+
+image::Image render(const Figure& figure, text::Font& /*font*/) { return render(figure, nullptr); }
+
+FigureLayout write_figure(const Figure& figure, const std::filesystem::path& path, Format format,
+                          double dpi) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  if (format == Format::png) {
+    FigureLayout layout;
+    const image::Image img = render(figure, &layout);
+    image::write_png(path, img, image::PngSpeed::small, dpi);
+    return layout;
+  }
+  std::string bytes;
+  FigureLayout layout;
+  if (format == Format::svg) {
+    // One user unit per pixel; the document says "px" so viewers show it at its pixel size.
+    SurfacePtr surface(
+        cairo_svg_surface_create_for_stream(append_to_string, &bytes, figure.width, figure.height));
+    cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
+    layout = draw_vector(figure, surface.get(), 1.0);
+  } else {
+    // The page is the figure's size at `dpi`: 1600 px at 100 dpi is 16 in (1152 pt) wide.
+    const double scale = 72.0 / (dpi > 0.0 ? dpi : 100.0);
+    SurfacePtr surface(cairo_pdf_surface_create_for_stream(
+        append_to_string, &bytes, figure.width * scale, figure.height * scale));
+    // Reproducible files: the creation date comes from SOURCE_DATE_EPOCH when it is set.
+    if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
+      const std::time_t t = static_cast<std::time_t>(std::strtoll(epoch, nullptr, 10));
+      char date[32];
+      std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%S", std::gmtime(&t));
+      cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, date);
+    }
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "stiction");
+    layout = draw_vector(figure, surface.get(), scale);
+  }
+  io::write_file_atomically(path, bytes);
+  return layout;
 }
 
 }  // namespace stiction::plot

@@ -8,8 +8,17 @@
 //   v.label = "Horizontal velocity"; v.unit = "m/s";
 //   v.series.push_back({"centre", t, vx});
 //   v.series.push_back({"contact point", t, slip});
-//   figure.events.push_back({0.583, "stick, t = 0.583 s"});
-//   image::Image png = plot::render(figure, font);
+//   figure.events.push_back({0.583, "stick, t = 0.583 s", "stick"});
+//   image::Image png = plot::render(figure);                      // or
+//   plot::write_figure(figure, "fig.pdf", plot::Format::pdf, 300);
+//
+// Everything is drawn by one code path through cairo (PNG, SVG and PDF alike), text with
+// the bundled DejaVu Sans through cairo-ft. The layout measures every text: y labels wrap
+// or are shortened in the middle ("…"), tick labels that would touch are thinned, a legend
+// goes to the place inside the axes with the least data under it, or beside the axes (inside
+// the image) when every place inside has data, and it grows columns when it is too tall.
+// Event labels sit in rows above the top panel; those that do not fit in three rows are left
+// unlabelled and a key explains the line styles. draw() reports every box it drew.
 //
 // Series are told apart by colour (the Okabe-Ito colour-blind-safe palette) AND by dash
 // pattern (solid, dashed, dotted, dash-dot, ...), so a figure printed in grey stays legible.
@@ -17,12 +26,15 @@
 // min(width/1600, height/1000).
 #pragma once
 
+#include <cairo.h>
+
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "image/image.hpp"
-#include "plot/canvas.hpp"
+#include "plot/layout.hpp"
 #include "text/font.hpp"
 
 namespace stiction::plot {
@@ -43,6 +55,7 @@ struct Series {
   std::vector<double> y;           // non-finite values (and non-positive ones on a log axis) break
                                    // the line
   std::optional<LineStyle> style;  // default: series_style(index in the panel)
+  std::string source{};  // where the data came from (a trajectory column), for the layout report
 };
 
 // A horizontal line at a fixed value, e.g. a friction level: thin, grey, dashed, and listed in
@@ -63,7 +76,8 @@ struct Panel {
 
 struct EventMarker {
   double x = 0.0;
-  std::string label;  // printed above the top panel
+  std::string label;   // printed above the top panel
+  std::string kind{};  // "stick" (dashed grey), "slip" (dash-dot red) or "" (dashed grey)
 };
 
 struct Figure {
@@ -77,9 +91,27 @@ struct Figure {
   int height = 1000;
 };
 
+// Output formats of a figure file.
+enum class Format { png, svg, pdf };
+// "png", "svg", "pdf" (any case); nullopt for anything else.
+std::optional<Format> parse_format(const std::string& name);
+const char* extension(Format format);  // ".png", ".svg", ".pdf"
+
+// Draws the figure with cairo into `cr`, whose user space is the figure's pixels (the caller
+// scales for PDF). Returns the boxes drawn. Throws std::invalid_argument for a size below
+// 200x150 or above 16384 pixels, text::FontError if the bundled font is missing.
+FigureLayout draw(const Figure& figure, cairo_t* cr);
+
 // Draws the figure on a white, opaque image of figure.width x figure.height. A figure without
 // panels, or panels without data, still gives axes (range [0, 1]) and never NaN positions.
-// Throws std::invalid_argument for a size below 200x150 or above 16384 pixels.
+image::Image render(const Figure& figure, FigureLayout* layout = nullptr);
+// The same; `font` is not used (kept for callers that hold one: text goes through cairo).
 image::Image render(const Figure& figure, text::Font& font);
+
+// Writes the figure atomically as PNG (with `dpi` in its pHYs chunk), SVG (user units =
+// pixels) or PDF (page of width/dpi x height/dpi inches, vector). Throws image::ImageError /
+// io::IoError on a write failure.
+FigureLayout write_figure(const Figure& figure, const std::filesystem::path& path, Format format,
+                          double dpi = 100.0);
 
 }  // namespace stiction::plot

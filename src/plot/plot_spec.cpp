@@ -103,6 +103,29 @@ PlotSpec read_plot(scene::TableReader& table, std::size_t index, const std::stri
       spec.name.front() == '.') {
     table.fail("name", "must be a file name of letters, digits, '_', '-' and '.'");
   }
+  // "fig.svg": the extension picks the format (and is not part of the stem).
+  for (Format f : {Format::png, Format::svg, Format::pdf}) {
+    const std::string ext = extension(f);
+    if (spec.name.size() > ext.size() &&
+        parse_format(spec.name.substr(spec.name.size() - 3)) == f &&
+        spec.name[spec.name.size() - 4] == '.') {
+      spec.name.resize(spec.name.size() - ext.size());
+      spec.format = f;
+    }
+  }
+  if (table.has("format")) {
+    const std::string name = table.string("format", "png");
+    const std::optional<Format> f = parse_format(name);
+    if (!f) table.fail("format", "expected \"png\", \"svg\" or \"pdf\", got \"" + name + "\"");
+    if (spec.format && *spec.format != *f) {
+      table.fail("format", "\"" + name + "\" contradicts the extension of name");
+    }
+    spec.format = f;
+  }
+  if (table.has("dpi")) {
+    spec.dpi = table.positive("dpi", spec.dpi);
+    if (spec.dpi < 10.0 || spec.dpi > 10000.0) table.fail("dpi", "expected 10 .. 10000");
+  }
   spec.title = table.string("title", "");
   if (table.has("size")) {
     const std::vector<double> size = table.numbers("size");
@@ -219,13 +242,6 @@ void clip_to_window(const Figure& figure, Series& series) {
   series.y = std::move(y);
 }
 
-void write_figure(const Figure& figure, const std::filesystem::path& png) {
-  text::Font font = text::Font::open_default();
-  const image::Image img = render(figure, font);
-  if (png.has_parent_path()) std::filesystem::create_directories(png.parent_path());
-  image::write_png(png, img, image::PngSpeed::small);
-}
-
 }  // namespace
 
 void check_signals(const PlotSpec& spec, const std::vector<std::string>& columns) {
@@ -309,12 +325,14 @@ PlotSpec drift_comparison_spec() {
   return spec;
 }
 
-std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns) {
+std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& columns) {
+  std::vector<std::string> names;
+  for (const core::ColumnInfo& c : columns) names.push_back(c.name);
   std::vector<PlotSpec> specs;
   auto complete = [&](const PlotSpec& spec) {
     for (const PanelSpec& p : spec.panels) {
       for (const std::string& s : p.signals) {
-        if (!has_column(columns, s)) return false;
+        if (!has_column(names, s)) return false;
       }
     }
     return true;
@@ -322,27 +340,45 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns
   for (const PlotSpec& spec : {paper_fig4_spec(), paper_fig7_spec()}) {
     if (complete(spec)) specs.push_back(spec);
   }
-  if (!specs.empty()) return specs;
-  // A panel per signal group ("<component>.<signal>"), in column order.
-  PlotSpec spec;
-  spec.name = "signals";
-  std::vector<std::string> groups;
-  std::map<std::string, std::vector<std::string>> members;
-  for (const std::string& c : signal_columns(columns)) {
-    const std::size_t first = c.find('.');
-    const std::size_t second = first == std::string::npos ? first : c.find('.', first + 1);
-    const std::string group = second == std::string::npos ? c : c.substr(0, second);
-    if (!members.count(group)) groups.push_back(group);
-    members[group].push_back(c);
+  // A panel per signal group ("<component>.<signal>"), in column order, legend by axis.
+  std::vector<PanelSpec> panels;
+  std::map<std::string, std::size_t> panel_of;
+  for (const core::ColumnInfo& c : columns) {
+    if (c.name == "t") continue;
+    const std::size_t first = c.name.find('.');
+    const std::size_t second = first == std::string::npos ? first : c.name.find('.', first + 1);
+    const std::string group = second == std::string::npos ? c.name : c.name.substr(0, second);
+    auto [it, added] = panel_of.emplace(group, panels.size());
+    if (added) {
+      PanelSpec panel;
+      panel.label = group;
+      panel.unit = c.unit.empty() ? core::guess_unit(c.name) : c.unit;
+      panels.push_back(panel);
+    }
+    PanelSpec& panel = panels[it->second];
+    panel.signals.push_back(c.name);
+    panel.legend.push_back(second == std::string::npos ? c.name : c.name.substr(second + 1));
   }
-  for (std::size_t g = 0; g < groups.size() && g < 6; ++g) {
-    PanelSpec panel;
-    panel.signals = members[groups[g]];
-    panel.label = groups[g];
-    spec.panels.push_back(panel);
+  for (PanelSpec& panel : panels) {
+    if (panel.signals.size() == 1) panel.legend.clear();  // the axis label names it
   }
-  if (!spec.panels.empty()) specs.push_back(spec);
+  // No silent cap: as many figures as the groups need, the panels spread evenly.
+  const std::size_t n = panels.size();
+  const std::size_t figures = (n + kPanelsPerFigure - 1) / kPanelsPerFigure;
+  for (std::size_t f = 0, next = 0; f < figures; ++f) {
+    PlotSpec spec;
+    spec.name = figures == 1 ? "signals" : "signals_" + std::to_string(f + 1);
+    const std::size_t count = (n - next) / (figures - f);
+    for (std::size_t k = 0; k < count; ++k) spec.panels.push_back(panels[next++]);
+    specs.push_back(spec);
+  }
   return specs;
+}
+
+std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns) {
+  std::vector<core::ColumnInfo> infos;
+  for (const std::string& c : columns) infos.push_back({c, core::guess_unit(c), "", ""});
+  return default_plot_specs(infos);
 }
 
 std::string event_label(const std::string& name, double time) {
@@ -358,8 +394,35 @@ std::string event_label(const std::string& name, double time) {
   return words + ": t = " + buffer + " s";
 }
 
+namespace {
+
+bool wanted(const PlotSpec& spec, const PlotEvent& e, bool first_of_kind) {
+  if (!spec.mark_events) return false;
+  if (spec.only_events.empty()) return true;
+  for (const std::string& name : spec.only_events) {
+    if (name == e.element || name == e.element + "." + e.kind) return true;
+    if (first_of_kind && name == e.element + "." + e.kind + "_time") return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
                    const std::map<std::string, double>& event_times) {
+  std::vector<PlotEvent> events;
+  for (const auto& [name, time] : event_times) {
+    const std::size_t dot = name.rfind('.');
+    std::string kind = dot == std::string::npos ? name : name.substr(dot + 1);
+    if (kind.size() > 5 && kind.compare(kind.size() - 5, 5, "_time") == 0)
+      kind.resize(kind.size() - 5);
+    events.push_back({dot == std::string::npos ? "" : name.substr(0, dot), kind, time});
+  }
+  return make_figure(spec, trajectory, events);
+}
+
+Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
+                   const std::vector<PlotEvent>& events) {
   check_signals(spec, trajectory.columns());
   Figure figure = figure_frame(spec);
   for (const PanelSpec* ps : panels_of(spec)) {
@@ -371,26 +434,47 @@ Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
         series.style = series_style(static_cast<int>(i));
         series.style->colour = ps->colors[i];
       }
+      series.source = ps->signals[i];
       signal_series(trajectory, *trajectory.find(ps->signals[i]), *ps, series.x, series.y);
       clip_to_window(figure, series);
       panel.series.push_back(std::move(series));
     }
     figure.panels.push_back(std::move(panel));
   }
-  if (spec.mark_events) {
-    for (const auto& [name, time] : event_times) {
-      if (!spec.only_events.empty() && !has_column(spec.only_events, name)) continue;
-      if (!std::isfinite(time)) continue;
-      figure.events.push_back({time, event_label(name, time)});
-    }
+  // Sticks and slips only (a contact opening or touching down is not a friction event), in
+  // time order; "first" is per element and kind, for the "<element>.stick_time" filter.
+  std::vector<PlotEvent> sorted;
+  for (const PlotEvent& e : events) {
+    if ((e.kind == "stick" || e.kind == "slip") && std::isfinite(e.time)) sorted.push_back(e);
+  }
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const PlotEvent& a, const PlotEvent& b) { return a.time < b.time; });
+  std::set<std::string> seen;
+  for (const PlotEvent& e : sorted) {
+    const bool first = seen.insert(e.element + "." + e.kind).second;
+    if (!wanted(spec, e, first)) continue;
+    const std::string name = e.element.empty() ? e.kind : e.element + "." + e.kind;
+    figure.events.push_back({e.time, event_label(name, e.time), e.kind});
   }
   return figure;
+}
+
+std::filesystem::path plot_path(const PlotSpec& spec, const std::filesystem::path& dir,
+                                std::optional<Format> override) {
+  const Format format = override ? *override : spec.format.value_or(Format::png);
+  return dir / (spec.name + extension(format));
+}
+
+FigureLayout write_plot(const PlotSpec& spec, const core::Trajectory& trajectory,
+                        const std::vector<PlotEvent>& events, const std::filesystem::path& path,
+                        Format format) {
+  return write_figure(make_figure(spec, trajectory, events), path, format, spec.dpi);
 }
 
 void write_plot(const PlotSpec& spec, const core::Trajectory& trajectory,
                 const std::map<std::string, double>& event_times,
                 const std::filesystem::path& png) {
-  write_figure(make_figure(spec, trajectory, event_times), png);
+  write_figure(make_figure(spec, trajectory, event_times), png, Format::png, spec.dpi);
 }
 
 Figure make_comparison_figure(const PlotSpec& spec, const std::vector<Run>& runs) {
@@ -417,6 +501,7 @@ Figure make_comparison_figure(const PlotSpec& spec, const std::vector<Run>& runs
         Series series;
         const std::string what = ps->legend.empty() ? signal_label(ps->signals[i]) : ps->legend[i];
         series.label = ps->signals.size() == 1 ? run.name : run.name + ": " + what;
+        series.source = ps->signals[i];
         signal_series(*run.trajectory, *run.trajectory->find(ps->signals[i]), *ps, series.x,
                       series.y);
         clip_to_window(figure, series);
@@ -435,7 +520,12 @@ Figure make_comparison_figure(const PlotSpec& spec, const std::vector<Run>& runs
 
 void write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
                            const std::filesystem::path& png) {
-  write_figure(make_comparison_figure(spec, runs), png);
+  write_figure(make_comparison_figure(spec, runs), png, Format::png, spec.dpi);
+}
+
+FigureLayout write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
+                                   const std::filesystem::path& path, Format format) {
+  return write_figure(make_comparison_figure(spec, runs), path, format, spec.dpi);
 }
 
 PlotSpec default_comparison_spec(const std::vector<Run>& runs) {
@@ -456,6 +546,54 @@ PlotSpec default_comparison_spec(const std::vector<Run>& runs) {
   if (specs.empty()) throw InputError("the runs have no signal in common to compare");
   PlotSpec spec = specs.front();
   spec.name = "compare";
+  return spec;
+}
+
+PlotSpec comparison_spec(const std::vector<Run>& runs, const std::vector<std::string>& signals,
+                         const std::vector<core::ColumnInfo>& columns) {
+  std::vector<std::string> common;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    if (!runs[r].trajectory) continue;
+    const std::vector<std::string>& cs = runs[r].trajectory->columns();
+    if (r == 0) {
+      common = cs;
+    } else {
+      std::erase_if(common, [&](const std::string& c) { return !has_column(cs, c); });
+    }
+  }
+  // Each requested name is a column or a group prefix: "sphere.v" means sphere.v.x/y/z.
+  std::vector<core::ColumnInfo> chosen;
+  for (const std::string& name : signals) {
+    bool found = false;
+    for (const std::string& c : common) {
+      if (c != "t" && (c == name || c.rfind(name + ".", 0) == 0)) {
+        found = true;
+        const auto info = std::find_if(columns.begin(), columns.end(),
+                                       [&](const core::ColumnInfo& i) { return i.name == c; });
+        chosen.push_back(info != columns.end() ? *info
+                                               : core::ColumnInfo{c, core::guess_unit(c), "", ""});
+      }
+    }
+    if (!found) {
+      throw InputError("--signals: '" + name + "' is not a signal of every run; they have: " +
+                       join(signal_columns(common)));
+    }
+  }
+  std::vector<core::ColumnInfo> unique;
+  for (const core::ColumnInfo& c : chosen) {
+    if (std::none_of(unique.begin(), unique.end(),
+                     [&](const core::ColumnInfo& u) { return u.name == c.name; })) {
+      unique.push_back(c);
+    }
+  }
+  unique.insert(unique.begin(), core::ColumnInfo{"t", "s", "", "time"});
+  // One figure for a comparison: every chosen group is a panel.
+  PlotSpec spec;
+  spec.name = "compare";
+  for (const PlotSpec& s : default_plot_specs(unique)) {
+    if (s.name.rfind("signals", 0) != 0) continue;  // the paper figures
+    spec.panels.insert(spec.panels.end(), s.panels.begin(), s.panels.end());
+  }
   return spec;
 }
 

@@ -4,12 +4,16 @@
 // A scene lists its plots like this (every key but `signals` is optional):
 //
 //   [[plots]]
-//   name = "fig4"                      # file stem: plots/fig4.png (default "plot<N>")
+//   name = "fig4"                      # file stem: plots/fig4.png (default "plot<N>"); with an
+//                                     # extension (.png, .svg, .pdf) it also picks the format
+//   format = "pdf"                     # png (default), svg or pdf; --plot-format overrides it
+//   dpi = 300                          # resolution: PNG pHYs, PDF page size (default 200)
 //   title = "Simulation I: ..."       # default: none
 //   size = [1600, 1000]               # pixels, each 200..16384 (default 1600x1000)
 //   time = [0.0, 1.5]                 # time range (default: the whole run)
 //   events = true                     # mark the run's events (default true); or a list of
-//                                     # event names to mark, e.g. ["ground.stick_time"]
+//                                     # events to mark: "ground" (all of an element),
+//                                     # "ground.stick", "ground.slip", "ground.stick_time" (first)
 //     [[plots.panels]]
 //     signals = ["sphere.v.x", "ground.slip.x"]   # trajectory columns
 //     legend = ["centre", "contact point"]        # default: the signal names
@@ -32,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "core/column_info.hpp"
 #include "core/trajectory.hpp"
 #include "plot/figure.hpp"
 
@@ -49,7 +54,9 @@ struct PanelSpec {
 };
 
 struct PlotSpec {
-  std::string name;
+  std::string name;              // file stem, without extension
+  std::optional<Format> format;  // from the name's extension or `format`; default PNG
+  double dpi = 200.0;
   std::string title;
   std::vector<PanelSpec> panels;
   int width = 1600;
@@ -83,19 +90,42 @@ PlotSpec drift_comparison_spec();
 
 // The figures to draw for a run whose scene lists no [[plots]]: the paper figures whose
 // signals all exist among `columns` (Fig. 4 for sphere_roll, Fig. 7 for two_link and its
-// penalty variant), else one figure with a panel per signal group (up to 6 groups).
+// penalty variant), then figures with a panel per signal group ("<component>.<signal>",
+// labelled with its unit) that together show EVERY signal: "signals" when one figure holds
+// them all, else "signals_1", "signals_2", ... of at most kPanelsPerFigure panels each.
+inline constexpr int kPanelsPerFigure = 4;
+std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& columns);
+// The same with units guessed from the signal names (core::guess_unit).
 std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns);
+
+// An event to mark: a stick or slip of an element (core::SlipEvent kinds; other kinds, such
+// as a contact opening, are not marked).
+struct PlotEvent {
+  std::string element;
+  std::string kind;  // "stick" or "slip"
+  double time = 0.0;
+};
 
 // "ground.stick_time" at 0.5831 -> "ground stick: t = 0.583 s".
 std::string event_label(const std::string& name, double time);
 
-// The figure of one run. Events (name -> time in s) are marked as the spec says.
+// The figure of one run, its events marked as the spec says.
+Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
+                   const std::vector<PlotEvent>& events);
+// Events by name -> time, "<element>.<kind>_time" ("ground.stick_time" is a stick).
 Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
                    const std::map<std::string, double>& event_times);
-// make_figure, rendered with the bundled font and written atomically as PNG. Throws
-// scene::InputError for a missing signal, text::FontError / image::ImageError on I/O.
+// make_figure, written atomically in `format` (PNG when the spec and the caller name none).
+// Throws scene::InputError for a missing signal, text::FontError / image::ImageError /
+// io::IoError on I/O. Returns the layout drawn.
+FigureLayout write_plot(const PlotSpec& spec, const core::Trajectory& trajectory,
+                        const std::vector<PlotEvent>& events, const std::filesystem::path& path,
+                        Format format);
 void write_plot(const PlotSpec& spec, const core::Trajectory& trajectory,
                 const std::map<std::string, double>& event_times, const std::filesystem::path& png);
+// The file a spec is written to in `dir`: name + extension of its format (`override` first).
+std::filesystem::path plot_path(const PlotSpec& spec, const std::filesystem::path& dir,
+                                std::optional<Format> override = std::nullopt);
 
 // Several runs in one figure: each panel shows its signals for every run, labelled by run
 // name ("two_link", "two_link_lugre"); a run's colour is the same in every panel; a spec
@@ -108,8 +138,15 @@ struct Run {
 Figure make_comparison_figure(const PlotSpec& spec, const std::vector<Run>& runs);
 void write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
                            const std::filesystem::path& png);
+FigureLayout write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
+                                   const std::filesystem::path& path, Format format);
 // The comparison to draw for `stiction compare`: drift_comparison_spec() when every run has
 // the arm's joint angles, else the first default spec of the columns common to all runs.
 PlotSpec default_comparison_spec(const std::vector<Run>& runs);
+// A comparison of chosen signals: one panel per signal group among `signals` (each a column
+// of every run, or a group "<component>.<signal>" meaning all its axes), units from
+// `columns` (guessed from the names where missing). scene::InputError for an unknown signal.
+PlotSpec comparison_spec(const std::vector<Run>& runs, const std::vector<std::string>& signals,
+                         const std::vector<core::ColumnInfo>& columns = {});
 
 }  // namespace stiction::plot

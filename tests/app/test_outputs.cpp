@@ -91,7 +91,9 @@ TEST_CASE("run writes video.mp4 and the scene's plots", "[app][outputs]") {
   REQUIRE(o.code == 0);
   CHECK(finalized_mp4(dir / "out" / "video.mp4"));
   // sphere_roll has no [[plots]]: it gets the paper's Fig. 4.
-  CHECK(names_in(dir / "out" / "plots") == std::vector<std::string>{"fig4_sphere.png"});
+  // The paper figure, then every signal in figures of a few panels each.
+  CHECK(names_in(dir / "out" / "plots") ==
+        std::vector<std::string>{"fig4_sphere.png", "signals_1.png", "signals_2.png"});
   CHECK(png_size(dir / "out" / "plots" / "fig4_sphere.png") == std::pair{1600, 1000});
   // Only the finished files: no temporary names, no partial video, no frames unasked.
   CHECK(names_in(dir / "out") ==

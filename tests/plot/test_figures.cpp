@@ -43,7 +43,7 @@ TEST_CASE("paper Fig. 4 replica", "[plot][golden]") {
 TEST_CASE("paper Fig. 7 replica", "[plot][golden]") {
   text::Font font = text::Font::open_default();
   const core::Trajectory run = plot::testing::arm_run(15.0);
-  const image::Image img = plot::render(plot::make_figure(plot::paper_fig7_spec(), run, {}), font);
+  const image::Image img = plot::render(plot::make_figure(plot::paper_fig7_spec(), run, std::vector<plot::PlotEvent>{}), font);
   check_golden("plot_fig7", img);
 }
 

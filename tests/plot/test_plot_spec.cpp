@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <set>
 #include <cmath>
 
 #include "plot/plot_spec.hpp"
@@ -118,19 +119,49 @@ TEST_CASE("bad plot specs are input errors at their position", "[plot][spec]") {
   CHECK_THAT(error_of("plots = 3\n"), Catch::Contains("array of tables"));
 }
 
-TEST_CASE("the paper figures are the defaults when their signals exist", "[plot][spec]") {
-  const auto sphere = plot::default_plot_specs(plot::testing::sphere_run(0.1).columns());
-  REQUIRE(sphere.size() == 1);
+TEST_CASE("the paper figures come first among the defaults, then every signal",
+          "[plot][spec]") {
+  auto all_signals = [](const std::vector<plot::PlotSpec>& specs) {
+    std::set<std::string> drawn;
+    for (const plot::PlotSpec& spec : specs) {
+      for (const plot::PanelSpec& p : spec.panels) drawn.insert(p.signals.begin(), p.signals.end());
+    }
+    return drawn;
+  };
+  const core::Trajectory sphere_run = plot::testing::sphere_run(0.1);
+  const auto sphere = plot::default_plot_specs(sphere_run.columns());
+  REQUIRE(sphere.size() == 3);  // Fig. 4, then five signal groups in two figures
   CHECK(sphere[0].name == plot::paper_fig4_spec().name);
+  CHECK(sphere[1].name == "signals_1");
+  CHECK(sphere[2].name == "signals_2");
+  CHECK(sphere[1].panels.size() + sphere[2].panels.size() == 5);
+  CHECK(all_signals(sphere).size() == sphere_run.columns().size() - 1);
   const auto arm = plot::default_plot_specs(plot::testing::arm_run(0.1).columns());
-  REQUIRE(arm.size() == 1);
+  REQUIRE(arm.size() >= 2);
   CHECK(arm[0].name == plot::paper_fig7_spec().name);
   const auto other = plot::default_plot_specs({"t", "box.p.x", "box.p.y", "box.v.x", "spring.f"});
   REQUIRE(other.size() == 1);
+  CHECK(other[0].name == "signals");
   REQUIRE(other[0].panels.size() == 3);
   CHECK(other[0].panels[0].signals == std::vector<std::string>{"box.p.x", "box.p.y"});
+  CHECK(other[0].panels[0].legend == std::vector<std::string>{"x", "y"});
+  CHECK(other[0].panels[0].unit == "m");
+  CHECK(other[0].panels[1].unit == "m/s");
   CHECK(other[0].panels[2].signals == std::vector<std::string>{"spring.f"});
+  CHECK(other[0].panels[2].unit == "N");
   CHECK(plot::default_plot_specs({"t"}).empty());
+  // Many groups: no cap, several figures of at most kPanelsPerFigure panels.
+  std::vector<std::string> many{"t"};
+  for (int i = 0; i < 23; ++i) {
+    std::string name = std::to_string(i);
+    name.insert(0, 1, 'c');
+    name += ".f";
+    many.push_back(name);
+  }
+  const auto specs = plot::default_plot_specs(many);
+  CHECK(specs.size() == 6);
+  for (const auto& spec : specs) CHECK(spec.panels.size() <= plot::kPanelsPerFigure);
+  CHECK(all_signals(specs).size() == 23);
 }
 
 TEST_CASE("figures from a run: series, events and relative signals", "[plot][spec]") {
@@ -153,7 +184,7 @@ TEST_CASE("figures from a run: series, events and relative signals", "[plot][spe
   spec.t_min = 0.2;
   spec.t_max = 0.4;
   spec.panels[1].relative_to = 0.5;  // after the window: no samples, no NaN
-  figure = plot::make_figure(spec, run, {});
+  figure = plot::make_figure(spec, run, std::vector<plot::PlotEvent>{});
   const auto& x = figure.panels[0].series[0].x;
   CHECK(x.front() >= 0.199 - 1e-9);
   CHECK(x.back() <= 0.401 + 1e-9);
@@ -164,14 +195,14 @@ TEST_CASE("figures from a run: series, events and relative signals", "[plot][spe
   v.signals = {"sphere.v.x"};
   v.relative_to = 0.25;
   rel.panels.push_back(v);
-  figure = plot::make_figure(rel, run, {});
+  figure = plot::make_figure(rel, run, std::vector<plot::PlotEvent>{});
   const plot::Series& s = figure.panels[0].series[0];
   CHECK(s.x.front() == Approx(0.25));
   CHECK(s.y.front() == Approx(0.0).margin(1e-12));
   CHECK(s.y.back() < 0.0);
 
   plot::PlotSpec bad = plot::paper_fig7_spec();
-  CHECK_THROWS_WITH(plot::make_figure(bad, run, {}),
+  CHECK_THROWS_WITH(plot::make_figure(bad, run, std::vector<plot::PlotEvent>{}),
                     Catch::Contains("arm.theta.0") && Catch::Contains("sphere.v.x"));
 }
 
@@ -201,4 +232,32 @@ TEST_CASE("comparison figures label runs by name and need the signals in every r
   CHECK_THROWS_WITH(
       plot::make_comparison_figure(spec, {{"two_link", &a}, {"sphere_roll", &sphere}}),
       Catch::StartsWith("run 'sphere_roll'"));
+}
+
+TEST_CASE("a plot's format comes from its name's extension or `format`, dpi from `dpi`",
+          "[plot][spec]") {
+  const std::string panel = "  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n";
+  auto with = [&](const std::string& keys) {
+    std::string text = "[[plots]]\n";
+    text += keys;
+    text += panel;
+    return text;
+  };
+  auto one = [&](const std::string& keys) { return read(with(keys)).at(0); };
+  const plot::PlotSpec svg = one("name = \"block.svg\"\n");
+  CHECK(svg.name == "block");
+  CHECK(svg.format == plot::Format::svg);
+  CHECK(plot::plot_path(svg, "plots") == std::filesystem::path("plots/block.svg"));
+  CHECK(plot::plot_path(svg, "plots", plot::Format::pdf) == std::filesystem::path("plots/block.pdf"));
+  const plot::PlotSpec pdf = one("name = \"b\"\nformat = \"PDF\"\ndpi = 300\n");
+  CHECK(pdf.format == plot::Format::pdf);
+  CHECK(pdf.dpi == 300.0);
+  const plot::PlotSpec plain = one("name = \"fig.v2\"\n");
+  CHECK(plain.name == "fig.v2");
+  CHECK(!plain.format);
+  CHECK(plot::plot_path(plain, "p") == std::filesystem::path("p/fig.v2.png"));
+  CHECK_THAT(error_of(with("name = \"a.svg\"\nformat = \"pdf\"\n")),
+             Catch::StartsWith("scenes/test.toml:3:") && Catch::Contains("contradicts"));
+  CHECK_THAT(error_of(with("format = \"jpeg\"\n")), Catch::Contains("\"svg\""));
+  CHECK_THAT(error_of(with("dpi = 5\n")), Catch::Contains("dpi"));
 }

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
@@ -140,4 +141,22 @@ TEST_CASE("summary: fields, final row by column name, events, instability") {
   CHECK(s["instability"]["time"] == 0.3);
   CHECK(s["instability"]["component"] == "ground");
   CHECK(s["instability"]["suggested_dt"] == 2.5e-5);
+}
+
+TEST_CASE("csv: whole numbers are written as floats, other numbers unchanged") {
+  auto text = [](double v) {
+    std::string out;
+    io::append_number(out, v);
+    return out;
+  };
+  CHECK(text(0.0) == "0.0");
+  CHECK(text(-0.0) == "-0.0");
+  CHECK(text(12.0) == "12.0");
+  CHECK(text(-3.0) == "-3.0");
+  CHECK(text(0.1) == "0.1");
+  CHECK(text(1e20) == "1e+20");
+  CHECK(text(1.5e-7) == "1.5e-07");
+  CHECK(text(std::numeric_limits<double>::quiet_NaN()) == "nan");
+  CHECK(text(std::numeric_limits<double>::infinity()) == "inf");
+  CHECK(std::stod(text(123456789.0)) == 123456789.0);
 }

@@ -149,7 +149,10 @@ void PlanarArm::derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::V
 std::vector<core::SignalInfo> PlanarArm::signals() const {
   const auto axes = core::index_axes(joint_count());
   // The arm's own angles are continuous state, never wrapped: no unwrapping needed.
-  return {{"theta", axes, false}, {"omega", axes, false}};
+  return {{.name = "theta", .axes = axes, .unit = "rad", .frame = "joint",
+           .description = "joint angle"},
+          {.name = "omega", .axes = axes, .unit = "rad/s", .frame = "joint",
+           .description = "joint angular velocity"}};
 }
 
 void PlanarArm::write_signals(core::ConstVecRef x, core::VecRef out) const { out = x; }

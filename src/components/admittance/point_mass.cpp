@@ -28,7 +28,10 @@ void PointMass::derivative(ConstVecRef x, ConstVecRef u_hat, VecRef x_dot) const
 }
 
 std::vector<core::SignalInfo> PointMass::signals() const {
-  return {{"p", core::xyz_axes()}, {"v", core::xyz_axes()}};
+  return {{.name = "p", .axes = core::xyz_axes(), .unit = "m", .frame = "world",
+           .description = "position"},
+          {.name = "v", .axes = core::xyz_axes(), .unit = "m/s", .frame = "world",
+           .description = "velocity"}};
 }
 
 void PointMass::write_signals(ConstVecRef x, VecRef out) const { out.head<6>() = x.head<6>(); }

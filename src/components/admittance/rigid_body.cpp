@@ -60,10 +60,14 @@ void RigidBody::derivative_at(const double* x_data, const double* u_data, double
 void RigidBody::project(VecRef x) const { x.segment<4>(6).normalize(); }
 
 std::vector<core::SignalInfo> RigidBody::signals() const {
-  return {{"p", core::xyz_axes()},
-          {"v", core::xyz_axes()},
-          {"q", core::wxyz_axes()},
-          {"w", core::xyz_axes()}};
+  return {{.name = "p", .axes = core::xyz_axes(), .unit = "m", .frame = "world",
+           .description = "position of the centre of mass"},
+          {.name = "v", .axes = core::xyz_axes(), .unit = "m/s", .frame = "world",
+           .description = "velocity of the centre of mass"},
+          {.name = "q", .axes = core::wxyz_axes(), .unit = "1", .frame = "world",
+           .description = "orientation, unit quaternion from body to world"},
+          {.name = "w", .axes = core::xyz_axes(), .unit = "rad/s", .frame = "body",
+           .description = "angular velocity in the body frame"}};
 }
 
 void RigidBody::write_signals(ConstVecRef x, VecRef out) const { out.head<13>() = x.head<13>(); }

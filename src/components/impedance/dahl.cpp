@@ -22,7 +22,12 @@ void Dahl::evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVecRef y, 
   y_dot[0] = v - std::abs(v) * K * e / params_.force_limit;
 }
 
-std::vector<core::SignalInfo> Dahl::signals() const { return {{"tau", {}}, {"e", {}}}; }
+std::vector<core::SignalInfo> Dahl::signals() const {
+  return {{.name = "tau", .unit = "N·m", .frame = "joint",
+           .description = "friction torque on the driven side of the joint"},
+          {.name = "e", .unit = "rad", .frame = "joint",
+           .description = "bristle deflection (internal state z)"}};
+}
 
 void Dahl::write_signals(core::ConstVecRef /*x_hat*/, core::ConstVecRef y, core::ConstVecRef u,
                          core::VecRef out) const {

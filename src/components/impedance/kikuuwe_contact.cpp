@@ -65,10 +65,13 @@ double KikuuweContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
 }
 
 std::vector<core::SignalInfo> KikuuweContact::signals() const {
-  return {{"f", core::xyz_axes()},
-          {"slip", core::xyz_axes()},
-          {"e", core::index_axes(2)},
-          {"n_force", {}}};
+  return {{.name = "f", .axes = core::xyz_axes(), .unit = "N", .frame = "world",
+           .description = "contact force on the body (normal plus friction)"},
+          {.name = "slip", .axes = core::xyz_axes(), .unit = "m/s", .frame = "world",
+           .description = "velocity of the contact point in the surface plane"},
+          {.name = "e", .axes = core::index_axes(2), .unit = "m", .frame = "surface",
+           .description = "elastic displacement of the tangential friction element"},
+          {.name = "n_force", .unit = "N", .description = "normal force magnitude"}};
 }
 
 void KikuuweContact::write_signals(ConstVecRef x_hat, ConstVecRef y, ConstVecRef u,

@@ -54,9 +54,18 @@ core::Vec3 KikuuweFriction::slip_velocity(ConstVecRef x_hat) const {
 }
 
 std::vector<core::SignalInfo> KikuuweFriction::signals() const {
-  if (params_.dimension == 1) return {{"tau", {}}, {"e", {}}};
+  // One dimension: a joint (torque, angle); more: a point (force, displacement).
+  if (params_.dimension == 1) {
+    return {{.name = "tau", .unit = "N·m", .frame = "joint",
+             .description = "friction torque on the driven side of the joint"},
+            {.name = "e", .unit = "rad", .frame = "joint",
+             .description = "elastic displacement of the friction element (anchor offset)"}};
+  }
   const auto axes = params_.dimension == 3 ? core::xyz_axes() : core::index_axes(params_.dimension);
-  return {{"f", axes}, {"e", axes}};
+  return {{.name = "f", .axes = axes, .unit = "N", .frame = "world",
+           .description = "friction force on the moving point"},
+          {.name = "e", .axes = axes, .unit = "m", .frame = "world",
+           .description = "elastic displacement of the friction element"}};
 }
 
 void KikuuweFriction::write_signals(ConstVecRef /*x_hat*/, ConstVecRef y, ConstVecRef u,

@@ -37,7 +37,12 @@ void LuGre::evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVecRef y,
   y_dot[0] = e_dot;
 }
 
-std::vector<core::SignalInfo> LuGre::signals() const { return {{"tau", {}}, {"e", {}}}; }
+std::vector<core::SignalInfo> LuGre::signals() const {
+  return {{.name = "tau", .unit = "N·m", .frame = "joint",
+           .description = "friction torque on the driven side of the joint"},
+          {.name = "e", .unit = "rad", .frame = "joint",
+           .description = "bristle deflection (internal state z)"}};
+}
 
 void LuGre::write_signals(core::ConstVecRef /*x_hat*/, core::ConstVecRef y, core::ConstVecRef u,
                           core::VecRef out) const {

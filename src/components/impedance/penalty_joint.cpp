@@ -144,7 +144,14 @@ core::Vec3 PenaltyJoint::slip_velocity(core::ConstVecRef x_hat) const {
 }
 
 std::vector<core::SignalInfo> PenaltyJoint::signals() const {
-  return {{"theta", {}, /*unwrap=*/true}, {"omega", {}}, {"tau", {}}, {"e", {}}};
+  return {{.name = "theta", .unwrap = true, .unit = "rad", .frame = "joint",
+           .description = "relative rotation of the child about the joint axis"},
+          {.name = "omega", .unit = "rad/s", .frame = "joint",
+           .description = "relative angular velocity about the joint axis"},
+          {.name = "tau", .unit = "N·m", .frame = "joint",
+           .description = "friction torque about the joint axis on the child"},
+          {.name = "e", .unit = "rad", .frame = "joint",
+           .description = "elastic displacement of the joint friction element"}};
 }
 
 void PenaltyJoint::write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,

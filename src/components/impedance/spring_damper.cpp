@@ -31,8 +31,12 @@ double SpringDamper::stored_energy(core::ConstVecRef x_hat, core::ConstVecRef /*
 
 std::vector<core::SignalInfo> SpringDamper::signals() const {
   const int n = params_.dimension;
-  if (n == 1) return {{"tau", {}}};
-  return {{"f", n == 3 ? core::xyz_axes() : core::index_axes(n)}};
+  if (n == 1) {
+    return {{.name = "tau", .unit = "N·m", .frame = "joint",
+             .description = "spring-damper torque on the driven side of the joint"}};
+  }
+  return {{.name = "f", .axes = n == 3 ? core::xyz_axes() : core::index_axes(n), .unit = "N",
+           .frame = "world", .description = "spring-damper force on the moving point"}};
 }
 
 void SpringDamper::write_signals(core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,

@@ -39,8 +39,16 @@ void TorqueSource::evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef
 }
 
 std::vector<core::SignalInfo> TorqueSource::signals() const {
-  if (size() == 1) return {{signal_name_, {}}};
-  return {{signal_name_, size() == 3 ? core::xyz_axes() : core::index_axes(size())}};
+  const bool force = type_ == "force_source";
+  const std::string unit = force ? "N" : "N·m";
+  const std::string description =
+      force ? "prescribed force applied to the body (in the frame its scene entry names)"
+            : "prescribed torque applied to the driven side";
+  if (size() == 1) {
+    return {{.name = signal_name_, .unit = unit, .frame = "joint", .description = description}};
+  }
+  return {{.name = signal_name_, .axes = size() == 3 ? core::xyz_axes() : core::index_axes(size()),
+           .unit = unit, .frame = force ? "" : "world", .description = description}};
 }
 
 void TorqueSource::write_signals(core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,

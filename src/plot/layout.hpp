@@ -1,0 +1,48 @@
+// What a drawn figure reports about itself, so tests (and callers) can check that its text
+// never overlaps and stays inside the image: every text box, legend box and panel frame, in
+// pixels of the figure (x right, y down, origin top-left), and which series were drawn.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace stiction::plot {
+
+struct Point {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+// An axis-aligned rectangle in pixels (x0 <= x1, y0 <= y1; y down).
+struct Rect {
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+  double width() const { return x1 - x0; }
+  double height() const { return y1 - y0; }
+  bool overlaps(const Rect& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+  bool inside(const Rect& o) const { return x0 >= o.x0 && y0 >= o.y0 && x1 <= o.x1 && y1 <= o.y1; }
+};
+
+enum class TextRole { title, axis_label, tick_label, legend_entry, event_label, note };
+
+struct TextBox {
+  std::string text;
+  TextRole role = TextRole::note;
+  Rect box;        // the logical box: advance width by the font's ascent + descent
+  int panel = -1;  // the panel it belongs to (-1: the figure)
+};
+
+struct FigureLayout {
+  int width = 0, height = 0;
+  std::vector<TextBox> texts;
+  std::vector<Rect> panels;          // axes frames
+  std::vector<Rect> legends;         // legend boxes (their entries are in `texts`)
+  std::vector<bool> legend_outside;  // per legend: placed beside the axes, not inside
+  std::vector<std::string> series;   // Series::source (or label) of every series drawn
+};
+
+// Everything wrong with a layout, one line each: two text boxes that overlap, a text or a
+// legend that leaves the image, a legend over another legend, an event label over a legend
+// (legend entries may of course sit inside their own legend). Empty: a clean layout.
+std::vector<std::string> layout_problems(const FigureLayout& layout);
+
+}  // namespace stiction::plot
