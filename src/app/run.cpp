@@ -36,8 +36,6 @@ namespace stiction::app {
 namespace fs = std::filesystem;
 namespace {
 
-}
-
 render::RenderResult write_video(const scene::Scene& scene, const core::RunResult& result,
                                  const render::RenderSettings& settings, const fs::path& out,
                                  bool video, bool frames, bool progress) {

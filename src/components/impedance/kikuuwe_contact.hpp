@@ -81,7 +81,7 @@ class KikuuweContact final : public core::Impedance, public core::NormalContact 
     // (23a) with the clamp of DESIGN section 1: no adhesion, so mu N is never negative.
     const core::Vec3 p_c = x_hat.segment<3>(0);
     if (bounded_ && !params_.extent.contains(p_c - params_.extent.centre)) return 0.0;
-    return contact_normal_force(coefficients_, params_.offset - n_.dot(p_c),
+    return components::contact_normal_force(coefficients_, params_.offset - n_.dot(p_c),
                                 n_.dot(core::Vec3(x_hat.segment<3>(3))));
   }
 

@@ -80,7 +80,7 @@ MovingContact::Touch MovingContact::touch(ConstVecRef x_hat) const {
 }
 
 double MovingContact::normal_force(const Touch& c) const {
-  return c.inside ? contact_normal_force(coefficients_, c.depth, c.surface.frame.n.dot(c.v_rel))
+  return c.inside ? components::contact_normal_force(coefficients_, c.depth, c.surface.frame.n.dot(c.v_rel))
                   : 0.0;
 }
 
