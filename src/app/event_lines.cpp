@@ -10,7 +10,7 @@ std::string first_of(const nlohmann::ordered_json& entry, const char* key, const
   const auto it = entry.find(key);
   if (it == entry.end() || !it->is_number()) return never;
   char buffer[96];
-  std::snprintf(buffer, sizeof buffer, "first %s at t = %.6g s", what, it->get<double>());
+  std::snprintf(buffer, sizeof buffer, "first %s at t = %.7g s", what, it->get<double>());
   return buffer;
 }
 

@@ -64,9 +64,16 @@ bool SlipMonitor::fit_zero(const std::vector<Sample>& samples, bool growing, dou
   return std::isfinite(t0);
 }
 
-void SlipMonitor::observe(double t, const Vec3& slip, bool open, bool held) {
+void SlipMonitor::observe(double t, const Vec3& slip, bool open, Law law) {
   const double speed = slip.norm();
+  const bool held = law == Law::held;
   const State now = open ? State::open : (speed > threshold_ && !held ? State::slip : State::stick);
+  if (held) {
+    last_held_ = t;
+    first_release_ = -1.0;
+  } else if (law == Law::released && last_held_ >= 0.0 && first_release_ < 0.0) {
+    first_release_ = t;
+  }
   if (!started_) {
     started_ = true;
     state_ = initial_state_ = now;
@@ -135,6 +142,11 @@ void SlipMonitor::observe(double t, const Vec3& slip, bool open, bool held) {
         commit(State::slip, t);
         sliding_ = {{t, speed}};
       } else if (now == State::slip) {
+        // Where the law was asked while stuck: the onset lies after the last step it held
+        // the element and no later than the first step it released it.
+        onset_low_ = last_held_;
+        onset_high_ = last_held_ >= 0.0 ? (first_release_ >= 0.0 ? first_release_ : t) : -1.0;
+        last_held_ = first_release_ = -1.0;
         slip_pending_ = true;
         slip_raw_ = t1_ + (threshold_ - s1_) / (speed - s1_) * (t - t1_);
         slip_before_t_ = t1_;
@@ -171,6 +183,7 @@ void SlipMonitor::settle_pending_slip() {
       fitted_speed(slip_before_t_, t0, p, onset_.front().t, onset_.front().s, true) <= threshold_) {
     time = std::min(t0, slip_raw_);
   }
+  if (onset_low_ >= 0.0) time = std::clamp(time, onset_low_, std::max(onset_low_, onset_high_));
   onset_.clear();
   commit(State::slip, time);
 }

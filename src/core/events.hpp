@@ -51,10 +51,16 @@ class SlipMonitor {
  public:
   explicit SlipMonitor(double threshold, double resolution = 0.0)
       : threshold_(threshold), resolution_(resolution) {}
-  // The state at step end t: slip velocity, whether the contact is open, and whether the
-  // element's friction law holds it stuck (Kikuuwe friction within its limit: regime 1),
-  // which makes it stick even above the threshold (a stuck contact's spring vibrating).
-  void observe(double t, const Vec3& slip, bool open = false, bool held = false);
+  // What the element's friction law says at a step, where it was asked (Kikuuwe friction:
+  // held = within its limit, regime 1; released = saturated).
+  enum class Law { unknown, held, released };
+  // The state at step end t: slip velocity, whether the contact is open, and the law. Held
+  // by its law, an element sticks even above the threshold (a stuck contact's spring
+  // vibrating); a slip onset lies between the last step the law held it and the first it
+  // released it, where both are known.
+  void observe(double t, const Vec3& slip, bool open = false, Law law = Law::unknown);
+  // Whether the element is stuck as of the last observation (the law is worth asking then).
+  bool sticking() const { return started_ && state_ == State::stick; }
   // Settles what still waits for later steps (at the end of a run); observe() may go on.
   void finish();
 
@@ -103,6 +109,9 @@ class SlipMonitor {
   double stick_raw_ = 0.0, stick_fit_ = 0.0;
   bool slip_pending_ = false;  // a slip onset waiting for its first sliding samples
   double slip_raw_ = 0.0, slip_before_t_ = 0.0;
+  double last_held_ = -1.0;      // last step the law held it while stuck (< 0: none)
+  double first_release_ = -1.0;  // first step after that the law released it (< 0: none)
+  double onset_low_ = -1.0, onset_high_ = -1.0;  // the pending onset's bounds (< 0: none)
   std::vector<Sample> onset_;
 
   std::vector<SlipEvent> events_;

@@ -161,13 +161,16 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     const ConstVecRef x_hat = network.impedance_input(i, state);
     const bool open = contacts[m] != nullptr && !(contacts[m]->contact_normal_force(x_hat) > 0.0);
     const Vec3 slip = imp.slip_velocity(x_hat);
-    // Held stuck by its law above the threshold: asked only then (it costs an evaluation).
-    bool held = false;
-    if (!open && imp.clamps_friction() && slip.norm() > monitor.threshold()) {
+    // The friction law (Kikuuwe: stuck while within its limit), asked only where it matters
+    // (it costs an evaluation): while stuck, to bound a slip onset, and above the threshold.
+    SlipMonitor::Law law = SlipMonitor::Law::unknown;
+    if (!open && imp.clamps_friction() && (monitor.sticking() || slip.norm() > monitor.threshold())) {
       const Slot s = network.impedance_slot(i);
-      held = imp.regime(x_hat, state.segment(s.state_offset, s.state_size), tau) == 1;
+      law = imp.regime(x_hat, state.segment(s.state_offset, s.state_size), tau) == 1
+                ? SlipMonitor::Law::held
+                : SlipMonitor::Law::released;
     }
-    monitor.observe(time, slip, open, held);
+    monitor.observe(time, slip, open, law);
   };
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
     const auto& imp = *network.impedances()[i];

@@ -51,7 +51,7 @@ TEST_CASE("study roll_to_slip: a slip-onset error for every integrator") {
 
 TEST_CASE("study: a scene whose reference has no event prints no empty number") {
   app::StudyOptions options;
-  options.scene = "slope_slide";  // slides from the first step: no stick, no slip event
+  options.scene = "slope_hold";  // held from the first step: no stick, no slip event
   options.overrides = {"simulation.duration=0.5"};
   options.integrators = {"rk4"};
   options.dts = {1e-4};
