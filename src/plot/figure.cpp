@@ -607,7 +607,8 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   const bool captions = std::any_of(figure.panels.begin(), figure.panels.end(),
                                     [](const Panel& p) { return !p.caption.empty(); });
   const Extent caption_extent = painter.measure("Hg", m.event());
-  const double caption_line = captions ? caption_extent.line_ascent + caption_extent.line_descent + 6 * s : 0.0;
+  const double caption_line =
+      captions ? caption_extent.line_ascent + caption_extent.line_descent + 6 * s : 0.0;
   const double gap = 26 * s + caption_line;
   const Panel empty_panel;
   auto panel_at = [&](std::size_t p) -> const Panel& {
@@ -806,6 +807,16 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   const Stroke grid_stroke{kGrid, m.grid_width(), {}};
   const Stroke minor_stroke{kMinorGrid, m.grid_width(), {}};
   std::vector<Rect> tick_label_boxes;  // of every panel: thinned so that none touch
+  // The horizontal tick labels under the bottom panel come first: a y label at the bottom
+  // corner gives way to the "0.0" of the time axis.
+  const double tick_baseline = frames.back().y1 + m.tick_length() + tick_extent.line_ascent;
+  for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
+    const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
+    const double w = painter.measure(x_labels.labels[i], m.tick()).width;
+    tick_label_boxes.push_back(Rect{px - 0.5 * w - 2 * s, tick_baseline - tick_extent.line_ascent,
+                                    px + 0.5 * w + 2 * s,
+                                    tick_baseline + tick_extent.line_descent});
+  }
 
   for (std::size_t p = 0; p < n_panels; ++p) {
     const Panel& panel = panel_at(p);
@@ -889,7 +900,8 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     // Caption, left-aligned above the frame.
     if (!panel.caption.empty()) {
       painter.text(fit(painter, panel.caption, m.event(), f.width()), f.x0,
-                   f.y0 - 5 * s - caption_extent.line_descent, m.event(), kText, TextRole::note, pi);
+                   f.y0 - 5 * s - caption_extent.line_descent, m.event(), kText, TextRole::note,
+                   pi);
     }
     // Legend.
     const Legend& L = legends[p];
@@ -943,7 +955,6 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
 
   // ---- Horizontal tick labels and axis title under the bottom panel.
   const Rect& bottom = frames.back();
-  const double tick_baseline = bottom.y1 + m.tick_length() + tick_extent.line_ascent;
   for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
     const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
     const double w = painter.measure(x_labels.labels[i], m.tick()).width;
