@@ -300,13 +300,14 @@ std::vector<std::size_t> code_point_starts(const std::string& s) {
 }
 
 // The text itself if it fits in max_width, else its beginning and end around "…", as long as
-// fits (both halves kept, since long names differ at either end: a component and a signal).
+// fits (a third from the beginning, two thirds from the end: long names differ at either end,
+// a component and a signal, a run and its axis, and more often at the end).
 std::string fit(Painter& painter, const std::string& text, double size, double max_width) {
   if (painter.measure(text, size).width <= max_width) return text;
   const std::vector<std::size_t> starts = code_point_starts(text);
   const int n = static_cast<int>(starts.size());
   auto shortened = [&](int keep) {
-    const int head = (keep + 1) / 2, tail = keep / 2;
+    const int head = (keep + 2) / 3, tail = keep - head;  // the end tells names apart more often
     return text.substr(0, head < n ? starts[head] : text.size()) + "\u2026" +
            text.substr(tail > 0 ? starts[n - tail] : text.size());
   };
@@ -634,6 +635,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   std::vector<Rect> frames;
   std::vector<YAxis> y_axes;
   std::vector<std::vector<std::string>> y_titles;
+  std::vector<double> y_title_size;
   std::vector<int> event_row_of(event_count, -1);  // -1: unlabelled
   bool with_key = false;
   std::vector<Legend> legends(n_panels);
@@ -650,6 +652,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     const int y_target = std::clamp(static_cast<int>(panel_h / (58 * s)), 2, 8);
     y_axes.clear();
     y_titles.clear();
+    y_title_size.clear();
     double tick_width = 0.0;
     std::size_t max_lines = 1;
     for (std::size_t p = 0; p < n_panels; ++p) {
@@ -658,8 +661,20 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
         if (!t.label.empty())
           tick_width = std::max(tick_width, painter.measure(t.label, m.tick()).width);
       }
-      y_titles.push_back(wrap(painter, axis_title(panel_at(p).label, panel_at(p).unit, y.exponent),
-                              0.96 * panel_h, m.label(), 3));
+      // A smaller font (down to 70%) before any word is shortened.
+      const std::string y_title = axis_title(panel_at(p).label, panel_at(p).unit, y.exponent);
+      double size = m.label();
+      std::vector<std::string> lines;
+      for (;; size *= 0.9) {
+        lines = wrap(painter, y_title, 0.96 * panel_h, size, 3);
+        const bool shortened = std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
+          return l.find("\u2026") != std::string::npos &&
+                 y_title.find("\u2026") == std::string::npos;
+        });
+        if (!shortened || size < 0.72 * m.label()) break;
+      }
+      y_titles.push_back(lines);
+      y_title_size.push_back(size);
       max_lines = std::max(max_lines, y_titles.back().size());
       y_axes.push_back(std::move(y));
     }
@@ -740,7 +755,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
       }
       if (outside[p]) {
         const double room = figure.width - m.margin() - (f.x1 + 16 * s);
-        legends[p] = make_legend(panel_at(p), painter, m, std::max(room, 0.22 * figure.width),
+        legends[p] = make_legend(panel_at(p), painter, m, std::max(room, 0.3 * figure.width),
                                  f.height() + gap - 4 * s);
         legends[p].outside = true;
       }
@@ -892,9 +907,10 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     // Vertical axis title, centred on the panel, one rotated line per wrapped line.
     const std::vector<std::string>& title_lines = y_titles[p];
     for (std::size_t k = 0; k < title_lines.size(); ++k) {
-      const double w = painter.measure(title_lines[k], m.label()).width;
-      const double baseline_x = m.margin() + label_extent.line_ascent + k * label_line;
-      painter.text(title_lines[k], baseline_x, 0.5 * (f.y0 + f.y1) + 0.5 * w, m.label(), kText,
+      const double size = y_title_size[p], shrink = size / m.label();
+      const double w = painter.measure(title_lines[k], size).width;
+      const double baseline_x = m.margin() + shrink * (label_extent.line_ascent + k * label_line);
+      painter.text(title_lines[k], baseline_x, 0.5 * (f.y0 + f.y1) + 0.5 * w, size, kText,
                    TextRole::axis_label, pi, true);
     }
     // Caption, left-aligned above the frame.

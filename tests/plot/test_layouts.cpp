@@ -202,3 +202,29 @@ TEST_CASE("PNG figures carry their resolution", "[plot][layout]") {
   CHECK(u32(at + 8) == 11811u);
   CHECK(bytes[at + 12] == 1);  // unit: metre
 }
+
+TEST_CASE("comparison figures of many runs keep their legends inside the image", "[plot][layout]") {
+  const fs::path dir = kOut / "scenes";
+  fs::create_directories(dir);
+  std::vector<SceneRun> runs;
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    runs.push_back(run_scene(
+        testing::write_scene(dir, "arm" + std::to_string(seed), testing::arm_scene(3, seed, 0.5))
+            .string(),
+        0.5));
+  }
+  std::vector<plot::Run> plot_runs;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    plot_runs.push_back({"arm with a long descriptive label, seed " + std::to_string(i + 1),
+                         &runs[i].result.trajectory});
+  }
+  for (const plot::PlotSpec& spec :
+       {plot::comparison_spec(plot_runs, {"arm.theta", "motor0.tau", "joint1_friction"},
+                              runs[0].columns),
+        plot::default_comparison_spec(plot_runs)}) {
+    plot::FigureLayout layout;
+    plot::render(plot::make_comparison_figure(spec, plot_runs), &layout);
+    check_layout(layout, "compare " + spec.name);
+    CHECK(!layout.legends.empty());
+  }
+}
