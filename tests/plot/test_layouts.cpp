@@ -228,3 +228,84 @@ TEST_CASE("comparison figures of many runs keep their legends inside the image",
     CHECK(!layout.legends.empty());
   }
 }
+
+namespace {
+
+// A synthetic run (no physics: the goldens test the layout) with the columns of a scene with
+// `links` joints, a long-named contact and stick/slip events; units as components declare.
+struct SyntheticScene {
+  core::Trajectory trajectory;
+  std::vector<core::ColumnInfo> columns;
+  std::vector<plot::PlotEvent> events;
+};
+
+SyntheticScene synthetic_scene(int links, const std::string& contact) {
+  SyntheticScene s;
+  s.columns.push_back({"t", "s", "", "time"});
+  for (int j = 0; j < links; ++j) {
+    s.columns.push_back({"arm.theta." + std::to_string(j), "rad", "joint", "joint angle"});
+  }
+  for (int j = 0; j < links; ++j) {
+    s.columns.push_back({"arm.omega." + std::to_string(j), "rad/s", "joint", "joint rate"});
+  }
+  for (int j = 0; j < links; ++j) {
+    const std::string f = "joint" + std::to_string(j) + "_friction";
+    s.columns.push_back({f + ".tau", "N·m", "joint", "friction torque on the driven side"});
+    s.columns.push_back(
+        {"motor" + std::to_string(j) + ".tau", "N·m", "joint", "prescribed torque"});
+  }
+  for (const char* axis : {"x", "y", "z"}) {
+    s.columns.push_back({contact + ".f." + axis, "N", "world", "contact force on the body"});
+  }
+  for (const char* axis : {"x", "y", "z"}) {
+    s.columns.push_back({contact + ".slip." + axis, "m/s", "world", "contact-point velocity"});
+  }
+  std::vector<std::string> names;
+  for (const core::ColumnInfo& c : s.columns) names.push_back(c.name);
+  s.trajectory = core::Trajectory(names);
+  std::vector<double> row(names.size());
+  for (int i = 0; i <= 2000; ++i) {
+    const double t = i * 1e-3;
+    row[0] = t;
+    for (std::size_t c = 1; c < row.size(); ++c) {
+      const double k = static_cast<double>(c);
+      row[c] = std::sin((1.0 + 0.37 * k) * t + 0.5 * k) * (1.0 + 0.1 * k) +
+               (c % 3 == 0 ? 0.5 * std::floor(4 * t) : 0.0);
+    }
+    s.trajectory.append(row.data());
+  }
+  for (int k = 0; k < 7; ++k) {
+    s.events.push_back({contact, k % 2 ? "stick" : "slip", 0.05 + 0.27 * k});
+    s.events.push_back({"joint0_friction", k % 2 ? "slip" : "stick", 0.11 + 0.29 * k});
+  }
+  return s;
+}
+
+void check_golden(const std::string& name, const image::Image& actual) {
+  const image::CompareResult result = image::compare_to_golden(
+      fs::path(STICTION_SOURCE_DIR) / "tests/golden" / (name + ".png"), actual, kOut);
+  INFO(result.message);
+  CHECK(result.matches);
+}
+
+}  // namespace
+
+TEST_CASE("golden default figures of generated scenes: many signals, long names",
+          "[plot][layout][golden]") {
+  const SyntheticScene arm = synthetic_scene(6, "ground");
+  const auto arm_specs = plot::default_plot_specs(arm.columns);
+  REQUIRE(arm_specs.size() == 4);  // 2 + 12 + 2 groups over figures of at most 4 panels
+  plot::FigureLayout layout;
+  image::Image img =
+      plot::render(plot::make_figure(arm_specs[0], arm.trajectory, arm.events), &layout);
+  check_layout(layout, "six links");
+  check_golden("plot_generated_six_links", img);
+
+  const std::string contact = "the_ground_contact_element_whose_name_goes_on_and_on_forever";
+  const SyntheticScene longer = synthetic_scene(1, contact);
+  const auto specs = plot::default_plot_specs(longer.columns);
+  const plot::PlotSpec& last = specs.back();  // the contact's force and slip
+  img = plot::render(plot::make_figure(last, longer.trajectory, longer.events), &layout);
+  check_layout(layout, "long names");
+  check_golden("plot_generated_long_names", img);
+}
