@@ -610,7 +610,12 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   const Extent caption_extent = painter.measure("Hg", m.event());
   const double caption_line =
       captions ? caption_extent.line_ascent + caption_extent.line_descent + 6 * s : 0.0;
-  const double gap = 26 * s + caption_line;
+  // Log axes (and fixed ranges) put labelled ticks on the frame's edges: the gap then leaves
+  // room for a tick label above and one below.
+  const bool edge_ticks = std::any_of(figure.panels.begin(), figure.panels.end(),
+                                      [](const Panel& p) { return p.log || (p.y_min && p.y_max); });
+  const double tick_line = tick_extent.line_ascent + tick_extent.line_descent;
+  const double gap = (edge_ticks ? std::max(26 * s, tick_line + 4 * s) : 26 * s) + caption_line;
   const Panel empty_panel;
   auto panel_at = [&](std::size_t p) -> const Panel& {
     return p < figure.panels.size() ? figure.panels[p] : empty_panel;
