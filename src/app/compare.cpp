@@ -111,6 +111,19 @@ int compare_command(const CompareArguments& args) {
   for (const scene::Scene& s : scenes) names.push_back(s.name);
   const std::vector<std::string> labels = run_labels(names, requests);
 
+  // --signals is checked against the scenes' columns before anything runs (exit 2 at once).
+  if (!args.signals.empty()) {
+    std::vector<core::Trajectory> empty;
+    for (const scene::Scene& s : scenes) {
+      std::vector<std::string> columns = s.network->signal_columns();
+      columns.insert(columns.begin(), "t");
+      empty.emplace_back(columns);
+    }
+    std::vector<plot::Run> probe;
+    for (std::size_t i = 0; i < scenes.size(); ++i) probe.push_back({labels[i], &empty[i]});
+    plot::comparison_spec(probe, args.signals);
+  }
+
   const fs::path out = args.out.empty() ? fs::path("out") / "compare" : fs::path(args.out);
   std::error_code ec;
   fs::create_directories(out, ec);

@@ -300,13 +300,14 @@ std::vector<std::size_t> code_point_starts(const std::string& s) {
 }
 
 // The text itself if it fits in max_width, else its beginning and end around "…", as long as
-// fits (both halves kept, since long names differ at either end: a component and a signal).
+// fits (a third from the beginning, two thirds from the end: long names differ at either end,
+// a component and a signal, a run and its axis, and more often at the end).
 std::string fit(Painter& painter, const std::string& text, double size, double max_width) {
   if (painter.measure(text, size).width <= max_width) return text;
   const std::vector<std::size_t> starts = code_point_starts(text);
   const int n = static_cast<int>(starts.size());
   auto shortened = [&](int keep) {
-    const int head = (keep + 1) / 2, tail = keep / 2;
+    const int head = (keep + 2) / 3, tail = keep - head;  // the end tells names apart more often
     return text.substr(0, head < n ? starts[head] : text.size()) + "\u2026" +
            text.substr(tail > 0 ? starts[n - tail] : text.size());
   };
@@ -327,6 +328,8 @@ std::string fit(Painter& painter, const std::string& text, double size, double m
 std::vector<std::string> wrap(Painter& painter, const std::string& text, double max_width,
                               double size, std::size_t max_lines) {
   if (painter.measure(text, size).width <= max_width) return {text};
+  // Words end at spaces; a long name also breaks after '_' and '.' (the break is marked by
+  // the character itself staying at the end of the line: "joint0_" / "friction.tau").
   std::vector<std::string> words;
   std::size_t start = 0;
   while (start < text.size()) {
@@ -335,6 +338,22 @@ std::vector<std::string> wrap(Painter& painter, const std::string& text, double 
     if (end > start) words.push_back(text.substr(start, end - start));
     start = end + 1;
   }
+  std::vector<std::string> pieces;
+  for (const std::string& w : words) {
+    if (w.front() == '[' || painter.measure(w, size).width <= max_width) {
+      pieces.push_back(w);
+      continue;
+    }
+    std::size_t from = 0;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+      if ((w[i] == '_' || w[i] == '.') && i + 1 < w.size()) {
+        pieces.push_back(w.substr(from, i + 1 - from) + "\x01");  // \x01: no space after
+        from = i + 1;
+      }
+    }
+    pieces.push_back(w.substr(from));
+  }
+  words = std::move(pieces);
   // Keep "[...]" groups together.
   std::vector<std::string> groups;
   for (std::size_t i = 0; i < words.size(); ++i) {
@@ -346,8 +365,13 @@ std::vector<std::string> wrap(Painter& painter, const std::string& text, double 
   }
   std::vector<std::string> lines;
   std::string current;
+  auto joined = [](const std::string& a, const std::string& b) {
+    if (a.empty()) return b;
+    if (a.back() == '\x01') return a.substr(0, a.size() - 1) + b;
+    return a + " " + b;
+  };
   for (const std::string& g : groups) {
-    const std::string candidate = current.empty() ? g : current + " " + g;
+    const std::string candidate = joined(current, g);
     const bool unit = g.front() == '[';
     if (!current.empty() && (unit || painter.measure(candidate, size).width > max_width)) {
       lines.push_back(current);
@@ -361,14 +385,20 @@ std::vector<std::string> wrap(Painter& painter, const std::string& text, double 
   if (lines.size() > max_lines && max_lines >= 2) {
     const bool unit_last = lines.back().front() == '[';
     std::string rest;
-    for (std::size_t i = 0; i + (unit_last ? 1 : 0) < lines.size(); ++i) {
-      rest += (rest.empty() ? "" : " ") + lines[i];
+    const std::size_t keep = max_lines - (unit_last ? 2 : 1);  // lines kept as they are
+    for (std::size_t i = keep; i + (unit_last ? 1 : 0) < lines.size(); ++i) {
+      rest = joined(rest, lines[i]);
     }
-    std::vector<std::string> joined{rest};
-    if (unit_last) joined.push_back(lines.back());
-    lines = std::move(joined);
+    std::vector<std::string> merged(lines.begin(), lines.begin() + static_cast<long>(keep));
+    merged.push_back(rest);
+    if (unit_last) merged.push_back(lines.back());
+    lines = std::move(merged);
   }
-  for (std::string& line : lines) line = fit(painter, line, size, max_width);
+  for (std::string& line : lines) {
+    if (!line.empty() && line.back() == '\x01') line.pop_back();
+    std::erase(line, '\x01');
+    line = fit(painter, line, size, max_width);
+  }
   return lines;
 }
 
@@ -560,13 +590,32 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     top = title_baseline + title_extent.line_descent + 14 * s;
   }
   const std::size_t event_count = figure.events.size();
+  // Event labels, shortened in the middle to at most 45% of the width (long element names).
+  std::vector<std::string> event_text;
+  for (const EventMarker& e : figure.events) {
+    event_text.push_back(fit(painter, e.label, m.event(), 0.45 * margin_width));
+  }
+  // Many events: full-height lines would hide the data; they become marks along the top and
+  // bottom edge of each panel.
+  const bool event_rug = event_count > 12;
   const double event_row = event_extent.line_ascent + event_extent.line_descent + 4 * s;
   int event_rows = event_count == 0 ? 0 : 1;
 
   const double bottom_reserved = m.margin() + label_line + 8 * s + tick_extent.line_ascent +
                                  tick_extent.line_descent + m.tick_length() + 4 * s;
   const std::size_t n_panels = std::max<std::size_t>(1, figure.panels.size());
-  const double gap = 26 * s;
+  // Captions sit above their panel, in a taller gap.
+  const bool captions = std::any_of(figure.panels.begin(), figure.panels.end(),
+                                    [](const Panel& p) { return !p.caption.empty(); });
+  const Extent caption_extent = painter.measure("Hg", m.event());
+  const double caption_line =
+      captions ? caption_extent.line_ascent + caption_extent.line_descent + 6 * s : 0.0;
+  // Log axes (and fixed ranges) put labelled ticks on the frame's edges: the gap then leaves
+  // room for a tick label above and one below.
+  const bool edge_ticks = std::any_of(figure.panels.begin(), figure.panels.end(),
+                                      [](const Panel& p) { return p.log || (p.y_min && p.y_max); });
+  const double tick_line = tick_extent.line_ascent + tick_extent.line_descent;
+  const double gap = (edge_ticks ? std::max(26 * s, tick_line + 4 * s) : 26 * s) + caption_line;
   const Panel empty_panel;
   auto panel_at = [&](std::size_t p) -> const Panel& {
     return p < figure.panels.size() ? figure.panels[p] : empty_panel;
@@ -591,6 +640,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   std::vector<Rect> frames;
   std::vector<YAxis> y_axes;
   std::vector<std::vector<std::string>> y_titles;
+  std::vector<double> y_title_size;
   std::vector<int> event_row_of(event_count, -1);  // -1: unlabelled
   bool with_key = false;
   std::vector<Legend> legends(n_panels);
@@ -599,13 +649,15 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   TickLabels x_labels;
   std::vector<std::vector<std::vector<Point>>> lines(n_panels);
   for (int pass = 0; pass < 4; ++pass) {
-    const double panels_top = top + event_rows * event_row + (event_rows ? 6 * s : 0.0);
+    const double panels_top =
+        top + event_rows * event_row + (event_rows ? 6 * s : 0.0) + caption_line;
     const double panels_bottom = figure.height - bottom_reserved;
     const double panel_h = std::max(
         10.0, (panels_bottom - panels_top - gap * (n_panels - 1)) / static_cast<double>(n_panels));
     const int y_target = std::clamp(static_cast<int>(panel_h / (58 * s)), 2, 8);
     y_axes.clear();
     y_titles.clear();
+    y_title_size.clear();
     double tick_width = 0.0;
     std::size_t max_lines = 1;
     for (std::size_t p = 0; p < n_panels; ++p) {
@@ -614,8 +666,20 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
         if (!t.label.empty())
           tick_width = std::max(tick_width, painter.measure(t.label, m.tick()).width);
       }
-      y_titles.push_back(wrap(painter, axis_title(panel_at(p).label, panel_at(p).unit, y.exponent),
-                              0.96 * panel_h, m.label(), std::max<std::size_t>(1, 2)));
+      // A smaller font (down to 70%) before any word is shortened.
+      const std::string y_title = axis_title(panel_at(p).label, panel_at(p).unit, y.exponent);
+      double size = m.label();
+      std::vector<std::string> lines;
+      for (;; size *= 0.9) {
+        lines = wrap(painter, y_title, 0.96 * panel_h, size, 3);
+        const bool shortened = std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
+          return l.find("\u2026") != std::string::npos &&
+                 y_title.find("\u2026") == std::string::npos;
+        });
+        if (!shortened || size < 0.72 * m.label()) break;
+      }
+      y_titles.push_back(lines);
+      y_title_size.push_back(size);
       max_lines = std::max(max_lines, y_titles.back().size());
       y_axes.push_back(std::move(y));
     }
@@ -696,7 +760,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
       }
       if (outside[p]) {
         const double room = figure.width - m.margin() - (f.x1 + 16 * s);
-        legends[p] = make_legend(panel_at(p), painter, m, std::max(room, 0.22 * figure.width),
+        legends[p] = make_legend(panel_at(p), painter, m, std::max(room, 0.3 * figure.width),
                                  f.height() + gap - 4 * s);
         legends[p].outside = true;
       }
@@ -718,7 +782,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
       for (std::size_t e : order) {
         const double cx = x_axis.map(figure.events[e].x);
         if (!std::isfinite(cx) || cx < frames[0].x0 - 1 || cx > frames[0].x1 + 1) continue;
-        const double w = painter.measure(figure.events[e].label, m.event()).width;
+        const double w = painter.measure(event_text[e], m.event()).width;
         const double a = std::clamp(cx - 0.5 * w, m.margin(), figure.width - m.margin() - w);
         const double b = a + w;
         std::size_t row = 0;
@@ -763,6 +827,16 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   const Stroke grid_stroke{kGrid, m.grid_width(), {}};
   const Stroke minor_stroke{kMinorGrid, m.grid_width(), {}};
   std::vector<Rect> tick_label_boxes;  // of every panel: thinned so that none touch
+  // The horizontal tick labels under the bottom panel come first: a y label at the bottom
+  // corner gives way to the "0.0" of the time axis.
+  const double tick_baseline = frames.back().y1 + m.tick_length() + tick_extent.line_ascent;
+  for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
+    const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
+    const double w = painter.measure(x_labels.labels[i], m.tick()).width;
+    tick_label_boxes.push_back(Rect{px - 0.5 * w - 2 * s, tick_baseline - tick_extent.line_ascent,
+                                    px + 0.5 * w + 2 * s,
+                                    tick_baseline + tick_extent.line_descent});
+  }
 
   for (std::size_t p = 0; p < n_panels; ++p) {
     const Panel& panel = panel_at(p);
@@ -784,7 +858,15 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     for (const EventMarker& e : figure.events) {
       const double px = x_axis.map(e.x);
       if (!std::isfinite(px) || px < f.x0 || px > f.x1) continue;
-      painter.line({px, f.y0}, {px, f.y1}, event_stroke(e.kind, s));
+      if (event_rug) {
+        Stroke mark = event_stroke(e.kind, s);
+        mark.dash.clear();
+        const double len = std::min(24 * s, 0.2 * f.height());
+        painter.line({px, f.y0}, {px, f.y0 + len}, mark);
+        painter.line({px, f.y1 - len}, {px, f.y1}, mark);
+      } else {
+        painter.line({px, f.y0}, {px, f.y1}, event_stroke(e.kind, s));
+      }
     }
     // Reference lines under the data.
     const Stroke reference_stroke = make_stroke(reference_style(), s);
@@ -830,10 +912,17 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     // Vertical axis title, centred on the panel, one rotated line per wrapped line.
     const std::vector<std::string>& title_lines = y_titles[p];
     for (std::size_t k = 0; k < title_lines.size(); ++k) {
-      const double w = painter.measure(title_lines[k], m.label()).width;
-      const double baseline_x = m.margin() + label_extent.line_ascent + k * label_line;
-      painter.text(title_lines[k], baseline_x, 0.5 * (f.y0 + f.y1) + 0.5 * w, m.label(), kText,
+      const double size = y_title_size[p], shrink = size / m.label();
+      const double w = painter.measure(title_lines[k], size).width;
+      const double baseline_x = m.margin() + shrink * (label_extent.line_ascent + k * label_line);
+      painter.text(title_lines[k], baseline_x, 0.5 * (f.y0 + f.y1) + 0.5 * w, size, kText,
                    TextRole::axis_label, pi, true);
+    }
+    // Caption, left-aligned above the frame.
+    if (!panel.caption.empty()) {
+      painter.text(fit(painter, panel.caption, m.event(), f.width()), f.x0,
+                   f.y0 - 5 * s - caption_extent.line_descent, m.event(), kText, TextRole::note,
+                   pi);
     }
     // Legend.
     const Legend& L = legends[p];
@@ -887,7 +976,6 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
 
   // ---- Horizontal tick labels and axis title under the bottom panel.
   const Rect& bottom = frames.back();
-  const double tick_baseline = bottom.y1 + m.tick_length() + tick_extent.line_ascent;
   for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
     const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
     const double w = painter.measure(x_labels.labels[i], m.tick()).width;
@@ -903,16 +991,16 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
                m.label(), kText, TextRole::axis_label, -1);
 
   // ---- Event labels above the top panel (row 0 right above it, later rows above that).
-  const double rows_bottom = frames[0].y0 - 6 * s;
+  const double rows_bottom = frames[0].y0 - 6 * s - caption_line;
   auto row_baseline = [&](int row) {
     return rows_bottom - event_extent.line_descent - 2 * s - row * event_row;
   };
   for (std::size_t e = 0; e < event_count; ++e) {
     if (event_row_of[e] < 0) continue;
-    const double w = painter.measure(figure.events[e].label, m.event()).width;
+    const double w = painter.measure(event_text[e], m.event()).width;
     const double cx = x_axis.map(figure.events[e].x);
     const double a = std::clamp(cx - 0.5 * w, m.margin(), figure.width - m.margin() - w);
-    painter.text(figure.events[e].label, a, row_baseline(event_row_of[e]), m.event(),
+    painter.text(event_text[e], a, row_baseline(event_row_of[e]), m.event(),
                  event_colour(figure.events[e].kind), TextRole::event_label, -1);
   }
   if (with_key) {
@@ -920,7 +1008,9 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     const double baseline = row_baseline(0);
     const double cy = baseline - 0.35 * event_extent.line_ascent;
     for (const std::string& k : kinds) {
-      painter.line({x, cy}, {x + key_sample, cy}, event_stroke(k, s));
+      Stroke sample = event_stroke(k, s);
+      if (event_rug) sample.dash.clear();
+      painter.line({x, cy}, {x + key_sample, cy}, sample);
       x += key_sample + 6 * s;
       x = painter.text(k, x, baseline, m.event(), event_colour(k), TextRole::note, -1).x1 + 16 * s;
     }

@@ -72,6 +72,7 @@ struct Panel {
   std::vector<Series> series;
   std::optional<double> y_min, y_max;     // fixed range instead of the data's
   std::vector<ReferenceLine> references;  // always inside the vertical range
+  std::string caption{};  // a line above the panel, e.g. a long component name and what it is
 };
 
 struct EventMarker {

@@ -220,6 +220,7 @@ Panel panel_frame(const PanelSpec& spec) {
   panel.label = spec.label;
   panel.unit = spec.unit;
   panel.log = spec.log;
+  panel.caption = spec.caption;
   return panel;
 }
 
@@ -340,6 +341,9 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& co
   for (const PlotSpec& spec : {paper_fig4_spec(), paper_fig7_spec()}) {
     if (complete(spec)) specs.push_back(spec);
   }
+  if (has_column(names, "arm.theta.2")) {  // Fig. 7 is the two-link arm's, not a longer one's
+    std::erase_if(specs, [](const PlotSpec& s) { return s.name == paper_fig7_spec().name; });
+  }
   // A panel per signal group ("<component>.<signal>"), in column order, legend by axis.
   std::vector<PanelSpec> panels;
   std::map<std::string, std::size_t> panel_of;
@@ -350,9 +354,15 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& co
     const std::string group = second == std::string::npos ? c.name : c.name.substr(0, second);
     auto [it, added] = panel_of.emplace(group, panels.size());
     if (added) {
+      // The y label is the signal's name; the caption above the panel names the component in
+      // full, whatever its length, and says what the signal is.
       PanelSpec panel;
-      panel.label = group;
+      panel.label = first == std::string::npos ? group : group.substr(first + 1);
       panel.unit = c.unit.empty() ? core::guess_unit(c.name) : c.unit;
+      std::string description = c.description;
+      const std::size_t axis = description.rfind(", component ");
+      if (axis != std::string::npos) description.resize(axis);
+      panel.caption = description.empty() ? group : group + ": " + description;
       panels.push_back(panel);
     }
     PanelSpec& panel = panels[it->second];
@@ -370,6 +380,11 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& co
     spec.name = figures == 1 ? "signals" : "signals_" + std::to_string(f + 1);
     const std::size_t count = (n - next) / (figures - f);
     for (std::size_t k = 0; k < count; ++k) spec.panels.push_back(panels[next++]);
+    // The events of the elements shown, not of every element of the scene.
+    for (const PanelSpec& p : spec.panels) {
+      const std::string component = p.signals.front().substr(0, p.signals.front().find('.'));
+      if (!has_column(spec.only_events, component)) spec.only_events.push_back(component);
+    }
     specs.push_back(spec);
   }
   return specs;

@@ -51,6 +51,7 @@ struct PanelSpec {
   bool log = false;
   std::optional<double> relative_to;
   std::vector<ReferenceLine> references;
+  std::string caption;  // drawn above the panel (the default figures: group and description)
 };
 
 struct PlotSpec {
