@@ -1,11 +1,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
 #include "app/network_graph.hpp"
@@ -105,7 +104,9 @@ nlohmann::json error_json(const std::string& message) {
   return e;
 }
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
 
 // A fixed-step integrator's figures, each named for what it is: the step above which a run
 // blows up, and the (smaller) step above which stuck friction chatters but stays bounded.
@@ -126,9 +127,10 @@ void print_limit(const IntegratorLimit& l, const core::RunOptions& run) {
   }
   std::printf("\n");
   if (l.limit.chatter_free_step < l.limit.max_step) {
-    std::printf("  %-17s stuck friction chatters above %.3g s (bounded by its limit force, not "
-                "an instability)\n",
-                "", l.limit.chatter_free_step);
+    std::printf(
+        "  %-17s stuck friction chatters above %.3g s (bounded by its limit force, not "
+        "an instability)\n",
+        "", l.limit.chatter_free_step);
   }
 }
 
@@ -141,8 +143,9 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
               run.dt, run.duration, run.output_rate);
   std::printf("render: %dx%d at %g fps; plots: %zu; verify: %s\n", report.render.width,
               report.render.height, report.render.fps, report.plots.size(),
-              report.verify.at.empty() ? "first frame, each event, last frame"
-                                       : (std::to_string(report.verify.at.size()) + " frame times").c_str());
+              report.verify.at.empty()
+                  ? "first frame, each event, last frame"
+                  : (std::to_string(report.verify.at.size()) + " frame times").c_str());
 
   std::printf("\nstate layout (%d numbers):\n", network.state_dim());
   for (const core::LayoutEntry& e : network.layout()) {
@@ -156,26 +159,28 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
                 labels_of(e).c_str());
   }
 
-  std::printf("\nstiffest elements, each alone against its effective mass (linearized at the "
-              "initial state; the whole network's limits are below):\n");
+  std::printf(
+      "\nstiffest elements, each alone against its effective mass (linearized at the "
+      "initial state; the whole network's limits are below):\n");
   for (const StiffElement& s : report.stiff) {
     if (!s.wired) {
       std::printf("  %s (%s): K = %g; no effective mass could be computed for its wiring\n",
                   s.component.c_str(), s.type.c_str(), s.stiffness);
       continue;
     }
-    std::printf("  %s (%s): K = %g against an effective mass/inertia %g: omega = %.5g rad/s, "
-                "damping ratio %.3g; alone, this undamped mode would make rk4 unstable above "
-                "2.83 / omega = %.3g s\n",
-                s.component.c_str(), s.type.c_str(), s.stiffness, 1.0 / s.mobility, s.omega,
-                s.damping_ratio, 2.8284271247461903 / s.omega);
+    std::printf(
+        "  %s (%s): K = %g against an effective mass/inertia %g: omega = %.5g rad/s, "
+        "damping ratio %.3g; alone, this undamped mode would make rk4 unstable above "
+        "2.83 / omega = %.3g s\n",
+        s.component.c_str(), s.type.c_str(), s.stiffness, 1.0 / s.mobility, s.omega,
+        s.damping_ratio, 2.8284271247461903 / s.omega);
   }
   if (report.stiff.empty()) std::printf("  no stiff elements\n");
 
   std::printf("\npredicted step limits of the whole network (step map linearized at up to 10 "
               "states of each regime of a pilot run at the scene's settings");
   if (report.pilot.shortened) {
-    std::printf(" over its first %g s of %g s, the part that fits a 1.5 s time budget",
+    std::printf(" over its first %g s of %g s, the part that fits its step budget (docs/limits.md)",
                 report.pilot.options.duration, run.duration);
   }
   std::printf("; a mode growing > 5%% per step counts as unstable):\n");
@@ -190,13 +195,18 @@ nlohmann::json report_json(const scene::Scene& scene, const CheckReport& report)
   j["errors"] = nlohmann::json::array();
   j["scene"] = scene.name;
   j["path"] = scene.path.string();
-  j["simulation"] = {{"integrator", run.integrator}, {"dt", run.dt}, {"duration", run.duration},
+  j["simulation"] = {{"integrator", run.integrator},
+                     {"dt", run.dt},
+                     {"duration", run.duration},
                      {"output_rate", run.output_rate}};
   j["state_dim"] = network.state_dim();
   nlohmann::json layout = nlohmann::json::array();
   for (const core::LayoutEntry& e : network.layout()) {
-    layout.push_back({{"component", e.component}, {"type", e.type}, {"offset", e.offset},
-                      {"size", e.size}, {"labels", e.labels}});
+    layout.push_back({{"component", e.component},
+                      {"type", e.type},
+                      {"offset", e.offset},
+                      {"size", e.size},
+                      {"labels", e.labels}});
   }
   j["layout"] = layout;
   nlohmann::json stiff = nlohmann::json::array();
@@ -221,14 +231,17 @@ nlohmann::json report_json(const scene::Scene& scene, const CheckReport& report)
     e["chatters_above"] = l.limit.chatter_free_step < l.limit.max_step
                               ? nlohmann::json(l.limit.chatter_free_step)
                               : nlohmann::json();
-    if (l.integrator == run.integrator) e["scene_dt_ok"] = l.limit.unbounded || run.dt < l.limit.max_step;
+    if (l.integrator == run.integrator)
+      e["scene_dt_ok"] = l.limit.unbounded || run.dt < l.limit.max_step;
     limits[l.integrator] = e;
   }
   j["step_limits"] = limits;
   j["render"] = {{"size", {report.render.width, report.render.height}}, {"fps", report.render.fps}};
   j["plots"] = report.plots;
-  j["verify"] = {{"at", report.verify.at}, {"pixel_tolerance", report.verify.pixel_tolerance},
-                 {"max_differing", report.verify.max_differing}, {"max_rms", report.verify.max_rms},
+  j["verify"] = {{"at", report.verify.at},
+                 {"pixel_tolerance", report.verify.pixel_tolerance},
+                 {"max_differing", report.verify.max_differing},
+                 {"max_rms", report.verify.max_rms},
                  {"rel_tolerance", report.verify.rel_tolerance},
                  {"abs_tolerance", report.verify.abs_tolerance}};
   return j;
@@ -244,7 +257,8 @@ int check_scene(const std::string& scene_name, const std::string& graph_path, bo
   report.render = render::read_render_settings(scene);
   std::vector<std::string> columns = network.signal_columns();
   columns.insert(columns.begin(), "t");
-  std::vector<plot::PlotSpec> specs = plot::read_plot_specs(scene.document, scene.path.string(), columns);
+  std::vector<plot::PlotSpec> specs =
+      plot::read_plot_specs(scene.document, scene.path.string(), columns);
   if (specs.empty()) specs = plot::default_plot_specs(columns);
   for (const plot::PlotSpec& s : specs) report.plots.push_back(s.name);
   report.verify = read_verify_settings(scene.document, run.duration);

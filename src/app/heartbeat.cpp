@@ -5,8 +5,11 @@
 namespace stiction::app {
 
 Heartbeat::Heartbeat(std::string label, std::chrono::milliseconds quiet_limit)
-    : label_(std::move(label)), quiet_limit_(quiet_limit),
-      start_(std::chrono::steady_clock::now()), last_(start_), watcher_([this] { watch(); }) {}
+    : label_(std::move(label)),
+      quiet_limit_(quiet_limit),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_),
+      watcher_([this] { watch(); }) {}
 
 Heartbeat::~Heartbeat() {
   {

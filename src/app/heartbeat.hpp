@@ -13,7 +13,8 @@ namespace stiction::app {
 
 class Heartbeat {
  public:
-  explicit Heartbeat(std::string label, std::chrono::milliseconds quiet_limit = std::chrono::seconds(10));
+  explicit Heartbeat(std::string label,
+                     std::chrono::milliseconds quiet_limit = std::chrono::seconds(10));
   ~Heartbeat();
   Heartbeat(const Heartbeat&) = delete;
   Heartbeat& operator=(const Heartbeat&) = delete;

@@ -1,10 +1,10 @@
 #include "app/progress.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-
-#include <unistd.h>
 
 namespace stiction::app {
 namespace {
@@ -16,7 +16,9 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 ProgressBar::ProgressBar(std::string label, bool terminal)
-    : label_(std::move(label)), terminal_(terminal), start_(std::chrono::steady_clock::now()),
+    : label_(std::move(label)),
+      terminal_(terminal),
+      start_(std::chrono::steady_clock::now()),
       last_(start_) {
   if (!terminal_) {
     std::fprintf(stderr, "%s: start\n", label_.c_str());
@@ -47,7 +49,8 @@ void ProgressBar::draw(double fraction, const char* detail) {
   fraction_ = fraction;
   if (!terminal_) {
     if (fraction >= 1.0) {
-      std::fprintf(stderr, "%s: done in %.1f s (%s)\n", label_.c_str(), seconds_since(start_), detail);
+      std::fprintf(stderr, "%s: done in %.1f s (%s)\n", label_.c_str(), seconds_since(start_),
+                   detail);
       finished_ = true;
     } else {
       std::fprintf(stderr, "%s: %3d%% after %.1f s (%s)\n", label_.c_str(),
@@ -88,8 +91,8 @@ void ProgressBar::frames(int done, int frame_count, double frames_per_second, do
 void ProgressBar::items(int done, int total, const std::string& detail) {
   const double fraction = total > 0 ? double(done) / total : 1.0;
   if (!due(fraction)) return;
-  const std::string text = std::to_string(done) + "/" + std::to_string(total) +
-                           (detail.empty() ? "" : ": " + detail);
+  const std::string text =
+      std::to_string(done) + "/" + std::to_string(total) + (detail.empty() ? "" : ": " + detail);
   draw(fraction, text.c_str());
 }
 

@@ -35,7 +35,8 @@ StepSuggestion predicted_candidate(scene::Scene& scene) {
             format("0.8 x the largest stable step %.3g s predicted by linearizing the step map",
                    limit.max_step)};
   }
-  return {run.dt / 4.0, false, "a quarter of the failed step (the linearization sees no limit below it)"};
+  return {run.dt / 4.0, false,
+          "a quarter of the failed step (the linearization sees no limit below it)"};
 }
 
 }  // namespace
@@ -76,12 +77,15 @@ StepSuggestion suggest_step(scene::Scene& scene, double trial_budget_seconds) {
       s.dt /= 2.0;  // unstable: the prediction missed a non-linear effect
     } catch (const TrialTimeout& t) {
       s.how = origin + halvings(trial) +
-              format("; not confirmed: a trial run reached t = %.3g s of %g s stable within its "
-                     "time budget", t.reached, duration);
+              format(
+                  "; not confirmed: a trial run reached t = %.3g s of %g s stable within its "
+                  "time budget",
+                  t.reached, duration);
       return s;
     }
   }
-  s.how = origin + format("; not confirmed: trial runs were still unstable down to %.3g s", s.dt * 2.0);
+  s.how =
+      origin + format("; not confirmed: trial runs were still unstable down to %.3g s", s.dt * 2.0);
   return s;
 }
 

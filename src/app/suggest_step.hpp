@@ -15,8 +15,8 @@ namespace stiction::app {
 
 struct StepSuggestion {
   double dt = 0.0;
-  bool verified = false;    // a trial at dt ran the scene to its end
-  std::string how;          // one clause for the message: how dt was obtained
+  bool verified = false;  // a trial at dt ran the scene to its end
+  std::string how;        // one clause for the message: how dt was obtained
 };
 
 // For scene.run as it failed (integrator and dt). rk4_adaptive: dt is a quarter of the

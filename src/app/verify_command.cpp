@@ -37,7 +37,8 @@ std::vector<std::string> expand(const std::vector<std::string>& args) {
     for (const auto& e : fs::directory_iterator(a, ec)) {
       if (e.path().extension() == ".toml") files.push_back(e.path().string());
     }
-    if (files.empty()) throw scene::InputError("error: " + a + ": no .toml scene files in this directory");
+    if (files.empty())
+      throw scene::InputError("error: " + a + ": no .toml scene files in this directory");
     std::sort(files.begin(), files.end());
     out.insert(out.end(), files.begin(), files.end());
   }
@@ -64,10 +65,10 @@ VerifyJob prepare(const std::string& name, const VerifyArguments& args) {
   }
   job.at = args.at;
   if (!args.update && !fs::exists(fs::path(args.golden) / job.scene.name / "golden.json")) {
-    throw scene::InputError("error: " + (fs::path(args.golden) / job.scene.name / "golden.json").string() +
-                            ": no golden set for scene '" + job.scene.name +
-                            "'; create it with `stiction verify " + name + " --golden " + args.golden +
-                            " --update`");
+    throw scene::InputError(
+        "error: " + (fs::path(args.golden) / job.scene.name / "golden.json").string() +
+        ": no golden set for scene '" + job.scene.name + "'; create it with `stiction verify " +
+        name + " --golden " + args.golden + " --update`");
   }
   return job;
 }
@@ -81,10 +82,12 @@ void print_verdict(const SceneVerdict& v, bool update, const fs::path& out) {
     int same = 0;
     for (const VerifyItem& i : v.items) same += i.status == ItemStatus::unchanged;
     std::printf("%s: golden set %s (%zu items, %d unchanged)\n", v.scene.c_str(),
-                same == static_cast<int>(v.items.size()) ? "unchanged" : "updated", v.items.size(), same);
+                same == static_cast<int>(v.items.size()) ? "unchanged" : "updated", v.items.size(),
+                same);
     for (const VerifyItem& i : v.items) {
       if (i.status == ItemStatus::unchanged) continue;
-      std::printf("  %s %s: %s (%s)\n", status_name(i.status), i.name.c_str(), i.what.c_str(), i.detail.c_str());
+      std::printf("  %s %s: %s (%s)\n", status_name(i.status), i.name.c_str(), i.what.c_str(),
+                  i.detail.c_str());
       for (const std::string& d : i.differences) std::printf("    %s\n", d.c_str());
     }
     return;
@@ -96,8 +99,10 @@ void print_verdict(const SceneVerdict& v, bool update, const fs::path& out) {
   for (const VerifyItem& i : v.items) {
     if (i.status != ItemStatus::mismatch) continue;
     std::printf("  MISMATCH %s: %s: %s\n", i.name.c_str(), i.what.c_str(), i.detail.c_str());
-    if (!i.diff.empty()) std::printf("    diff: %s\n", (out / i.diff).c_str());
-    else if (!i.actual.empty()) std::printf("    actual: %s\n", (out / i.actual).c_str());
+    if (!i.diff.empty())
+      std::printf("    diff: %s\n", (out / i.diff).c_str());
+    else if (!i.actual.empty())
+      std::printf("    actual: %s\n", (out / i.actual).c_str());
     const std::size_t shown = std::min<std::size_t>(i.differences.size(), 10);
     for (std::size_t k = 0; k < shown; ++k) std::printf("    %s\n", i.differences[k].c_str());
     if (i.differences.size() > shown) {
@@ -115,8 +120,8 @@ int verify_command(const VerifyArguments& args) {
   for (const std::string& name : expand(args.scenes)) {
     jobs.push_back(prepare(name, args));
     if (!names.insert(jobs.back().scene.name).second) {
-      throw scene::InputError("error: " + name + ": a second scene named '" + jobs.back().scene.name +
-                              "' (golden sets are kept per scene name)");
+      throw scene::InputError("error: " + name + ": a second scene named '" +
+                              jobs.back().scene.name + "' (golden sets are kept per scene name)");
     }
   }
   const fs::path out = args.out.empty() ? fs::path("out") / "verify" : fs::path(args.out);
@@ -127,13 +132,15 @@ int verify_command(const VerifyArguments& args) {
   for (const VerifyJob& job : jobs) fs::remove_all(out / job.scene.name, ec);
 
   const int cores = std::max(1u, std::thread::hardware_concurrency());
-  const int workers = std::min<int>(args.jobs > 0 ? args.jobs : cores, static_cast<int>(jobs.size()));
+  const int workers =
+      std::min<int>(args.jobs > 0 ? args.jobs : cores, static_cast<int>(jobs.size()));
   std::vector<SceneVerdict> verdicts(jobs.size());
   std::atomic<std::size_t> next{0};
   std::mutex progress_mutex;
   int done = 0;
   std::unique_ptr<ProgressBar> progress;
-  if (!args.quiet) progress = std::make_unique<ProgressBar>(args.update ? "verify --update" : "verify");
+  if (!args.quiet)
+    progress = std::make_unique<ProgressBar>(args.update ? "verify --update" : "verify");
   const auto work = [&] {
     for (std::size_t i = next++; i < jobs.size(); i = next++) {
       verdicts[i] = verify_scene(jobs[i], args.golden, out, args.update);
@@ -161,8 +168,8 @@ int verify_command(const VerifyArguments& args) {
   if (!args.update) {
     write_verify_reports(verdicts, args.golden, out);
     if (!args.quiet || mismatch) {
-      std::printf("report: %s, %s, %s\n", (out / "report.md").c_str(), (out / "report.html").c_str(),
-                  (out / "junit.xml").c_str());
+      std::printf("report: %s, %s, %s\n", (out / "report.md").c_str(),
+                  (out / "report.html").c_str(), (out / "junit.xml").c_str());
     }
   }
   std::fflush(stdout);

@@ -11,11 +11,21 @@ std::string escape_xml(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default:
         // Control characters are not allowed in XML 1.0 (except tab, newline, return).
         if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') {
@@ -31,7 +41,8 @@ std::string escape_xml(const std::string& s) {
 // Markdown table cells: a '|' would end the cell.
 std::string escape_cell(const std::string& s) {
   std::string out;
-  for (char c : s) out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
+  for (char c : s)
+    out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
   return out;
 }
 
@@ -57,16 +68,16 @@ std::string verify_markdown(const std::vector<SceneVerdict>& verdicts, const std
      << " failed.\n\n";
   md << "| scene | verdict | items | mismatches |\n|---|---|---|---|\n";
   for (const auto& v : verdicts) {
-    md << "| " << escape_cell(v.scene) << " | " << verdict_word(v) << " | " << v.items.size() << " | "
-       << count(v, ItemStatus::mismatch) << " |\n";
+    md << "| " << escape_cell(v.scene) << " | " << verdict_word(v) << " | " << v.items.size()
+       << " | " << count(v, ItemStatus::mismatch) << " |\n";
   }
   for (const auto& v : verdicts) {
     md << "\n## " << v.scene << ": " << verdict_word(v) << "\n\n";
     if (!v.error.empty()) md << "Error: " << v.error << "\n\n";
     md << "| item | what | status | detail |\n|---|---|---|---|\n";
     for (const VerifyItem& i : v.items) {
-      md << "| " << i.name << " | " << escape_cell(i.what) << " | " << status_name(i.status) << " | "
-         << escape_cell(i.detail) << " |\n";
+      md << "| " << i.name << " | " << escape_cell(i.what) << " | " << status_name(i.status)
+         << " | " << escape_cell(i.detail) << " |\n";
     }
     for (const VerifyItem& i : v.items) {
       if (i.status != ItemStatus::mismatch) continue;
@@ -76,8 +87,8 @@ std::string verify_markdown(const std::vector<SceneVerdict>& verdicts, const std
         if (!i.golden.empty()) md << ", golden `" << i.golden << "`, diff `" << i.diff << "`";
         md << "\n\n";
         if (!i.diff.empty()) {
-          md << "| actual | golden | diff |\n|---|---|---|\n| ![actual](" << i.actual << ") | ![golden]("
-             << i.golden << ") | ![diff](" << i.diff << ") |\n";
+          md << "| actual | golden | diff |\n|---|---|---|\n| ![actual](" << i.actual
+             << ") | ![golden](" << i.golden << ") | ![diff](" << i.diff << ") |\n";
         }
       }
       for (const std::string& d : i.differences) md << "- " << d << "\n";
@@ -98,9 +109,9 @@ std::string verify_html(const std::vector<SceneVerdict>& verdicts, const std::st
     << escape_xml(golden) << "</code></p>\n";
   h << "<table>\n<tr><th>scene</th><th>verdict</th><th>items</th><th>mismatches</th></tr>\n";
   for (const auto& v : verdicts) {
-    h << "<tr><td><a href=\"#" << escape_xml(v.scene) << "\">" << escape_xml(v.scene) << "</a></td><td class=\""
-      << verdict_word(v) << "\">" << verdict_word(v) << "</td><td>" << v.items.size() << "</td><td>"
-      << count(v, ItemStatus::mismatch) << "</td></tr>\n";
+    h << "<tr><td><a href=\"#" << escape_xml(v.scene) << "\">" << escape_xml(v.scene)
+      << "</a></td><td class=\"" << verdict_word(v) << "\">" << verdict_word(v) << "</td><td>"
+      << v.items.size() << "</td><td>" << count(v, ItemStatus::mismatch) << "</td></tr>\n";
   }
   h << "</table>\n";
   for (const auto& v : verdicts) {
@@ -109,9 +120,9 @@ std::string verify_html(const std::vector<SceneVerdict>& verdicts, const std::st
     if (!v.error.empty()) h << "<p class=\"ERROR\">" << escape_xml(v.error) << "</p>\n";
     h << "<table>\n<tr><th>item</th><th>what</th><th>status</th><th>detail</th></tr>\n";
     for (const VerifyItem& i : v.items) {
-      h << "<tr><td>" << escape_xml(i.name) << "</td><td>" << escape_xml(i.what) << "</td><td class=\""
-        << status_name(i.status) << "\">" << status_name(i.status) << "</td><td>" << escape_xml(i.detail)
-        << "</td></tr>\n";
+      h << "<tr><td>" << escape_xml(i.name) << "</td><td>" << escape_xml(i.what)
+        << "</td><td class=\"" << status_name(i.status) << "\">" << status_name(i.status)
+        << "</td><td>" << escape_xml(i.detail) << "</td></tr>\n";
     }
     h << "</table>\n";
     for (const VerifyItem& i : v.items) {
@@ -119,8 +130,9 @@ std::string verify_html(const std::vector<SceneVerdict>& verdicts, const std::st
       h << "<h3>" << escape_xml(i.name) << ": " << escape_xml(i.what) << "</h3>\n<div>\n";
       const auto image = [&](const std::string& file, const char* caption) {
         if (file.empty()) return;
-        h << "<figure><img src=\"" << escape_xml(file) << "\" alt=\"" << caption << "\"><figcaption>" << caption
-          << " <code>" << escape_xml(file) << "</code></figcaption></figure>\n";
+        h << "<figure><img src=\"" << escape_xml(file) << "\" alt=\"" << caption
+          << "\"><figcaption>" << caption << " <code>" << escape_xml(file)
+          << "</code></figcaption></figure>\n";
       };
       image(i.actual, "actual");
       image(i.golden, "golden");
@@ -128,7 +140,8 @@ std::string verify_html(const std::vector<SceneVerdict>& verdicts, const std::st
       h << "</div>\n";
       if (!i.differences.empty()) {
         h << "<ul>\n";
-        for (const std::string& d : i.differences) h << "<li><code>" << escape_xml(d) << "</code></li>\n";
+        for (const std::string& d : i.differences)
+          h << "<li><code>" << escape_xml(d) << "</code></li>\n";
         h << "</ul>\n";
       }
     }
@@ -170,7 +183,8 @@ std::string verify_junit(const std::vector<SceneVerdict>& verdicts) {
     }
     if (!v.error.empty()) {
       x << "    <testcase classname=\"stiction.verify." << escape_xml(v.scene)
-        << "\" name=\"run\">\n      <error message=\"" << escape_xml(v.error) << "\"/>\n    </testcase>\n";
+        << "\" name=\"run\">\n      <error message=\"" << escape_xml(v.error)
+        << "\"/>\n    </testcase>\n";
     }
     x << "  </testsuite>\n";
   }

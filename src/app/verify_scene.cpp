@@ -6,9 +6,8 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
-#include <set>
-
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "app/run_support.hpp"
 #include "core/simulation.hpp"
@@ -104,7 +103,8 @@ std::vector<std::string> number_differences(const json& actual, const json& gold
 std::vector<double> snap(const std::vector<double>& times, const render::FrameClock& clock) {
   std::vector<double> out;
   for (double t : times) {
-    const long i = std::clamp(std::lround((t - clock.start) / clock.step), 0L, long(clock.count - 1));
+    const long i =
+        std::clamp(std::lround((t - clock.start) / clock.step), 0L, long(clock.count - 1));
     out.push_back(clock.time(static_cast<int>(i)));
   }
   std::sort(out.begin(), out.end());
@@ -114,7 +114,8 @@ std::vector<double> snap(const std::vector<double>& times, const render::FrameCl
 
 // First frame, the first event of each kind of each element (at most kMaxEventFrames),
 // last frame.
-std::vector<double> default_times(const nlohmann::ordered_json& summary, const render::FrameClock& clock) {
+std::vector<double> default_times(const nlohmann::ordered_json& summary,
+                                  const render::FrameClock& clock) {
   std::vector<double> times{clock.start};
   std::size_t events = 0;
   for (const auto& [element, entry] : summary["events"].items()) {
@@ -144,7 +145,10 @@ json read_manifest(const fs::path& file) {
 class SceneVerifier {
  public:
   SceneVerifier(VerifyJob& job, fs::path golden_dir, fs::path out_dir, bool update)
-      : job_(job), golden_(std::move(golden_dir)), out_(std::move(out_dir)), update_(update),
+      : job_(job),
+        golden_(std::move(golden_dir)),
+        out_(std::move(out_dir)),
+        update_(update),
         manifest_(read_manifest(golden_ / "golden.json")) {
     options_.channel_tolerance = job.settings.pixel_tolerance;
     options_.max_fraction = job.settings.max_differing;
@@ -181,7 +185,8 @@ class SceneVerifier {
   }
 
  private:
-  std::vector<double> frame_times(const nlohmann::ordered_json& summary, const render::FrameClock& clock) {
+  std::vector<double> frame_times(const nlohmann::ordered_json& summary,
+                                  const render::FrameClock& clock) {
     if (!job_.at.empty()) return snap(job_.at, clock);
     if (!job_.settings.at.empty()) return snap(job_.settings.at, clock);
     if (!update_ && manifest_.contains("frames")) {
@@ -213,7 +218,8 @@ class SceneVerifier {
       VerifyItem item = make_item("frame", name, "frame at t = " + format("%.6g", times[i]) + " s");
       const image::Image actual = renderer.render(times[i]);
       const auto golden_t = golden_times.find(static_cast<int>(i));
-      if (!update_ && golden_t != golden_times.end() && std::abs(golden_t->second - times[i]) > 1e-9) {
+      if (!update_ && golden_t != golden_times.end() &&
+          std::abs(golden_t->second - times[i]) > 1e-9) {
         item.status = ItemStatus::mismatch;
         item.detail = "the golden frame shows t = " + format("%.6g", golden_t->second) + " s";
         write_evidence(item, actual, golden_ / file);
@@ -225,8 +231,8 @@ class SceneVerifier {
     if (!update_ && golden_times.size() > times.size()) {
       VerifyItem item = make_item("frame", "frames", "frame count");
       item.status = ItemStatus::mismatch;
-      item.detail = "the golden set has " + std::to_string(golden_times.size()) + " frames, this run " +
-                    std::to_string(times.size());
+      item.detail = "the golden set has " + std::to_string(golden_times.size()) +
+                    " frames, this run " + std::to_string(times.size());
       verdict.items.push_back(std::move(item));
     }
   }
@@ -239,7 +245,8 @@ class SceneVerifier {
       const std::string file = name + ".png";
       next["figures"].push_back({{"file", file}, {"name", spec.name}});
       VerifyItem item = make_item("figure", name, "figure " + spec.name);
-      const image::Image actual = plot::render(plot::make_figure(spec, result.trajectory, events), font);
+      const image::Image actual =
+          plot::render(plot::make_figure(spec, result.trajectory, events), font);
       image_item(item, actual, golden_ / file);
       verdict.items.push_back(std::move(item));
     }
@@ -255,8 +262,9 @@ class SceneVerifier {
     const std::string count = std::to_string(item.differences.size()) + " of " +
                               std::to_string(actual.size()) + " numbers differ";
     if (update_) {
-      item.status = !have ? ItemStatus::added
-                          : item.differences.empty() ? ItemStatus::unchanged : ItemStatus::changed;
+      item.status = !have                      ? ItemStatus::added
+                    : item.differences.empty() ? ItemStatus::unchanged
+                                               : ItemStatus::changed;
       item.detail = have ? count : std::to_string(actual.size()) + " numbers";
       if (!have) item.differences.clear();  // all of them: nothing to tell
     } else if (!have) {
@@ -283,8 +291,8 @@ class SceneVerifier {
         if (kept.count(file)) continue;
         std::error_code ec;
         fs::remove(golden_ / file, ec);
-        VerifyItem item = make_item(list == std::string("frames") ? "frame" : "figure", fs::path(file).stem().string(),
-                        file);
+        VerifyItem item = make_item(list == std::string("frames") ? "frame" : "figure",
+                                    fs::path(file).stem().string(), file);
         item.status = ItemStatus::removed;
         item.detail = "no longer part of the set";
         verdict.items.push_back(std::move(item));
@@ -299,7 +307,8 @@ class SceneVerifier {
         item.status = ItemStatus::added;
         item.detail = std::to_string(actual.width) + "x" + std::to_string(actual.height);
       } else {
-        const image::CompareResult r = image::compare_images(image::read_png(golden_file), actual, options_);
+        const image::CompareResult r =
+            image::compare_images(image::read_png(golden_file), actual, options_);
         const bool same = !r.size_mismatch && r.max_channel_difference == 0;
         item.status = same ? ItemStatus::unchanged : ItemStatus::changed;
         item.detail = same ? "identical" : r.message;
@@ -333,7 +342,8 @@ class SceneVerifier {
     const image::Image golden = image::read_png(golden_file);
     image::write_png(out_ / (rel + ".golden.png"), golden, image::PngSpeed::small);
     item.golden = rel + ".golden.png";
-    image::write_png(out_ / (rel + ".diff.png"), image::diff_image(golden, actual, options_.channel_tolerance),
+    image::write_png(out_ / (rel + ".diff.png"),
+                     image::diff_image(golden, actual, options_.channel_tolerance),
                      image::PngSpeed::small);
     item.diff = rel + ".diff.png";
   }
@@ -349,12 +359,18 @@ class SceneVerifier {
 
 const char* status_name(ItemStatus s) {
   switch (s) {
-    case ItemStatus::match: return "match";
-    case ItemStatus::mismatch: return "MISMATCH";
-    case ItemStatus::added: return "added";
-    case ItemStatus::changed: return "changed";
-    case ItemStatus::unchanged: return "unchanged";
-    case ItemStatus::removed: return "removed";
+    case ItemStatus::match:
+      return "match";
+    case ItemStatus::mismatch:
+      return "MISMATCH";
+    case ItemStatus::added:
+      return "added";
+    case ItemStatus::changed:
+      return "changed";
+    case ItemStatus::unchanged:
+      return "unchanged";
+    case ItemStatus::removed:
+      return "removed";
   }
   return "?";
 }
@@ -365,7 +381,8 @@ bool SceneVerdict::failed() const {
                      [](const VerifyItem& i) { return i.status == ItemStatus::mismatch; });
 }
 
-SceneVerdict verify_scene(VerifyJob& job, const fs::path& golden_root, const fs::path& out, bool update) {
+SceneVerdict verify_scene(VerifyJob& job, const fs::path& golden_root, const fs::path& out,
+                          bool update) {
   const auto start = std::chrono::steady_clock::now();
   SceneVerdict verdict;
   try {

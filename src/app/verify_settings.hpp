@@ -13,10 +13,10 @@
 //   abs_tolerance = 1e-9
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <string>
 #include <vector>
-
-#include <toml++/toml.h>
 
 namespace stiction::app {
 

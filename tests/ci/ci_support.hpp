@@ -32,7 +32,8 @@ struct SplitOutcome {
 };
 
 // Runs the binary with stdout and stderr in files (stderr is then not a terminal).
-inline SplitOutcome run_split(const std::vector<std::string>& args, const std::filesystem::path& cwd) {
+inline SplitOutcome run_split(const std::vector<std::string>& args,
+                              const std::filesystem::path& cwd) {
   std::string command = "cd ";
   command += shell_quote(cwd.string());
   command += " && ";
@@ -66,12 +67,14 @@ inline std::string ball_scene(const std::string& name, double mu = 0.3, double x
     << "[simulation]\ndt = 1e-4\nduration = 0.5\n\n"
     << "[bodies.ball]\ntype = \"rigid_body\"\nmass = 1.0\nshape = \"sphere\"\nradius = 0.2\n"
     << "position = [" << x0 << ", 0.0, 0.2]\nvelocity = [1.0, 0.0, 0.0]\n\n"
-    << "[impedances.ground]\ntype = \"kikuuwe_contact\"\nbody = \"ball\"\nnormal = [0.0, 0.0, 1.0]\n"
+    << "[impedances.ground]\ntype = \"kikuuwe_contact\"\nbody = \"ball\"\nnormal = [0.0, 0.0, "
+       "1.0]\n"
     << "stiffness = 1e6\ndamping = 100.0\nmu = " << mu << "\n\n"
     << "[render]\nsize = [320, 180]\nfps = 8\nmsaa = 1\nshadow_map_size = 256\n\n"
     // Horizontal field of view 2 atan(16/9 tan 20 deg) = 65.8 deg: at a distance d the
     // frame is 1.293 d wide; d = kFrameWidthM / 1.293.
-    << "[camera]\nposition = [0.0, " << -kFrameWidthM / 1.2938 << ", 0.2]\ntarget = [0.0, 0.0, 0.2]\n"
+    << "[camera]\nposition = [0.0, " << -kFrameWidthM / 1.2938
+    << ", 0.2]\ntarget = [0.0, 0.0, 0.2]\n"
     << "fov = 40\n\n"
     << "[overlay]\nsignal = \"ground.slip\"\nlabel = \"slip\"\nunit = \"m/s\"\n\n"
     << "[[plots]]\nname = \"motion\"\nsize = [400, 300]\n"

@@ -1,10 +1,9 @@
 // `stiction check` as a cheap CI gate: every value `run` rejects before simulating, check
 // rejects with the same message and exit 2 (one case per table), and --json is parseable.
-#include <filesystem>
-#include <string>
-
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "ci_support.hpp"
 
@@ -25,7 +24,8 @@ std::string with(std::string text, const std::string& from, const std::string& t
 }
 
 // The scene broken one way: check and run both exit 2 with the same located message.
-void expect_same_rejection(const std::string& broken, const std::string& key, const std::string& name) {
+void expect_same_rejection(const std::string& broken, const std::string& key,
+                           const std::string& name) {
   const fs::path dir = scratch_dir("stiction_test_ci_check_", name);
   write_text(dir / "bad.toml", broken);
   const SplitOutcome check = run_split({"check", "bad.toml"}, dir);
@@ -53,7 +53,8 @@ void expect_same_rejection(const std::string& broken, const std::string& key, co
 
 TEST_CASE("check: the generated scene passes check and --json describes it") {
   const fs::path dir = scratch_dir("stiction_test_ci_check_", "good");
-  const std::string name = cat("a_ball_with_a_rather_long_name_for_a_scene_file_", std::string(40, 'x'));
+  const std::string name =
+      cat("a_ball_with_a_rather_long_name_for_a_scene_file_", std::string(40, 'x'));
   write_text(dir / "good.toml", ball_scene(name));
   const SplitOutcome text = run_split({"check", "good.toml"}, dir);
   INFO(text.out << text.err);
@@ -84,8 +85,8 @@ TEST_CASE("check: the generated scene passes check and --json describes it") {
 }
 
 TEST_CASE("check: a bad [render] value is rejected as run rejects it") {
-  expect_same_rejection(with(ball_scene("r"), "size = [320, 180]", "size = [1280, 721]"), "render.size",
-                        "render");
+  expect_same_rejection(with(ball_scene("r"), "size = [320, 180]", "size = [1280, 721]"),
+                        "render.size", "render");
 }
 
 TEST_CASE("check: a bad [camera] value is rejected as run rejects it") {
@@ -94,8 +95,9 @@ TEST_CASE("check: a bad [camera] value is rejected as run rejects it") {
 }
 
 TEST_CASE("check: a bad [overlay] value is rejected as run rejects it") {
-  expect_same_rejection(with(ball_scene("o"), "signal = \"ground.slip\"", "signal = \"ground.slp\""),
-                        "overlay.signal", "overlay");
+  expect_same_rejection(
+      with(ball_scene("o"), "signal = \"ground.slip\"", "signal = \"ground.slp\""),
+      "overlay.signal", "overlay");
 }
 
 TEST_CASE("check: a bad [[plots]] value is rejected as run rejects it") {
@@ -105,9 +107,10 @@ TEST_CASE("check: a bad [[plots]] value is rejected as run rejects it") {
 }
 
 TEST_CASE("check: a bad [verify] value is rejected as run rejects it") {
-  expect_same_rejection(ball_scene("v") + "\n[verify]\nat = [0.1, 7.0]\n", "verify.at", "verify_at");
-  expect_same_rejection(ball_scene("v2") + "\n[verify]\nmax_differing = 2.0\n", "verify.max_differing",
-                        "verify_share");
-  expect_same_rejection(ball_scene("v3") + "\n[verify]\npixel_tolerence = 3\n", "verify.pixel_tolerence",
-                        "verify_unknown");
+  expect_same_rejection(ball_scene("v") + "\n[verify]\nat = [0.1, 7.0]\n", "verify.at",
+                        "verify_at");
+  expect_same_rejection(ball_scene("v2") + "\n[verify]\nmax_differing = 2.0\n",
+                        "verify.max_differing", "verify_share");
+  expect_same_rejection(ball_scene("v3") + "\n[verify]\npixel_tolerence = 3\n",
+                        "verify.pixel_tolerence", "verify_unknown");
 }

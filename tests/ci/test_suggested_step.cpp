@@ -3,12 +3,11 @@
 // predicts goes unstable (exit 3), and a run at the step its message suggests then exits 0.
 // The scenes run for at most 1 s of simulated time (--duration) to keep the suite fast;
 // the message must say how the step was obtained.
+#include <catch2/catch.hpp>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <string>
-
-#include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 
 #include "ci_support.hpp"
 

@@ -2,13 +2,12 @@
 // 1% of the frame width, changing the friction coefficient by 5% and changing a plot colour
 // each fail with exit 4, a diff image that shows the change, a report and a JUnit file that
 // an XML parser reads. Pictures are the same bytes run after run.
+#include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <catch2/catch.hpp>
 
 #include "ci_support.hpp"
 #include "image/png.hpp"
@@ -61,8 +60,8 @@ void expect_failure(const fs::path& dir, const std::string& variant, const std::
   fs::create_directories(scene_dir);
   write_text(scene_dir / "ball.toml", text);
   const fs::path report = dir / ("report_" + variant);
-  const SplitOutcome o = run_split({"verify", (scene_dir / "ball.toml").string(), "--golden", "golden",
-                                    "--out", report.string()},
+  const SplitOutcome o = run_split({"verify", (scene_dir / "ball.toml").string(), "--golden",
+                                    "golden", "--out", report.string()},
                                    dir);
   INFO(variant << ":\n" << o.out << o.err);
   CHECK(o.code == 4);
@@ -83,7 +82,8 @@ void expect_failure(const fs::path& dir, const std::string& variant, const std::
 
 }  // namespace
 
-TEST_CASE("verify: --update makes a golden set that verifies, and three kinds of change each fail") {
+TEST_CASE(
+    "verify: --update makes a golden set that verifies, and three kinds of change each fail") {
   const fs::path dir = scratch_dir("stiction_test_ci_verify_", "changes");
   write_text(dir / "ball.toml", ball_scene("ball"));
   SplitOutcome o = run_split({"verify", "ball.toml", "--golden", "golden", "--update"}, dir);
@@ -93,8 +93,8 @@ TEST_CASE("verify: --update makes a golden set that verifies, and three kinds of
   CHECK_THAT(o.out, Contains("added figure_motion"));
   // First frame, the first stick and slip (one video frame), last frame.
   CHECK(files_in(dir / "golden" / "ball") ==
-        std::vector<std::string>{"figure_motion.png", "frame_000.png", "frame_001.png", "frame_002.png",
-                                 "golden.json"});
+        std::vector<std::string>{"figure_motion.png", "frame_000.png", "frame_001.png",
+                                 "frame_002.png", "golden.json"});
 
   o = run_split({"verify", "ball.toml", "--golden", "golden", "--out", "report_same"}, dir);
   REQUIRE(o.code == 0);
@@ -125,8 +125,10 @@ TEST_CASE("verify: --update makes a golden set that verifies, and three kinds of
 TEST_CASE("verify: the same scene gives the same bytes run after run (frames, figures, reports)") {
   const fs::path dir = scratch_dir("stiction_test_ci_verify_", "bytes");
   write_text(dir / "ball.toml", ball_scene("ball"));
-  REQUIRE(run_split({"verify", "ball.toml", "--golden", "g1", "--update", "--quiet"}, dir).code == 0);
-  REQUIRE(run_split({"verify", "ball.toml", "--golden", "g2", "--update", "--quiet"}, dir).code == 0);
+  REQUIRE(run_split({"verify", "ball.toml", "--golden", "g1", "--update", "--quiet"}, dir).code ==
+          0);
+  REQUIRE(run_split({"verify", "ball.toml", "--golden", "g2", "--update", "--quiet"}, dir).code ==
+          0);
   const auto files = files_in(dir / "g1" / "ball");
   REQUIRE(files == files_in(dir / "g2" / "ball"));
   for (const std::string& f : files) {
@@ -135,26 +137,32 @@ TEST_CASE("verify: the same scene gives the same bytes run after run (frames, fi
   }
   // Failing reports are byte-identical too (no times, no host names).
   write_text(dir / "moved.toml", ball_scene("ball", 0.3, 0.02));
-  REQUIRE(run_split({"verify", "moved.toml", "--golden", "g1", "--out", "r1", "--quiet"}, dir).code == 4);
-  REQUIRE(run_split({"verify", "moved.toml", "--golden", "g1", "--out", "r2", "--quiet"}, dir).code == 4);
+  REQUIRE(
+      run_split({"verify", "moved.toml", "--golden", "g1", "--out", "r1", "--quiet"}, dir).code ==
+      4);
+  REQUIRE(
+      run_split({"verify", "moved.toml", "--golden", "g1", "--out", "r2", "--quiet"}, dir).code ==
+      4);
   for (const char* f : {"report.md", "report.html", "junit.xml", "ball/frame_001.diff.png"}) {
     INFO(f);
     CHECK(read_text(dir / "r1" / f) == read_text(dir / "r2" / f));
   }
 }
 
-TEST_CASE("verify: many generated scenes in a directory, in parallel, with --at, and bad input is exit 2") {
+TEST_CASE(
+    "verify: many generated scenes in a directory, in parallel, with --at, and bad input is exit "
+    "2") {
   const fs::path dir = scratch_dir("stiction_test_ci_verify_", "many");
   fs::create_directories(dir / "scenes");
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> mu(0.1, 0.5), x0(-0.2, 0.2);
   for (int i = 0; i < 4; ++i) {
-    const std::string name = "scene_" + std::to_string(i) + "_with_a_long_name_" + std::string(30, 'a' + i);
+    const std::string name =
+        "scene_" + std::to_string(i) + "_with_a_long_name_" + std::string(30, 'a' + i);
     write_text(dir / "scenes" / (name + ".toml"), ball_scene(name, mu(rng), x0(rng)));
   }
-  SplitOutcome o = run_split({"verify", "scenes", "--golden", "golden", "--update", "-j", "2", "--at",
-                              "0.1,0.4"},
-                             dir);
+  SplitOutcome o = run_split(
+      {"verify", "scenes", "--golden", "golden", "--update", "-j", "2", "--at", "0.1,0.4"}, dir);
   INFO(o.out << o.err);
   REQUIRE(o.code == 0);
   o = run_split({"verify", "scenes", "--golden", "golden", "-j", "2", "--out", "report"}, dir);
@@ -170,7 +178,9 @@ TEST_CASE("verify: many generated scenes in a directory, in parallel, with --at,
   o = run_split({"verify", "new.toml", "--golden", "golden"}, dir);
   CHECK(o.code == 2);
   CHECK_THAT(o.err, Contains("no golden set for scene 'new_scene'"));
-  CHECK(run_split({"verify", "new.toml", "--golden", "golden", "--update", "--at", "9"}, dir).code == 2);
+  CHECK(
+      run_split({"verify", "new.toml", "--golden", "golden", "--update", "--at", "9"}, dir).code ==
+      2);
   CHECK(run_split({"verify", "no_such_scene", "--golden", "golden"}, dir).code == 2);
   CHECK(run_split({"verify", "new.toml"}, dir).code == 2);  // --golden is required
 }
@@ -178,7 +188,8 @@ TEST_CASE("verify: many generated scenes in a directory, in parallel, with --at,
 TEST_CASE("verify: two runs of each bundled scene give identical frame and figure bytes") {
   const fs::path dir = scratch_dir("stiction_test_ci_verify_", "bundled");
   // Cut to 0.4 s of simulated time: its first and last video frame, and every figure.
-  const std::vector<std::string> common{"--set", "simulation.duration=0.4", "--at", "0,0.4", "--quiet"};
+  const std::vector<std::string> common{"--set", "simulation.duration=0.4", "--at", "0,0.4",
+                                        "--quiet"};
   const fs::path scenes = fs::path(STICTION_SOURCE_DIR) / "scenes";
   for (const char* golden : {"g1", "g2"}) {
     std::vector<std::string> args{"verify", scenes.string(), "--golden", golden, "--update"};
