@@ -12,6 +12,7 @@
 #include "app/interrupted_run.hpp"
 #include "app/output_dir.hpp"
 #include "app/progress.hpp"
+#include "app/render_loader.hpp"
 #include "app/run_support.hpp"
 #include "core/simulation.hpp"
 #include "image/image.hpp"
@@ -61,7 +62,7 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
       bar->frames(p.frames_done, p.frame_count, p.frames_per_second, p.eta_seconds);
     };
   }
-  return render::render_outputs(scene, result.trajectory, settings, request);
+  return render_outputs_on_demand(scene, result.trajectory, settings, request);
 }
 
 }  // namespace
