@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs build/ into a temporary prefix, moves the prefix elsewhere and the build tree out
 # of the way, then: the installed binary must find its bundled scenes and font relative to
-# itself (a scene placed only in the moved prefix is listed), run a scene with plots, and
+# itself (a scene placed only in the moved prefix is listed), run a scene with plots and
+# one with a video (the render plugin is found relative to the binary too), and
 # the example in examples/viscous_coulomb_joint must configure against the installed
 # package (find_package(stiction)), build, and match its closed forms.
 set -euo pipefail
@@ -27,6 +28,9 @@ cd "$work"
 "$prefix/bin/stiction" run ci_moved_prefix --no-video --quiet --out "$work/run"
 grep -q '"status": "ok"' "$work/run/summary.json"
 test -s "$work/run/plots/fig4_sphere.png"  # the font came from the moved prefix too
+# The render plugin, loaded from the moved prefix (the build tree is gone).
+"$prefix/bin/stiction" run ci_moved_prefix --no-plots --duration 0.1 --quiet --out "$work/video"
+test -s "$work/video/video.mp4"
 
 cmake -S "$root/examples/viscous_coulomb_joint" -B "$work/example" -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$prefix" >/dev/null

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/ and runs
-# the tests that matter (all but the benchmarks-like render goldens, which only repeat the
-# same GL code at larger sizes; see docs/ci.md). Any report fails: UBSan aborts on the first
+# the test suite under it (STICTION_ASAN_EXCLUDE, a ctest regex, leaves tests out if CI time
+# requires; see docs/sanitizers_fuzzing.md). Any report fails: UBSan aborts on the first
 # error, ASan on any memory error, LeakSanitizer at exit on any leak not in libOSMesa
 # (.ci/lsan.supp: Mesa keeps 480 bytes of its own at exit, outside our control).
 set -euo pipefail

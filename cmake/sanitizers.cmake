@@ -1,4 +1,4 @@
-# Instrumented builds for CI (.ci/run, docs/ci.md):
+# Instrumented builds for CI (.ci/run, docs/sanitizers_fuzzing.md):
 # - STICTION_SANITIZE: everything with AddressSanitizer + UndefinedBehaviorSanitizer (g++ or
 #   clang); any UB report aborts. Leaks are checked by LeakSanitizer with
 #   .ci/lsan.supp, which names libOSMesa only.

@@ -14,6 +14,7 @@
 #include "app/output_dir.hpp"
 #include "app/plot_outputs.hpp"
 #include "app/progress.hpp"
+#include "app/render_loader.hpp"
 #include "app/run_support.hpp"
 #include "app/verify_settings.hpp"
 #include "core/column_info.hpp"
@@ -54,7 +55,7 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
       bar->frames(p.frames_done, p.frame_count, p.frames_per_second, p.eta_seconds);
     };
   }
-  render::RenderResult rendered = render::render_outputs(scene, result.trajectory, settings, request);
+  render::RenderResult rendered = render_outputs_on_demand(scene, result.trajectory, settings, request);
   if (bar && !rendered.interrupted) bar->finish(std::to_string(rendered.frames) + " frames");
   return rendered;
 }

@@ -1,5 +1,6 @@
 // SIGINT and SIGTERM sent to a real `stiction run` child in each phase (simulate, plots,
-// render, and a second signal while a file is being written): the child exits 130 / 143,
+// render, and a second signal while a file is being written) and to `stiction study`: the
+// child exits 130 / 143,
 // keeps what it did as partial output (summary.json "interrupted" with the phase and the
 // time reached, trajectory.csv up to its last complete row, video.partial.mp4) and leaves
 // no temporary. The time from the signal to the exit is printed (run with -s or ctest -V);
@@ -190,4 +191,22 @@ TEST_CASE("a second signal exits at once and leaves no temporary", "[signals]") 
   CHECK(temporaries_under(dir).empty());
   // Whatever exists is complete: written files appear only by rename.
   if (fs::exists(dir / "o" / "trajectory.csv")) check_complete_rows(dir / "o" / "trajectory.csv");
+}
+
+TEST_CASE("a signal during a study stops it without writing a report", "[signals]") {
+  const fs::path dir = scratch("study");
+  SceneSpec spec;
+  spec.duration = 200.0;  // each of the study's runs takes seconds
+  spec.output_rate = 10.0;
+  const fs::path scene = write_scene(dir, spec);
+  Child child({"study", scene.string(), "--out", "s"}, dir);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  REQUIRE(child.running());
+  child.signal(SIGTERM);
+  const int code = child.wait(std::chrono::seconds(30));
+  report("study", SIGTERM, child.seconds_waited);
+  CHECK(code == 143);
+  CHECK_FALSE(fs::exists(dir / "s" / "study.csv"));
+  CHECK(temporaries_under(dir).empty());
+  CHECK(child.err().find("interrupted by SIGTERM") != std::string::npos);
 }
