@@ -31,9 +31,7 @@ std::vector<fs::path> plugin_candidates() {
 
 // Loaded once, kept for the process's lifetime (the renderer's threads and libav's state
 // must not outlive an unloaded library).
-render::RenderPluginEntry load_entry() {
-  static render::RenderPluginEntry entry = nullptr;
-  if (entry != nullptr) return entry;
+void* open_plugin() {
   std::string tried;
   for (const fs::path& path : plugin_candidates()) {
     std::error_code ec;
@@ -46,11 +44,40 @@ render::RenderPluginEntry load_entry() {
       tried += "\n  " + path.string() + ": " + ::dlerror();
       continue;
     }
-    entry = reinterpret_cast<render::RenderPluginEntry>(::dlsym(handle, render::kRenderPluginSymbol));
-    if (entry != nullptr) return entry;
+    if (::dlsym(handle, render::kRenderPluginSymbol) != nullptr &&
+        ::dlsym(handle, render::kRenderFramesSymbol) != nullptr) {
+      return handle;
+    }
     tried += "\n  " + path.string() + ": no " + render::kRenderPluginSymbol + " (another version?)";
   }
   throw render::RenderError("cannot load the renderer (libstiction_render_plugin.so):" + tried);
+}
+
+// A function-local static: thread-safe on first use (verify renders scenes in parallel); a
+// failed load throws and is tried again on the next call.
+void* load_plugin() {
+  static void* const plugin = open_plugin();
+  return plugin;
+}
+
+template <typename Entry>
+Entry entry_point(const char* symbol) {
+  return reinterpret_cast<Entry>(::dlsym(load_plugin(), symbol));
+}
+
+// Throws on the application's side what the plugin caught on its side.
+void rethrow(render::PluginError error, const std::string& message) {
+  switch (error) {
+    case render::PluginError::none: return;
+    case render::PluginError::gl: throw render::GlError(message);
+    case render::PluginError::video: throw render::VideoError(message);
+    case render::PluginError::render: throw render::RenderError(message);
+    case render::PluginError::image: throw image::ImageError(message);
+    case render::PluginError::font: throw text::FontError(message);
+    case render::PluginError::input: throw scene::InputError(message);
+    case render::PluginError::other: break;
+  }
+  throw render::RenderError(message);
 }
 
 }  // namespace
@@ -58,7 +85,7 @@ render::RenderPluginEntry load_entry() {
 render::RenderResult render_outputs_on_demand(const scene::Scene& scene, const core::Trajectory& trajectory,
                                               const render::RenderSettings& settings,
                                               const render::RenderRequest& request) {
-  const render::RenderPluginEntry entry = load_entry();
+  const auto entry = entry_point<render::RenderPluginEntry>(render::kRenderPluginSymbol);
   render::RenderResult result;
   render::PluginCall call;
   call.scene = &scene;
@@ -67,17 +94,23 @@ render::RenderResult render_outputs_on_demand(const scene::Scene& scene, const c
   call.request = &request;
   call.result = &result;
   entry(&call);
-  switch (call.error) {
-    case render::PluginError::none: return result;
-    case render::PluginError::gl: throw render::GlError(call.message);
-    case render::PluginError::video: throw render::VideoError(call.message);
-    case render::PluginError::render: throw render::RenderError(call.message);
-    case render::PluginError::image: throw image::ImageError(call.message);
-    case render::PluginError::font: throw text::FontError(call.message);
-    case render::PluginError::input: throw scene::InputError(call.message);
-    case render::PluginError::other: break;
-  }
-  throw render::RenderError(call.message);
+  rethrow(call.error, call.message);
+  return result;
+}
+
+RenderedFrames render_frames_on_demand(
+    const scene::Scene& scene, const core::Trajectory& trajectory,
+    const render::RenderSettings& settings,
+    const std::function<std::vector<double>(const render::FrameClock&)>& choose_times) {
+  const auto entry = entry_point<render::RenderFramesEntry>(render::kRenderFramesSymbol);
+  render::FramesCall call;
+  call.scene = &scene;
+  call.trajectory = &trajectory;
+  call.settings = &settings;
+  call.choose = choose_times;
+  entry(&call);
+  rethrow(call.error, call.message);
+  return {std::move(call.times), std::move(call.images)};
 }
 
 }  // namespace stiction::app

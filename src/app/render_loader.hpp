@@ -5,6 +5,11 @@
 // possibly moved, prefix), then in the build tree.
 #pragma once
 
+#include <functional>
+#include <vector>
+
+#include "image/image.hpp"
+
 #include "render/render_outputs.hpp"
 #include "render/render_settings.hpp"
 #include "scene/scene.hpp"
@@ -17,5 +22,16 @@ namespace stiction::app {
 render::RenderResult render_outputs_on_demand(const scene::Scene& scene, const core::Trajectory& trajectory,
                                               const render::RenderSettings& settings,
                                               const render::RenderRequest& request);
+
+// Single frames of one run through the plugin (`stiction verify`): `choose_times` gets the
+// run's frame clock and returns the times to render.
+struct RenderedFrames {
+  std::vector<double> times;
+  std::vector<image::Image> images;
+};
+RenderedFrames render_frames_on_demand(
+    const scene::Scene& scene, const core::Trajectory& trajectory,
+    const render::RenderSettings& settings,
+    const std::function<std::vector<double>(const render::FrameClock&)>& choose_times);
 
 }  // namespace stiction::app

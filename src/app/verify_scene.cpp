@@ -1,5 +1,7 @@
 #include "app/verify_scene.hpp"
 
+#include "app/render_loader.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -199,12 +201,10 @@ class SceneVerifier {
 
   void frames(const core::RunResult& result, const nlohmann::ordered_json& summary, json& next,
               SceneVerdict& verdict) {
-    render::FrameRenderer renderer(render::describe_scene(*job_.scene.network, job_.scene.document),
-                                   result.trajectory, job_.render);
-    const render::FrameClock clock =
-        render::frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
-                            job_.render.fps, job_.render.slow_motion);
-    const std::vector<double> times = frame_times(summary, clock);
+    const RenderedFrames rendered = render_frames_on_demand(
+        job_.scene, result.trajectory, job_.render,
+        [&](const render::FrameClock& clock) { return frame_times(summary, clock); });
+    const std::vector<double>& times = rendered.times;
     std::map<int, double> golden_times;
     if (manifest_.contains("frames")) {
       int i = 0;
@@ -216,7 +216,7 @@ class SceneVerifier {
       const std::string file = std::string(name) + ".png";
       next["frames"].push_back({{"file", file}, {"t", times[i]}});
       VerifyItem item = make_item("frame", name, "frame at t = " + format("%.6g", times[i]) + " s");
-      const image::Image actual = renderer.render(times[i]);
+      const image::Image& actual = rendered.images[i];
       const auto golden_t = golden_times.find(static_cast<int>(i));
       if (!update_ && golden_t != golden_times.end() &&
           std::abs(golden_t->second - times[i]) > 1e-9) {

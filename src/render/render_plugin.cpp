@@ -4,16 +4,22 @@
 
 #include "image/image.hpp"
 #include "render/gl.hpp"
+#include "render/render_outputs.hpp"
 #include "render/render_plugin_api.hpp"
+#include "render/scene_view.hpp"
 #include "render/video_encoder.hpp"
 #include "text/font.hpp"
 
-extern "C" __attribute__((visibility("default"))) void stiction_render_outputs_v1(
-    stiction::render::PluginCall* call) {
-  using stiction::render::PluginError;
+namespace {
+
+using stiction::render::PluginError;
+
+// Runs `work`, turning the exceptions the renderer throws into an error kind and a message
+// (exceptions do not cross the plugin boundary).
+template <typename Call, typename Work>
+void guarded(Call* call, Work&& work) {
   try {
-    *call->result = stiction::render::render_outputs(*call->scene, *call->trajectory, *call->settings,
-                                                     *call->request);
+    work();
     call->error = PluginError::none;
   } catch (const stiction::scene::InputError& e) {
     call->error = PluginError::input;
@@ -37,4 +43,30 @@ extern "C" __attribute__((visibility("default"))) void stiction_render_outputs_v
     call->error = PluginError::other;
     call->message = e.what();
   }
+}
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) void stiction_render_outputs_v1(
+    stiction::render::PluginCall* call) {
+  guarded(call, [call] {
+    *call->result = stiction::render::render_outputs(*call->scene, *call->trajectory,
+                                                     *call->settings, *call->request);
+  });
+}
+
+extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v1(
+    stiction::render::FramesCall* call) {
+  namespace render = stiction::render;
+  guarded(call, [call] {
+    render::FrameRenderer renderer(
+        render::describe_scene(*call->scene->network, call->scene->document), *call->trajectory,
+        *call->settings);
+    const render::FrameClock clock =
+        render::frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
+                            call->settings->fps, call->settings->slow_motion);
+    call->times = call->choose(clock);
+    call->images.clear();
+    for (double t : call->times) call->images.push_back(renderer.render(t));
+  });
 }

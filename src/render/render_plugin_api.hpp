@@ -6,9 +6,12 @@
 // an error kind and a message, and thrown again on the application's side).
 #pragma once
 
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "core/trajectory.hpp"
+#include "image/image.hpp"
 #include "render/render_outputs.hpp"
 #include "render/render_settings.hpp"
 #include "scene/scene.hpp"
@@ -27,8 +30,23 @@ struct PluginCall {
   std::string message;
 };
 
-// Bumped whenever PluginCall or the types it points to change.
+// Single frames of one run (`stiction verify`): `choose` gets the run's frame clock and
+// returns the times to render; the plugin fills `times` and `images` (one per time).
+struct FramesCall {
+  const scene::Scene* scene = nullptr;
+  const core::Trajectory* trajectory = nullptr;
+  const RenderSettings* settings = nullptr;
+  std::function<std::vector<double>(const FrameClock&)> choose;
+  std::vector<double> times;
+  std::vector<image::Image> images;
+  PluginError error = PluginError::none;
+  std::string message;
+};
+
+// Bumped whenever PluginCall, FramesCall or the types they point to change.
 inline constexpr const char* kRenderPluginSymbol = "stiction_render_outputs_v1";
 using RenderPluginEntry = void (*)(PluginCall*);
+inline constexpr const char* kRenderFramesSymbol = "stiction_render_frames_v1";
+using RenderFramesEntry = void (*)(FramesCall*);
 
 }  // namespace stiction::render
