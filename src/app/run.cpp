@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/progress.hpp"
 #include "app/run_support.hpp"
+#include "app/streamed_rows.hpp"
 #include "core/simulation.hpp"
 #include "image/image.hpp"
 #include "io/atomic_file.hpp"
@@ -44,18 +45,19 @@ void remove_old_frames(const fs::path& frames_dir) {
 
 // Writes every plot; returns the files written.
 std::vector<fs::path> write_plots(const std::vector<plot::PlotSpec>& specs,
-                                  const core::RunResult& result, const fs::path& dir) {
+                                  const core::RunResult& result, const core::Trajectory& rows,
+                                  const fs::path& dir) {
   const std::map<std::string, double> events = event_times(result);
   std::vector<fs::path> written;
   for (const plot::PlotSpec& spec : specs) {
     const fs::path png = dir / (spec.name + ".png");
-    plot::write_plot(spec, result.trajectory, events, png);
+    plot::write_plot(spec, rows, events, png);
     written.push_back(png);
   }
   return written;
 }
 
-render::RenderResult write_video(const scene::Scene& scene, const core::RunResult& result,
+render::RenderResult write_video(const scene::Scene& scene, const core::Trajectory& rows,
                                  const render::RenderSettings& settings, const fs::path& out,
                                  bool video, bool frames, bool progress) {
   std::atomic<bool> interrupted{false};
@@ -73,7 +75,7 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
     };
   }
   if (frames) remove_old_frames(out / "frames");
-  return render::render_outputs(scene, result.trajectory, settings, request);
+  return render::render_outputs(scene, rows, settings, request);
 }
 
 }  // namespace
@@ -96,8 +98,13 @@ int run_command(const RunArguments& args) {
   fs::create_directories(out, ec);
   if (ec) throw io::IoError(out.string() + ": cannot create the output directory: " + ec.message());
 
+  // Streaming: rows go to trajectory.csv as they are produced; plots and the video get
+  // thinned copies (StreamedRows), so memory does not grow with the run's length.
+  const bool video_or_frames = !args.no_video || args.frames;
+  StreamedRows rows(out / "trajectory.csv", columns, run, render_settings, !args.no_plots,
+                    video_or_frames);
   const bool progress = show_progress(args.quiet);
-  const core::RunResult result = simulate_scene(scene, progress);
+  const core::RunResult result = simulate_scene(scene, progress, &rows.sink());
 
   io::RunDescription description;
   description.scene = scene.name;
@@ -110,7 +117,7 @@ int run_command(const RunArguments& args) {
   if (result.instability) description.suggested_dt = suggested_dt(scene);
 
   const auto summary = io::make_summary(description, result);
-  io::write_csv(result.trajectory, out / "trajectory.csv");
+  rows.commit_csv();
   io::write_summary(summary, out / "summary.json");
 
   if (result.instability) {
@@ -125,7 +132,7 @@ int run_command(const RunArguments& args) {
   }
   if (!args.quiet) {
     std::printf("%s: %s, dt = %g s, %ld steps, %d rows in %.3f s\n", scene.name.c_str(),
-                run.integrator.c_str(), run.dt, result.steps, result.trajectory.row_count(),
+                run.integrator.c_str(), run.dt, result.steps, static_cast<int>(result.rows),
                 result.wall_seconds);
     for (const auto& [contact, entry] : summary["events"].items()) {
       if (entry["stick_time"].is_null()) {
@@ -140,7 +147,8 @@ int run_command(const RunArguments& args) {
 
   if (!args.no_plots) {
     try {
-      const std::vector<fs::path> plots = write_plots(plot_specs, result, out / "plots");
+      const std::vector<fs::path> plots =
+          write_plots(plot_specs, result, rows.for_plots(), out / "plots");
       if (!args.quiet) {
         for (const fs::path& p : plots) std::printf("  wrote %s\n", p.c_str());
         std::fflush(stdout);
@@ -157,7 +165,7 @@ int run_command(const RunArguments& args) {
   if (!args.no_video || args.frames) {
     render::RenderResult rendered;
     try {
-      rendered = write_video(scene, result, render_settings, out, !args.no_video, args.frames,
+      rendered = write_video(scene, rows.for_video(), render_settings, out, !args.no_video, args.frames,
                              progress);
     } catch (const scene::InputError&) {
       throw;  // exit 2, message already located

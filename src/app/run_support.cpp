@@ -45,7 +45,7 @@ void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
 
 bool show_progress(bool quiet) { return !quiet && ::isatty(STDERR_FILENO) == 1; }
 
-core::RunResult simulate_scene(scene::Scene& scene, bool progress) {
+core::RunResult simulate_scene(scene::Scene& scene, bool progress, core::RowSink* sink) {
   std::unique_ptr<ProgressBar> bar;
   core::ProgressCallback callback;
   if (progress) {
@@ -53,7 +53,7 @@ core::RunResult simulate_scene(scene::Scene& scene, bool progress) {
     const double duration = scene.run.duration;
     callback = [&bar, duration](double fraction) { bar->simulation(fraction, duration); };
   }
-  return core::simulate(*scene.network, scene.run, callback);
+  return core::simulate(*scene.network, scene.run, callback, sink);
 }
 
 std::map<std::string, double> event_times(const core::RunResult& result) {

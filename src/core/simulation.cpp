@@ -95,7 +95,8 @@ class InstabilityMonitor {
 
 }  // namespace
 
-RunResult simulate(Network& network, const RunOptions& options, const ProgressCallback& progress) {
+RunResult simulate(Network& network, const RunOptions& options, const ProgressCallback& progress,
+                   RowSink* sink) {
   RunResult result;
   std::vector<std::string> columns{"t"};
   for (auto& c : network.signal_columns()) columns.push_back(std::move(c));
@@ -107,7 +108,19 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   const long total_steps = static_cast<long>(std::ceil(end / T - 1e-9));
   const double sample_period = 1.0 / options.output_rate;
   const long total_samples = static_cast<long>(std::floor(end / sample_period + 1e-9)) + 1;
-  result.trajectory.reserve_rows(static_cast<int>(total_samples));
+  // Rows go to the sink in blocks of kBlockRows (one buffer, reused), or into the trajectory.
+  constexpr std::size_t kBlockRows = 256;
+  std::vector<double> block;
+  std::size_t block_rows = 0;
+  if (sink != nullptr) {
+    block.resize(kBlockRows * columns.size());
+  } else {
+    result.trajectory.reserve_rows(static_cast<int>(total_samples));
+  }
+  auto flush = [&] {
+    if (block_rows > 0) sink->write(block.data(), block_rows, columns.size());
+    block_rows = 0;
+  };
 
   auto stepper = make_stepper(options.integrator, network.state_dim(), T, options.tolerance);
   Vec x = network.initial_state();
@@ -136,7 +149,13 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     if (emitted) {
       for (int c : wrapped) row[c + 1] = unwrap_toward(row[c + 1], last_row[c + 1]);
     }
-    result.trajectory.append(row.data());
+    if (sink != nullptr) {
+      std::copy(row.begin(), row.end(), block.begin() + block_rows * row.size());
+      if (++block_rows == kBlockRows) flush();
+    } else {
+      result.trajectory.append(row.data());
+    }
+    ++result.rows;
     last_row = row;
     emitted = true;
   };
@@ -150,8 +169,17 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
         it != options.stick_thresholds.end() ? it->second : options.default_stick_threshold;
     slipping.push_back(i);
     result.slip_events.push_back({imp.name(), SlipMonitor(threshold)});
-    result.slip_events.back().monitor.observe(0.0, network.slip_velocity(i, x));
   }
+  // Slips at the start of each step come from the step's own first evaluation, which is
+  // at exactly (t, x) for every stepper (Network::capture_slips_next); a stepper that
+  // evaluated elsewhere first is caught by the time and served by the maps instead.
+  auto observe_step_start = [&](double t_start, const Vec& x_start) {
+    const bool captured = network.captured_time() == t_start;
+    for (std::size_t m = 0; m < slipping.size(); ++m) {
+      result.slip_events[m].monitor.observe(
+          t_start, captured ? network.captured_slips()[m] : network.slip_velocity(slipping[m], x_start));
+    }
+  };
 
   InstabilityMonitor monitor(network, options, x);
 
@@ -166,9 +194,11 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   for (long k = 0; t < end; ++k) {
     x_prev = x;
     double h = 0.0;
+    if (!slipping.empty()) network.capture_slips_next();
     try {
       h = stepper->advance(network, t, end - t, x);
     } catch (const std::runtime_error& error) {
+      if (!slipping.empty()) observe_step_start(t, x_prev);
       result.instability = Instability{t, "integrator", error.what()};
       break;
     }
@@ -176,6 +206,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     const double t_now = fixed_step ? ((k + 1 >= total_steps) ? end : (k + 1) * T) : t + h;
     result.steps = k + 1;
     result.evaluations = stepper->evaluations();
+    if (!slipping.empty()) observe_step_start(t, x_prev);
 
     if (!x.allFinite()) {
       result.instability = Instability{t_now, owner_of_non_finite(network, x), "state is not finite"};
@@ -188,10 +219,6 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
         result.instability = std::move(found);
         break;
       }
-    }
-
-    for (std::size_t m = 0; m < slipping.size(); ++m) {
-      result.slip_events[m].monitor.observe(t_now, network.slip_velocity(slipping[m], x));
     }
 
     // Samples that fall in (t, t_now]: interpolate between the signals at both ends.
@@ -218,6 +245,17 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     }
     if (progress && (k + 1) % progress_every == 0) progress(t_now / end);
     t = t_now;
+  }
+  // The last state's slips: no step follows to evaluate them.
+  if (!result.instability) {
+    for (std::size_t m = 0; m < slipping.size(); ++m) {
+      result.slip_events[m].monitor.observe(t, network.slip_velocity(slipping[m], x));
+    }
+  }
+  if (sink != nullptr) {
+    flush();
+    sink->finish();
+    result.trajectory.append(last_row.data());
   }
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -12,6 +12,7 @@
 #include "core/events.hpp"
 #include "core/integrator.hpp"
 #include "core/network.hpp"
+#include "core/row_sink.hpp"
 #include "core/trajectory.hpp"
 
 namespace stiction::core {
@@ -44,7 +45,9 @@ struct Instability {
 };
 
 struct RunResult {
+  // Every row, or with a RowSink only the last one (the rows went to the sink).
   Trajectory trajectory;
+  long rows = 0;  // rows produced
   long steps = 0;
   long evaluations = 0;  // network evaluations (the integrator's cost)
   double wall_seconds = 0.0;
@@ -60,7 +63,9 @@ inline double energy_margin(const RunOptions& options, double initial_energy, do
   return work + options.energy_growth_limit * (std::abs(initial_energy) + work) + 1e-9;
 }
 
+// With a sink, rows go to it in blocks as they are produced (memory independent of the
+// run's length) and the result's trajectory keeps only the last row.
 RunResult simulate(Network& network, const RunOptions& options,
-                   const ProgressCallback& progress = {});
+                   const ProgressCallback& progress = {}, RowSink* sink = nullptr);
 
 }  // namespace stiction::core

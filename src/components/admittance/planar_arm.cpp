@@ -53,13 +53,13 @@ PlanarArm::PlanarArm(std::string name, const PlanarArmParams& params)
     throw std::invalid_argument("planar_arm '" + this->name() + "': rates must have " +
                                 std::to_string(n) + " entries");
   }
-  H_ = Eigen::MatrixXd::Zero(n, n);
-  c_ = Eigen::VectorXd::Zero(n);
-  rhs_ = Eigen::VectorXd::Zero(n);
-  llt_ = Eigen::LLT<Eigen::MatrixXd>(n);  // reserves its n x n factor once
   joints_ = Eigen::Matrix2Xd::Zero(2, n);
   coms_ = Eigen::Matrix2Xd::Zero(2, n);
   accel_ = Eigen::Matrix2Xd::Zero(2, n);
+  for (auto* v : {&aba_.S, &aba_.c, &aba_.pA, &aba_.U}) v->assign(n, Eigen::Vector3d::Zero());
+  aba_.IA.assign(n, Eigen::Matrix3d::Zero());
+  aba_.D.assign(n, 0.0);
+  aba_.u.assign(n, 0.0);
 }
 
 std::vector<std::string> PlanarArm::state_labels() const {
@@ -119,14 +119,9 @@ void PlanarArm::dynamics(core::ConstVecRef theta, core::ConstVecRef omega,
 
 void PlanarArm::derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::VecRef x_dot) const {
   const int n = joint_count();
-  dynamics(x.head(n), x.tail(n), H_, c_);
-  rhs_ = u_hat - c_;
-  // H is symmetric positive definite for any configuration (masses > 0), so Cholesky
-  // without pivoting is safe; compute() reuses the storage reserved in the constructor.
-  llt_.compute(H_);
-  llt_.solveInPlace(rhs_);
+  // O(n) (planar_arm_aba.cpp) instead of building H and factoring it, O(n^2) and O(n^3).
+  forward_dynamics(x.head(n), x.tail(n), u_hat, x_dot.tail(n));
   x_dot.head(n) = x.tail(n);
-  x_dot.tail(n) = rhs_;
 }
 
 std::vector<core::SignalInfo> PlanarArm::signals() const {
@@ -139,9 +134,7 @@ void PlanarArm::write_signals(core::ConstVecRef x, core::VecRef out) const { out
 
 double PlanarArm::energy(core::ConstVecRef x) const {
   const int n = joint_count();
-  dynamics(x.head(n), x.tail(n), H_, c_);
-  rhs_.noalias() = H_ * x.tail(n);
-  return 0.5 * x.tail(n).dot(rhs_);
+  return kinetic_energy(x.head(n), x.tail(n));
 }
 
 }  // namespace stiction::components
