@@ -1,6 +1,6 @@
 // Ratios printed by bench_step (issue 13): the run loop against the bare step, and the
-// planar arm's cost exponent. Each is the median of a few repeats, on whatever else the
-// machine is doing, so read them as ratios measured in one process, not absolute times.
+// planar arm's cost exponent. Times are the thread's CPU time, the least of a few repeats
+// (other processes only add time), and the figures are ratios measured in one process.
 #pragma once
 
 namespace stiction::bench {

@@ -173,11 +173,15 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   // Slips at the start of each step come from the step's own first evaluation, which is
   // at exactly (t, x) for every stepper (Network::capture_slips_next); a stepper that
   // evaluated elsewhere first is caught by the time and served by the maps instead.
-  auto observe_step_start = [&](double t_start, const Vec& x_start) {
+  // `x_start` is null when the loop did not keep the step's start state (below).
+  bool capture_works = true;  // until a step's first evaluation was not at its start
+  auto observe_step_start = [&](double t_start, const Vec* x_start) {
     const bool captured = network.captured_time() == t_start;
+    if (!captured) capture_works = false;
+    if (!captured && x_start == nullptr) return;  // (only after the first step; see keep_prev)
     for (std::size_t m = 0; m < slipping.size(); ++m) {
       result.slip_events[m].monitor.observe(
-          t_start, captured ? network.captured_slips()[m] : network.slip_velocity(slipping[m], x_start));
+          t_start, captured ? network.captured_slips()[m] : network.slip_velocity(slipping[m], *x_start));
     }
   };
 
@@ -192,13 +196,23 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
 
   double t = 0.0;
   for (long k = 0; t < end; ++k) {
-    x_prev = x;
+    // The step's start state is copied only when something will read it (with 100 bodies the
+    // copy is a few percent of the step): the monitor's check, a sample strictly inside the
+    // step (interpolated), a variable step, and slips when the stepper's first evaluation is
+    // not at the start (checked on the first step).
+    const double t_next = fixed_step ? ((k + 1 >= total_steps) ? end : (k + 1) * T) : end;
+    const double next_sample = static_cast<double>(sample) * sample_period;
+    const bool keep_prev =
+        !fixed_step || k == 0 || !capture_works || (k + 1) % kMonitorEvery == 0 || t_next >= end ||
+        (sample < total_samples && next_sample <= t_next + 1e-9 * T &&
+         (next_sample - t) / (t_next - t) <= 1.0 - 1e-9);
+    if (keep_prev) x_prev = x;
     double h = 0.0;
     if (!slipping.empty()) network.capture_slips_next();
     try {
       h = stepper->advance(network, t, end - t, x);
     } catch (const std::runtime_error& error) {
-      if (!slipping.empty()) observe_step_start(t, x_prev);
+      if (!slipping.empty()) observe_step_start(t, keep_prev ? &x_prev : nullptr);
       result.instability = Instability{t, "integrator", error.what()};
       break;
     }
@@ -206,7 +220,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     const double t_now = fixed_step ? ((k + 1 >= total_steps) ? end : (k + 1) * T) : t + h;
     result.steps = k + 1;
     result.evaluations = stepper->evaluations();
-    if (!slipping.empty()) observe_step_start(t, x_prev);
+    if (!slipping.empty()) observe_step_start(t, keep_prev ? &x_prev : nullptr);
 
     if (!x.allFinite()) {
       result.instability = Instability{t_now, owner_of_non_finite(network, x), "state is not finite"};
@@ -235,6 +249,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
         emit(ts, row_now);
       } else {
         if (!have_prev) {
+          if (!keep_prev) throw std::logic_error("simulate: a sample inside a step without its start");
           network.write_signals(t, x_prev, T, row_prev);
           for (int c : wrapped) row_now[c] = unwrap_toward(row_now[c], row_prev[c]);
           have_prev = true;
