@@ -8,6 +8,8 @@ n=${1:-1000}
 bin=${2:-build/src/app/stiction}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+cp "$bin" "$work/stiction"  # a rebuild during the benchmark must not change the binary
+bin=$work/stiction
 now() { date +%s.%N; }
 
 start=$(now)
@@ -21,7 +23,7 @@ start=$(now)
 i=0
 while read -r mu; do
   "$bin" run sphere_roll --no-video --no-plots --quiet --set "impedances.ground.mu=$mu" \
-      --out "$work/run" || true
+      --out "$work/run"
   i=$((i + 1))
 done < "$work/values"
 runs=$(awk "BEGIN { print $(now) - $start }")
