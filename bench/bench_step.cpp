@@ -4,9 +4,11 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "core/integrator.hpp"
 #include "fused_sphere.hpp"
+#include "loop_cost.hpp"
 #include "scene/scene.hpp"
 
 using namespace stiction;
@@ -128,6 +130,12 @@ BENCHMARK(dynamic_rk4_fused_stage);
 
 int main(int argc, char** argv) {
   check_fused_matches_network();
+  // --ratios-only: just the loop and arm figures of issue 13 (README, Performance).
+  bool ratios_only = false;
+  for (int i = 1; i < argc; ++i) ratios_only |= std::string(argv[i]) == "--ratios-only";
+  stiction::bench::print_loop_ratios();
+  stiction::bench::print_arm_exponents();
+  if (ratios_only) return 0;
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -74,8 +74,29 @@ struct VerifyArguments {
   bool quiet = false;
 };
 
+// `stiction sweep SCENE --vary KEY=LIST...` (src/app/sweep.hpp, docs/sweeps.md).
+struct SweepArguments {
+  std::string scene;
+  std::vector<std::string> vary;       // KEY=LIST, one per key
+  bool zip = false;
+  int jobs = 0;                        // 0: every core
+  std::string keep = "summary";        // none | summary | all
+  std::vector<std::string> record;     // signals whose final value is tabled (default all)
+  std::vector<std::string> plot;       // table columns plotted (default: the stick times)
+  std::string out;                     // empty: out/<scene name>/sweep/
+  std::string shard;                   // K/N; empty: from SLURM_ARRAY_* or none
+  std::string merge;                   // a directory of shards to merge instead of running
+  std::vector<std::string> overrides;  // --set, applied to every point before its values
+  std::optional<std::string> integrator;
+  std::optional<double> dt;
+  std::optional<double> duration;
+  std::optional<double> tolerance;
+  bool quiet = false;
+};
+
 int run_command(const RunArguments& args);
 int verify_command(const VerifyArguments& args);
+int sweep_command(const SweepArguments& args);
 int study_command(const StudyArguments& args);
 int compare_command(const CompareArguments& args);
 // Validates a scene, prints its state layout, the stiffest elements and the predicted

@@ -154,6 +154,41 @@ int dispatch(int argc, char** argv) {
       ->check(CLI::Range(1, 256));
   verify->add_flag("--quiet", verify_args.quiet, "print nothing but errors and the verdict");
 
+  app::SweepArguments sweep_args;
+  double sweep_dt = 0.0, sweep_duration = 0.0;
+  CLI::App* sweep = cli.add_subcommand(
+      "sweep", "run a scene over a grid of --set values; writes sweep.csv, sweep.md, sweep.png");
+  sweep->add_option("SCENE", sweep_args.scene, "bundled scene name or path to a .toml file");
+  sweep->add_option("--vary", sweep_args.vary,
+                    "KEY=v1,v2,... or KEY=start:stop:count[:log] (repeatable: a grid)")
+      ->allow_extra_args(false);
+  sweep->add_flag("--zip", sweep_args.zip, "pair the --vary lists element-wise instead of a grid");
+  sweep->add_option("-j,--jobs", sweep_args.jobs, "threads (default: every core)")
+      ->check(CLI::Range(1, 4096));
+  sweep->add_option("--keep", sweep_args.keep, "per-point outputs: none, summary (default) or all")
+      ->check(CLI::IsMember({"none", "summary", "all"}));
+  sweep->add_option("--record", sweep_args.record,
+                    "comma-separated signals whose final value is tabled (default: all)")
+      ->delimiter(',');
+  sweep->add_option("--plot", sweep_args.plot,
+                    "comma-separated table columns to plot (default: the stick times)")
+      ->delimiter(',');
+  sweep->add_option("--out", sweep_args.out, "output directory (default out/<scene name>/sweep/)");
+  sweep->add_option("--shard", sweep_args.shard,
+                    "K/N: run points K, K+N, ... (default from SLURM_ARRAY_TASK_ID/COUNT)");
+  sweep->add_option("--merge", sweep_args.merge, "merge the sweep.shard-K.csv of DIR into sweep.csv");
+  sweep->add_option("--set", sweep_args.overrides,
+                    "KEY=VALUE: set a dotted key of the scene for every point (repeatable)")
+      ->allow_extra_args(false);
+  CLI::Option* sweep_dt_opt =
+      sweep->add_option("--dt", sweep_dt, "step size in s, overrides simulation.dt")
+          ->check(CLI::PositiveNumber);
+  CLI::Option* sweep_duration_opt =
+      sweep->add_option("--duration", sweep_duration, "simulated time in s")->check(CLI::PositiveNumber);
+  bool sweep_no_video = false;  // a sweep never renders; accepted so `run` lines carry over
+  sweep->add_flag("--no-video", sweep_no_video, "accepted for symmetry with run (a sweep never renders)");
+  sweep->add_flag("--quiet", sweep_args.quiet, "print nothing but errors");
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -176,6 +211,11 @@ int dispatch(int argc, char** argv) {
     return app::compare_command(compare_args);
   }
   if (*verify) return app::verify_command(verify_args);
+  if (*sweep) {
+    if (sweep_dt_opt->count() > 0) sweep_args.dt = sweep_dt;
+    if (sweep_duration_opt->count() > 0) sweep_args.duration = sweep_duration;
+    return app::sweep_command(sweep_args);
+  }
   if (*study) {
     if (reference_dt_opt->count() > 0) study_args.reference_dt = reference_dt;
     return app::study_command(study_args);

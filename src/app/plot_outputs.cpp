@@ -15,6 +15,7 @@ std::vector<plot::PlotEvent> plot_events(const core::RunResult& result) {
 
 std::vector<std::filesystem::path> write_run_plots(const std::vector<plot::PlotSpec>& specs,
                                                    const core::RunResult& result,
+                                                   const core::Trajectory& rows,
                                                    const std::filesystem::path& dir,
                                                    std::optional<plot::Format> format) {
   const std::vector<plot::PlotEvent> events = plot_events(result);
@@ -22,7 +23,7 @@ std::vector<std::filesystem::path> write_run_plots(const std::vector<plot::PlotS
   for (const plot::PlotSpec& spec : specs) {
     if (sys::interrupted()) break;  // the run reports the plots written so far
     const std::filesystem::path path = plot::plot_path(spec, dir, format);
-    plot::write_plot(spec, result.trajectory, events, path,
+    plot::write_plot(spec, rows, events, path,
                      format.value_or(spec.format.value_or(plot::Format::png)));
     written.push_back(path);
   }

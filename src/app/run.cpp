@@ -16,6 +16,7 @@
 #include "app/progress.hpp"
 #include "app/render_loader.hpp"
 #include "app/run_support.hpp"
+#include "app/streamed_rows.hpp"
 #include "app/verify_settings.hpp"
 #include "core/column_info.hpp"
 #include "core/simulation.hpp"
@@ -38,6 +39,7 @@ namespace fs = std::filesystem;
 namespace {
 
 render::RenderResult write_video(const scene::Scene& scene, const core::RunResult& result,
+                                 const core::Trajectory& rows,
                                  const render::RenderSettings& settings, const fs::path& out,
                                  bool video, bool frames, bool progress) {
   std::unique_ptr<ProgressBar> bar;
@@ -55,7 +57,7 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
       bar->frames(p.frames_done, p.frame_count, p.frames_per_second, p.eta_seconds);
     };
   }
-  render::RenderResult rendered = render_outputs_on_demand(scene, result.trajectory, settings, request);
+  render::RenderResult rendered = render_outputs_on_demand(scene, rows, settings, request);
   if (bar && !rendered.interrupted) bar->finish(std::to_string(rendered.frames) + " frames");
   return rendered;
 }
@@ -81,9 +83,14 @@ int run_command(const RunArguments& args) {
   if (sys::interrupted()) return interrupted_exit(args.quiet, "load", {});
   OutputDirectory out(args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out));
 
+  // Streaming: rows go to trajectory.csv as they are produced; plots and the video get
+  // thinned copies (StreamedRows), so memory does not grow with the run's length.
+  const bool video_or_frames = !args.no_video || args.frames;
+  StreamedRows rows(out / "trajectory.csv", columns, run, render_settings, !args.no_plots,
+                    video_or_frames);
   const bool progress = show_progress(args.quiet);
   scene.run.stop = &sys::interrupt_flag();
-  const core::RunResult result = simulate_scene(scene, progress);
+  const core::RunResult result = simulate_scene(scene, progress, &rows.sink());
 
   io::RunDescription description;
   description.scene = scene.name;
@@ -101,7 +108,7 @@ int run_command(const RunArguments& args) {
   description.columns = core::column_infos(*scene.network);
 
   auto summary = io::make_summary(description, result);
-  io::write_csv(result.trajectory, out / "trajectory.csv");
+  rows.commit_csv();  // the rows up to the last complete one, also when interrupted
   out.wrote(out / "trajectory.csv");
   const double time_reached =
       result.trajectory.row_count() > 0 ? result.trajectory.at(result.trajectory.row_count() - 1, 0) : 0.0;
@@ -128,7 +135,7 @@ int run_command(const RunArguments& args) {
   }
   if (!args.quiet) {
     std::printf("%s: %s, dt = %g s, %ld steps, %d rows in %.3f s\n", scene.name.c_str(),
-                run.integrator.c_str(), run.dt, result.steps, result.trajectory.row_count(),
+                run.integrator.c_str(), run.dt, result.steps, static_cast<int>(result.rows),
                 result.wall_seconds);
     for (const std::string& line : event_lines(summary["events"])) std::printf("  %s\n", line.c_str());
     std::printf("  wrote %s and %s\n", (out / "trajectory.csv").c_str(), (out / "summary.json").c_str());
@@ -138,7 +145,7 @@ int run_command(const RunArguments& args) {
   if (!args.no_plots) {
     try {
       const std::vector<fs::path> plots =
-          write_run_plots(plot_specs, result, out / "plots", args.plot_format);
+          write_run_plots(plot_specs, result, rows.for_plots(), out / "plots", args.plot_format);
       for (const fs::path& p : plots) out.wrote(p);
       if (sys::interrupted()) {
         write_summary("plots");
@@ -163,7 +170,7 @@ int run_command(const RunArguments& args) {
   if (!args.no_video || args.frames) {
     render::RenderResult rendered;
     try {
-      rendered = write_video(scene, result, render_settings, out.path(), !args.no_video, args.frames,
+      rendered = write_video(scene, result, rows.for_video(), render_settings, out.path(), !args.no_video, args.frames,
                              progress);
     } catch (const scene::InputError&) {
       throw;  // exit 2, message already located

@@ -41,7 +41,7 @@ void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
 // A bar on a terminal, plain lines in a log (ProgressBar decides); nothing with --quiet.
 bool show_progress(bool quiet) { return !quiet; }
 
-core::RunResult simulate_scene(scene::Scene& scene, bool progress) {
+core::RunResult simulate_scene(scene::Scene& scene, bool progress, core::RowSink* sink) {
   std::unique_ptr<ProgressBar> bar;
   core::ProgressCallback callback;
   if (progress) {
@@ -49,7 +49,7 @@ core::RunResult simulate_scene(scene::Scene& scene, bool progress) {
     const double duration = scene.run.duration;
     callback = [&bar, duration](double fraction) { bar->simulation(fraction, duration); };
   }
-  core::RunResult result = core::simulate(*scene.network, scene.run, callback);
+  core::RunResult result = core::simulate(*scene.network, scene.run, callback, sink);
   if (bar) bar->finish(result.instability ? "unstable" : std::to_string(result.steps) + " steps");
   return result;
 }

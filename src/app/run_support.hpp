@@ -29,7 +29,8 @@ void apply_overrides(scene::Scene& scene, const RunOverrides& overrides);
 bool show_progress(bool quiet);
 
 // core::simulate with a progress bar on stderr when `progress` is set.
-core::RunResult simulate_scene(scene::Scene& scene, bool progress);
+// With a sink, rows stream to it (core::simulate).
+core::RunResult simulate_scene(scene::Scene& scene, bool progress, core::RowSink* sink = nullptr);
 
 // "<impedance>.stick_time" -> first stick time, for every element that stuck, and
 // "<impedance>.slip_time" -> first slip time, for every element that slipped.

@@ -13,6 +13,7 @@
 #include "core/events.hpp"
 #include "core/integrator.hpp"
 #include "core/network.hpp"
+#include "core/row_sink.hpp"
 #include "core/trajectory.hpp"
 
 namespace stiction::core {
@@ -50,7 +51,9 @@ struct Instability {
 };
 
 struct RunResult {
+  // Every row, or with a RowSink only the last one (the rows went to the sink).
   Trajectory trajectory;
+  long rows = 0;  // rows produced
   long steps = 0;
   long evaluations = 0;  // network evaluations (the integrator's cost)
   double wall_seconds = 0.0;
@@ -68,8 +71,9 @@ inline double energy_margin(const RunOptions& options, double initial_energy, do
 }
 
 // std::invalid_argument when the options break core/run_limits.hpp (checked before anything
-// is allocated).
+// is allocated). With a sink, rows go to it in blocks as they are produced (memory
+// independent of the run's length) and the result's trajectory keeps only the last row.
 RunResult simulate(Network& network, const RunOptions& options,
-                   const ProgressCallback& progress = {});
+                   const ProgressCallback& progress = {}, RowSink* sink = nullptr);
 
 }  // namespace stiction::core

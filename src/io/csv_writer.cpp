@@ -19,6 +19,8 @@ void append_number(std::string& out, double v) {
   }
 }
 
+void append_row(std::string& out, const double* row, std::size_t columns);
+
 namespace {
 
 void append_header(std::string& out, const core::Trajectory& trajectory) {
@@ -30,21 +32,52 @@ void append_header(std::string& out, const core::Trajectory& trajectory) {
   out += '\n';
 }
 
-void append_row(std::string& out, const core::Trajectory& trajectory, int r) {
-  const double* row = trajectory.row(r);
-  for (int c = 0; c < trajectory.column_count(); ++c) {
+void append_trajectory_row(std::string& out, const core::Trajectory& trajectory, int r) {
+  io::append_row(out, trajectory.row(r), static_cast<std::size_t>(trajectory.column_count()));
+}
+
+constexpr std::size_t kChunk = 1u << 20;
+
+}  // namespace
+
+void append_row(std::string& out, const double* row, std::size_t columns) {
+  for (std::size_t c = 0; c < columns; ++c) {
     if (c > 0) out += ',';
     append_number(out, row[c]);
   }
   out += '\n';
 }
 
-}  // namespace
+CsvStream::CsvStream(const std::filesystem::path& path, const std::vector<std::string>& columns)
+    : file_(std::make_unique<AtomicFile>(path)) {
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    if (c > 0) buffer_ += ',';
+    buffer_ += columns[c];
+  }
+  buffer_ += '\n';
+}
+
+CsvStream::~CsvStream() = default;
+
+void CsvStream::write(const double* rows, std::size_t count, std::size_t columns) {
+  for (std::size_t r = 0; r < count; ++r) append_row(buffer_, rows + r * columns, columns);
+  if (buffer_.size() > kChunk) {
+    file_->write(buffer_);
+    buffer_.clear();
+  }
+}
+
+void CsvStream::commit() {
+  file_->write(buffer_);
+  buffer_.clear();
+  buffer_.shrink_to_fit();
+  file_->commit();
+}
 
 std::string to_csv(const core::Trajectory& trajectory) {
   std::string out;
   append_header(out, trajectory);
-  for (int r = 0; r < trajectory.row_count(); ++r) append_row(out, trajectory, r);
+  for (int r = 0; r < trajectory.row_count(); ++r) append_trajectory_row(out, trajectory, r);
   return out;
 }
 
@@ -54,8 +87,8 @@ void write_csv(const core::Trajectory& trajectory, const std::filesystem::path& 
   std::string chunk;
   append_header(chunk, trajectory);
   for (int r = 0; r < trajectory.row_count(); ++r) {
-    append_row(chunk, trajectory, r);
-    if (chunk.size() > (1u << 20)) {
+    append_trajectory_row(chunk, trajectory, r);
+    if (chunk.size() > kChunk) {
       file.write(chunk);
       chunk.clear();
     }

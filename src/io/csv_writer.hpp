@@ -5,8 +5,11 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "core/row_sink.hpp"
 #include "core/trajectory.hpp"
 
 namespace stiction::io {
@@ -18,5 +21,25 @@ void append_number(std::string& out, double v);
 std::string to_csv(const core::Trajectory& trajectory);
 // Written atomically; IoError on failure.
 void write_csv(const core::Trajectory& trajectory, const std::filesystem::path& path);
+
+// One row as write_csv writes it (with its newline).
+void append_row(std::string& out, const double* row, std::size_t columns);
+
+class AtomicFile;
+
+// trajectory.csv written as simulate() produces the rows (core::RowSink): the same bytes as
+// write_csv, through a text buffer of about 1 MiB, into a temporary file that commit()
+// renames onto `path` (io::AtomicFile). IoError on failure.
+class CsvStream final : public core::RowSink {
+ public:
+  CsvStream(const std::filesystem::path& path, const std::vector<std::string>& columns);
+  ~CsvStream() override;
+  void write(const double* rows, std::size_t count, std::size_t columns) override;
+  void commit();
+
+ private:
+  std::unique_ptr<AtomicFile> file_;
+  std::string buffer_;
+};
 
 }  // namespace stiction::io

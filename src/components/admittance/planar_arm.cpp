@@ -70,13 +70,13 @@ PlanarArm::PlanarArm(std::string name, const PlanarArmParams& params)
     throw std::invalid_argument("planar_arm '" + this->name() + "': rates must have " +
                                 std::to_string(n) + " entries");
   }
-  H_ = Eigen::MatrixXd::Zero(n, n);
-  c_ = Eigen::VectorXd::Zero(n);
-  rhs_ = Eigen::VectorXd::Zero(n);
-  llt_ = Eigen::LLT<Eigen::MatrixXd>(n);  // reserves its n x n factor once
   joints_ = Eigen::Matrix2Xd::Zero(2, n);
   coms_ = Eigen::Matrix2Xd::Zero(2, n);
   accel_ = Eigen::Matrix2Xd::Zero(2, n);
+  for (auto* v : {&aba_.S, &aba_.c, &aba_.pA, &aba_.U}) v->assign(n, Eigen::Vector3d::Zero());
+  aba_.IA.assign(n, Eigen::Matrix3d::Zero());
+  aba_.D.assign(n, 0.0);
+  aba_.u.assign(n, 0.0);
 }
 
 std::vector<std::string> PlanarArm::state_labels() const {
@@ -136,14 +136,9 @@ void PlanarArm::dynamics(core::ConstVecRef theta, core::ConstVecRef omega,
 
 void PlanarArm::derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::VecRef x_dot) const {
   const int n = joint_count();
-  dynamics(x.head(n), x.tail(n), H_, c_);
-  rhs_ = u_hat - c_;
-  // H is symmetric positive definite for any configuration (masses > 0), so Cholesky
-  // without pivoting is safe; compute() reuses the storage reserved in the constructor.
-  llt_.compute(H_);
-  llt_.solveInPlace(rhs_);
+  // O(n) (planar_arm_aba.cpp) instead of building H and factoring it, O(n^2) and O(n^3).
+  forward_dynamics(x.head(n), x.tail(n), u_hat, x_dot.tail(n));
   x_dot.head(n) = x.tail(n);
-  x_dot.tail(n) = rhs_;
 }
 
 std::vector<core::SignalInfo> PlanarArm::signals() const {
@@ -159,14 +154,19 @@ void PlanarArm::write_signals(core::ConstVecRef x, core::VecRef out) const { out
 
 double PlanarArm::energy(core::ConstVecRef x) const {
   const int n = joint_count();
-  dynamics(x.head(n), x.tail(n), H_, c_);
-  rhs_.noalias() = H_ * x.tail(n);
-  double potential = 0.0;  // -sum m_i g . C_i, with C_i = base + x e1 + y e2
+  // Potential energy -sum m_i g . C_i, with C_i = base + x e1 + y e2 (plane coordinates
+  // from the base, built base to tip as in kinetic_energy).
+  double potential = 0.0;
+  Eigen::Vector2d p = Eigen::Vector2d::Zero();
+  double phi = 0.0;
   for (int i = 0; i < n; ++i) {
-    potential -=
-        params_.links[i].mass * (params_.gravity.dot(params_.base) + g_plane_.dot(coms_.col(i)));
+    const ArmLink& l = params_.links[i];
+    phi += x[i];
+    const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+    potential -= l.mass * (params_.gravity.dot(params_.base) + g_plane_.dot(p + l.com * u));
+    p += l.length * u;
   }
-  return 0.5 * x.tail(n).dot(rhs_) + potential;
+  return kinetic_energy(x.head(n), x.tail(n)) + potential;
 }
 
 }  // namespace stiction::components

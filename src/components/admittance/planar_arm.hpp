@@ -13,7 +13,7 @@
 // no step allocates; one arm is evaluated by one thread at a time.
 #pragma once
 
-#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <vector>
 
 #include "core/body.hpp"
@@ -65,6 +65,14 @@ class PlanarArm final : public core::JointSpace {
     u_hat[joint] += torque;
   }
 
+  // Joint accelerations H^-1 (tau - c) in O(n) by the articulated-body algorithm
+  // (planar_arm_aba.cpp); derivative() uses it. Same results, to rounding, as solving with
+  // dynamics() (tested).
+  void forward_dynamics(core::ConstVecRef theta, core::ConstVecRef omega, core::ConstVecRef tau,
+                        core::VecRef qdd) const;
+  // 0.5 omega^T H omega in O(n), from the links' velocities.
+  double kinetic_energy(core::ConstVecRef theta, core::ConstVecRef omega) const;
+
   // Inertia matrix H(theta) and Coriolis/centrifugal vector c(theta, omega) (eq. 8).
   void dynamics(core::ConstVecRef theta, core::ConstVecRef omega, Eigen::Ref<Eigen::MatrixXd> H,
                 core::VecRef c) const;
@@ -78,14 +86,17 @@ class PlanarArm final : public core::JointSpace {
   PlanarArmParams params_;
   core::Vec3 e1_, e2_;       // the plane (see arm_plane)
   Eigen::Vector2d g_plane_;  // gravity in plane coordinates
-  // Scratch for derivative()/energy(), sized once in the constructor.
-  mutable Eigen::MatrixXd H_;
-  mutable Eigen::VectorXd c_;
-  mutable Eigen::VectorXd rhs_;
-  mutable Eigen::LLT<Eigen::MatrixXd> llt_;
+  // Scratch for dynamics(), sized once in the constructor.
   mutable Eigen::Matrix2Xd joints_;  // joint positions P_0..P_{n-1} in the plane
   mutable Eigen::Matrix2Xd coms_;    // centre-of-mass positions C_0..C_{n-1}
   mutable Eigen::Matrix2Xd accel_;   // C_i acceleration at zero joint acceleration
+  // Scratch of the articulated-body algorithm, one entry per link.
+  struct AbaScratch {
+    std::vector<Eigen::Vector3d> S, c, pA, U;
+    std::vector<Eigen::Matrix3d> IA;
+    std::vector<double> D, u;
+  };
+  mutable AbaScratch aba_;
 };
 
 }  // namespace stiction::components
