@@ -112,7 +112,7 @@ class PointRunner {
       std::snprintf(wall, sizeof wall, "%.4g", result.wall_seconds);
       row[base + 2] = wall;
       if (result.instability) {
-        const double dt = suggested_dt(scene);
+        const double dt = suggested_dt(scene).dt;
         row[base] = "unstable";
         row[base + 3] = number_text(dt);
         row[base + 4] = "instability at t = " + number_text(result.instability->time) + " s in '" +
