@@ -7,7 +7,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTICTION_SANITIZE=ON \
-      -DSTICTION_BUILD_BENCH=OFF -DSTICTION_WERROR=ON "$@" >&2
+      -DSTICTION_BUILD_BENCH=OFF "$@" >&2
+# (No -Werror here: GCC 12 under -fsanitize reports false -Wmaybe-uninitialized inside
+# libstdc++'s <regex>; the Release build keeps warnings as errors.)
 cmake --build build-asan -j"$(nproc)" >&2
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1
 export LSAN_OPTIONS="suppressions=$PWD/.ci/lsan.supp:print_suppressions=0"

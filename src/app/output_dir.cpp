@@ -4,7 +4,6 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <regex>
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -31,16 +30,23 @@ bool is_temporary(const std::string& name) {
          name.find(".tmp.") != std::string::npos;
 }
 
+bool is_frame(const std::string& name) {  // NNNNNN.png
+  return name.size() == 10 && name.ends_with(".png") &&
+         std::all_of(name.begin(), name.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
+}
+
+bool is_plot(const std::string& name) {
+  return name.size() > 4 && (name.ends_with(".png") || name.ends_with(".svg") || name.ends_with(".pdf"));
+}
+
 bool run_output(const std::string& dir, const std::string& name) {
-  static const std::regex frame("[0-9]{6}\\.png");
-  static const std::regex plot(".+\\.(png|svg|pdf)");
   if (is_temporary(name)) return true;
   if (dir.empty()) {
     return name == "trajectory.csv" || name == "summary.json" || name == "video.mp4" ||
            name == "video.partial.mp4";
   }
-  if (dir == "frames") return std::regex_match(name, frame);
-  if (dir == "plots") return std::regex_match(name, plot);
+  if (dir == "frames") return is_frame(name);
+  if (dir == "plots") return is_plot(name);
   return false;
 }
 
