@@ -28,7 +28,10 @@ std::string format_number(double v) {
 
 }  // namespace
 
-double number_or_infinity(const toml::node& node, const std::string& what) {
+namespace {
+
+// The number as it is (integers only up to 2^53), NaN and infinities included.
+double any_number(const toml::node& node, const std::string& what) {
   constexpr std::int64_t kExact = std::int64_t{1} << 53;
   if (const auto* i = node.as_integer()) {
     const std::int64_t v = i->get();
@@ -41,13 +44,19 @@ double number_or_infinity(const toml::node& node, const std::string& what) {
   }
   const auto* f = node.as_floating_point();
   if (f == nullptr) throw InputError::at(node.source(), what + ": expected a number, got " + describe(node));
-  const double v = f->get();
-  if (std::isnan(v)) throw InputError::at(node.source(), what + ": expected a number, got nan");
+  return f->get();
+}
+
+}  // namespace
+
+double number_or_infinity(const toml::node& node, const std::string& what) {
+  const double v = any_number(node, what);
+  if (std::isnan(v)) throw InputError::at(node.source(), what + ": expected a number (inf allowed), got nan");
   return v;
 }
 
 double finite_number(const toml::node& node, const std::string& what) {
-  const double v = number_or_infinity(node, what);
+  const double v = any_number(node, what);
   if (!std::isfinite(v)) throw InputError::at(node.source(), what + ": expected a finite number");
   return v;
 }

@@ -142,12 +142,20 @@ double MovingContact::power_in(ConstVecRef x_hat, ConstVecRef u) const {
 }
 
 std::vector<core::SignalInfo> MovingContact::signals() const {
-  std::vector<core::SignalInfo> out{{"f", core::xyz_axes()},
-                                    {"slip", core::xyz_axes()},
-                                    {"e", core::index_axes(2)},
-                                    {"n_force", {}}};
-  if (motion_.tilt) out.push_back({"angle", {}});
-  if (motion_.belt_speed) out.push_back({"belt_speed", {}});
+  std::vector<core::SignalInfo> out{
+      {.name = "f", .axes = core::xyz_axes(), .unit = "N", .frame = "world",
+       .description = "contact force on the body (normal plus friction)"},
+      {.name = "slip", .axes = core::xyz_axes(), .unit = "m/s", .frame = "world",
+       .description = "velocity of the contact point relative to the moving surface"},
+      {.name = "e", .axes = core::index_axes(2), .unit = "m", .frame = "surface",
+       .description = "elastic displacement of the tangential friction element"},
+      {.name = "n_force", .unit = "N", .description = "normal force magnitude"}};
+  if (motion_.tilt) {
+    out.push_back({.name = "angle", .unit = "rad", .description = "tilt of the surface"});
+  }
+  if (motion_.belt_speed) {
+    out.push_back({.name = "belt_speed", .unit = "m/s", .description = "speed of the belt"});
+  }
   return out;
 }
 
