@@ -21,10 +21,6 @@ class Coupling {
   // state rate, admittance inputs; the coupling knows its slices): views passed by value
   // live on the stack, and every call would read them back from there first.
   virtual void exchange(double t, const double* x, double tau, double* x_dot, double* u_hat) = 0;
-  // The impedance's x_hat as the last exchange() computed it, for couplings that keep it
-  // (nullptr otherwise): the run loop reads slip velocities from it instead of evaluating
-  // the map again (Network::capture_slips_next).
-  virtual const double* last_motion() const { return nullptr; }
 };
 
 }  // namespace stiction::core

@@ -22,7 +22,6 @@ class GenericCoupling final : public Coupling {
                         Eigen::Map<Vec>(x_dot + state_.state_offset, state_.state_size));
     map_.apply(x, u_, Eigen::Map<Vec>(u_hat, input_dim_));
   }
-  const double* last_motion() const override { return x_hat_.data(); }
 
  private:
   const CoordinateMap& map_;
@@ -129,10 +128,7 @@ void Network::finalize() {
           u_.segment(output_offsets_[i], output_sizes_[i]));
     }
     couplings_.push_back(std::move(coupling));
-    if (impedances_[i]->has_slip()) slipping_.push_back(static_cast<int>(i));
   }
-  captured_time_ = std::numeric_limits<double>::quiet_NaN();
-  captured_slips_.assign(slipping_.size(), Vec3::Zero());
   finalized_ = true;
 }
 
@@ -205,21 +201,6 @@ void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
   u_hat_.setZero();
   for (auto& coupling : couplings_) coupling->exchange(t, x.data(), tau, x_dot.data(), u_hat_.data());
   evaluate_admittances(x, x_dot);
-  if (capture_slips_) capture_slips(t, x);
-}
-
-void Network::capture_slips(double t, ConstVecRef x) {
-  capture_slips_ = false;
-  captured_time_ = t;
-  for (std::size_t m = 0; m < slipping_.size(); ++m) {
-    const int i = slipping_[m];
-    const Slot& s = impedance_slots_[i];
-    if (const double* motion = couplings_[i]->last_motion()) {
-      captured_slips_[m] = impedances_[i]->slip_velocity(Eigen::Map<const Vec>(motion, s.input_size));
-    } else {
-      captured_slips_[m] = slip_velocity(i, x);
-    }
-  }
 }
 
 void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,

@@ -61,16 +61,6 @@ class Network {
   // Impedance i's input x_hat at state x (the map's Psi), valid until the next call.
   ConstVecRef impedance_input(int impedance, ConstVecRef x);
 
-  // The next derivative() call also records the slip velocity of every impedance with
-  // has_slip() (in impedance order) and its time, from the x_hat its coupling computed
-  // anyway: the run loop reads slips from the first evaluation of each step (at the step's
-  // start state) instead of evaluating the maps once more. Couplings that do not keep x_hat
-  // (Coupling::last_motion) fall back to slip_velocity().
-  void capture_slips_next() { capture_slips_ = true; }
-  // Time of the evaluation last captured (NaN before any) and its slips.
-  double captured_time() const { return captured_time_; }
-  const std::vector<Vec3>& captured_slips() const { return captured_slips_; }
-
   // Regimes of all impedances at (x; tau) folded into one number: equal numbers mean the
   // same smooth piece of the system (see Impedance::regime).
   std::size_t regime_signature(ConstVecRef x, double tau);
@@ -121,11 +111,6 @@ class Network {
   Vec scratch_dot_;
   Vec zero_input_;
   std::vector<bool> position_slots_;
-  std::vector<int> slipping_;  // impedances with has_slip()
-  bool capture_slips_ = false;
-  double captured_time_ = 0.0;
-  std::vector<Vec3> captured_slips_;
-  void capture_slips(double t, ConstVecRef x);
 };
 
 }  // namespace stiction::core

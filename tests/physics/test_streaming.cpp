@@ -93,26 +93,6 @@ TEST_CASE("streaming: rows sent to a sink equal the rows kept in memory, events 
   }
 }
 
-TEST_CASE("streaming: the slips captured during a step equal the maps' evaluation") {
-  std::mt19937 rng(5);
-  std::normal_distribution<double> n(0.0, 1.0);
-  const testing::SphereCase c = random_sphere(rng);
-  auto net = testing::make_sphere(c);
-  core::Vec x = net->initial_state();
-  core::Vec x_dot(net->state_dim());
-  for (int trial = 0; trial < 20; ++trial) {
-    for (int i = 0; i < x.size(); ++i) x[i] += 0.01 * n(rng);
-    net->project(x);
-    net->capture_slips_next();
-    net->derivative(0.125 * trial, x, 1e-4, x_dot);
-    CHECK(net->captured_time() == 0.125 * trial);
-    const core::Vec3 expected = net->slip_velocity(0, x);
-    CHECK(net->captured_slips()[0] == expected);  // same arithmetic, same bits
-    net->derivative(1.0, x, 1e-4, x_dot);         // without a request nothing is captured
-    CHECK(net->captured_time() == 0.125 * trial);
-  }
-}
-
 TEST_CASE("streaming: the thinned copy keeps evenly spaced rows within its bound") {
   for (std::size_t total : {10u, 999u, 1000u, 1001u, 123457u}) {
     core::DecimatedTrajectory thin({"t", "v"}, 1000);

@@ -24,16 +24,13 @@ class KikuuweContactCoupling final : public core::Coupling {
                       Eigen::Map<const core::Vec>(x + state_.state_offset, state_.state_size), tau,
                       u, Eigen::Map<core::Vec>(x_dot + state_.state_offset, state_.state_size));
     map_.apply_to(body_, at, u, u_hat);
-    last_x_hat_ = x_hat;
   }
-  const double* last_motion() const override { return last_x_hat_.data(); }
 
  private:
   const ContactPointMap& map_;
   const BodyType& body_;
   const KikuuweContact& contact_;
   core::Slot state_;
-  Eigen::Matrix<double, 6, 1> last_x_hat_ = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
 }  // namespace
