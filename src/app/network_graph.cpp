@@ -54,15 +54,17 @@ void write_network_dot(const scene::Scene& scene, const std::filesystem::path& p
         << quoted(imp.name() + "\n" + std::string(imp.type()) + "\nstate " +
                   std::to_string(imp.state_size()))
         << "];\n";
-    // A feedback element's map observes bodies it does not drive: a dotted edge, no force.
+    // A feedback element's map observes bodies and elements it does not drive: a dotted
+    // edge, no force.
     const auto* observing = dynamic_cast<const components::ObservingMap*>(&map);
     const core::CoordinateMap& wiring = observing ? observing->inner() : map;
     if (observing) {
-      std::vector<const core::Admittance*> shown;
+      std::vector<std::string> shown;
       for (const auto& o : observing->observed()) {
-        if (std::find(shown.begin(), shown.end(), o.admittance) != shown.end()) continue;
-        shown.push_back(o.admittance);
-        dot << "  " << quoted(o.admittance->name()) << " -> " << quoted(imp.name())
+        const std::string& from = o.admittance ? o.admittance->name() : o.impedance->name();
+        if (std::find(shown.begin(), shown.end(), from) != shown.end()) continue;
+        shown.push_back(from);
+        dot << "  " << quoted(from) << " -> " << quoted(imp.name())
             << " [style=dotted, label=\"observed\"];\n";
       }
     }

@@ -361,14 +361,22 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     p.initial_e = table.number("initial_e", p.initial_e);
     impedance = construct(table, [&] { return std::make_unique<components::PenaltyJoint>(name, p); });
     map = std::make_unique<components::FramePairMap>(parent, parent_point, *child, point);
-  } else {  // torque_source, force_source (sources.cpp)
-    add_source(table, type, type == "torque_source" ? joint_map() : nullptr, impedance, map);
+  } else {  // torque_source, force_source: built in finish() (sources.cpp)
+    add_source(table, type, type == "torque_source" ? joint_map() : nullptr);
+    table.finish();
+    impedance_types_.emplace(name, type);
+    return;
   }
   // Elements with a slip speed (contacts, joint friction) get stick/slip events.
   if (impedance->has_slip()) stick_thresholds_[name] = table.positive("stick_threshold", 1e-3);
   table.finish();
   impedance_types_.emplace(name, type);
-  network_.add_impedance(std::move(impedance), std::move(map));
+  add_element(std::move(impedance), std::move(map));
+}
+
+void ComponentBuilder::add_element(std::unique_ptr<core::Impedance> impedance,
+                                   std::unique_ptr<core::CoordinateMap> map) {
+  pending_.push_back({std::move(impedance), std::move(map), nullptr});
 }
 
 }  // namespace stiction::scene

@@ -8,12 +8,28 @@
 #include <string>
 #include <vector>
 
+#include "components/maps/observing_map.hpp"
 #include "core/body.hpp"
 #include "core/network.hpp"
 #include "scene/settle.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace stiction::scene {
+
+// A torque_source or force_source as read from its table; wired in ComponentBuilder::finish(),
+// once every signal its expressions may read (any component's, including later ones) is known.
+struct SourceSpec {
+  struct Entry {
+    double constant = 0.0;
+    bool is_expression = false;
+    std::string text{};  // the expression
+    toml::source_region where{};
+    std::string what{};  // its key, for messages
+  };
+  std::string name, type, signal_name;
+  std::unique_ptr<core::CoordinateMap> map;  // what it drives
+  std::vector<Entry> entries;
+};
 
 class ComponentBuilder {
  public:
@@ -26,8 +42,13 @@ class ComponentBuilder {
 
   void add_body(TableReader& table);
   void add_impedance(TableReader& table);
-  // After every component: bodies whose contacts ask for `settle` start in equilibrium.
+  // After every component: wires the sources' expressions, adds the impedances to the
+  // network in file order, and starts the bodies whose contacts ask for `settle` in
+  // equilibrium.
   void finish();
+  // After the network is finalized: tells the maps that observe impedances where those
+  // impedances' states are.
+  void locate_observed();
 
   const std::map<std::string, double>& stick_thresholds() const { return stick_thresholds_; }
 
@@ -43,14 +64,21 @@ class ComponentBuilder {
   void check_name(TableReader& table);
   const BodyInfo& body(TableReader& table, std::string_view key);
   const core::Body* pose_body(TableReader& table, std::string_view key);
-  // The CSV column names of every body's signals: what expressions may use.
-  std::vector<std::string> observable_signals() const;
+  // An impedance to add to the network, in file order; a source is built in finish().
+  struct Pending {
+    std::unique_ptr<core::Impedance> impedance;
+    std::unique_ptr<core::CoordinateMap> map;
+    std::unique_ptr<SourceSpec> source;
+  };
+  void add_element(std::unique_ptr<core::Impedance> impedance,
+                   std::unique_ptr<core::CoordinateMap> map);
   // torque_source and force_source (sources.cpp).
   // `joint`: the joint wiring when `body` is an arm (torque_source), else nullptr.
   void add_source(TableReader& table, const std::string& type,
-                  std::unique_ptr<core::CoordinateMap> joint,
-                  std::unique_ptr<core::Impedance>& impedance,
-                  std::unique_ptr<core::CoordinateMap>& map);
+                  std::unique_ptr<core::CoordinateMap> joint);
+  // Compiles the sources' expressions against every signal of the scene, rejects loops
+  // between sources, and builds them (sources.cpp).
+  void wire_sources();
 
   core::Network& network_;
   core::Vec3 gravity_;
@@ -59,6 +87,9 @@ class ComponentBuilder {
   std::map<std::string, double> stick_thresholds_;
   core::Admittance* clock_ = nullptr;  // time for moving surfaces, made on first use
   std::vector<SettleBody> settle_;     // bodies to start in equilibrium (settle.cpp)
+  std::vector<Pending> pending_;       // impedances not yet in the network
+  // Maps of sources that read elements' outputs (owned by the network).
+  std::vector<components::ObservingMap*> observers_;
 };
 
 }  // namespace stiction::scene

@@ -261,13 +261,16 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     }
     stick_thresholds_[element] = threshold;
     impedance_types_.emplace(element, "kikuuwe_contact");
-    network_.add_impedance(std::move(impedance), std::move(map));
+    add_element(std::move(impedance), std::move(map));
   }
   // The table's own name too, so no other component takes it.
   impedance_types_.emplace(name, "kikuuwe_contact");
 }
 
 void ComponentBuilder::finish() {
+  wire_sources();
+  for (Pending& p : pending_) network_.add_impedance(std::move(p.impedance), std::move(p.map));
+  pending_.clear();
   for (const SettleBody& s : settle_) settle(s, gravity_);
 }
 

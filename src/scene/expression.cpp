@@ -49,7 +49,7 @@ std::string unknown_name_message(const std::string& token,
       ++shown;
     }
   }
-  message += " and the bodies' signals by their CSV column names";
+  message += " and the scene's signals by their CSV column names";
   if (!same.empty()) return message + " (" + component + " has: " + same + ")";
   return message + " (e.g. " + signals.front() + ")";
 }
@@ -58,7 +58,7 @@ std::string unknown_name_message(const std::string& token,
 
 Expression::Expression(const std::string& text, const toml::source_region& where,
                        const std::string& what, const std::vector<std::string>& signals)
-    : text_(text), impl_(std::make_unique<Impl>()) {
+    : text_(text), where_(where), what_(what), impl_(std::make_unique<Impl>()) {
   auto fail = [&](const mu::Parser::exception_type& e) {
     const int pos = std::max(0, static_cast<int>(e.GetPos()));
     const std::string token = e.GetToken();
@@ -112,6 +112,21 @@ Expression::Expression(const std::string& text, const std::vector<std::string>& 
 Expression::~Expression() = default;
 Expression::Expression(Expression&&) noexcept = default;
 Expression& Expression::operator=(Expression&&) noexcept = default;
+
+void Expression::fail_at(const std::string& signal, const std::string& why) const {
+  // The first occurrence of the name as a whole token (not inside a longer name).
+  const std::string chars = kNameChars;
+  std::size_t pos = text_.find(signal);
+  while (pos != std::string::npos) {
+    const std::size_t end = pos + signal.size();
+    const bool starts = pos == 0 || chars.find(text_[pos - 1]) == std::string::npos;
+    const bool ends = end == text_.size() || chars.find(text_[end]) == std::string::npos;
+    if (starts && ends) break;
+    pos = text_.find(signal, pos + 1);
+  }
+  const int column = pos == std::string::npos ? 0 : static_cast<int>(pos);
+  throw InputError::at(inside(where_, column), what_ + ": " + why);
+}
 
 double Expression::evaluate(double t) const {
   impl_->t = t;

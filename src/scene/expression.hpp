@@ -1,5 +1,5 @@
 // An input profile written as an expression (muParser syntax) of time t and, optionally, of
-// named signals of the scene ("-20*(arm.theta.0 - 1) - 2*arm.omega.0"). It is compiled once
+// named signals of the scene ("-20*(arm.theta.0 - 1) - 2*arm.omega.0", "-ground.f.x"). It is compiled once
 // at load time; evaluate() then runs muParser's bytecode, which does not allocate, so a
 // profile can be called inside every stage of a simulation step.
 #pragma once
@@ -34,10 +34,15 @@ class Expression {
   double evaluate(double t) const;
   // values[i] is the value of used_signals()[i].
   double evaluate(double t, const double* values) const;
+  // Throws an InputError at the first place the expression names `signal` (one of
+  // used_signals()): "KEY: why" for an expression that is well formed but cannot be wired.
+  [[noreturn]] void fail_at(const std::string& signal, const std::string& why) const;
 
  private:
   struct Impl;
   std::string text_;
+  toml::source_region where_;
+  std::string what_;
   std::vector<std::string> used_;
   std::unique_ptr<Impl> impl_;  // the parser keeps the addresses of its variables: keep them stable
 };

@@ -1,8 +1,16 @@
 // Sources of the scene: torque_source and force_source, whose values are numbers or
-// expressions of t and of the bodies' signals (feedback). Part of ComponentBuilder; kept
+// expressions of t and of any signal of the scene by its CSV column name: a body's state
+// (feedback) or another element's output (a contact's friction force, a spring's force),
+// evaluated at every integrator stage from the stage state. Part of ComponentBuilder; kept
 // apart from components.cpp because expressions of the state need the observing wiring.
+//
+// Sources are read with their table but built in finish(): an expression may name a
+// component written later in the file. Only sources read other elements' outputs, so an
+// algebraic loop (a source's value depending on itself, directly or through other sources)
+// is a cycle among sources, rejected at the name that closes it.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 
 #include "components/impedance/torque_source.hpp"
@@ -19,46 +27,34 @@ using core::Vec3;
 
 namespace {
 
-// One entry of a source before wiring: a constant or a compiled expression.
-struct Entry {
-  double constant = 0.0;
-  std::shared_ptr<Expression> expression;  // null: the constant
-};
-
-Entry entry_of(const toml::node& node, const std::string& what, TableReader& table,
-               std::string_view key, const std::vector<std::string>& signals) {
-  if (node.is_number()) {
-    return {finite_number(node, table.path() + "." + std::string(key)), nullptr};
-  }
+SourceSpec::Entry entry_of(const toml::node& node, const std::string& what, TableReader& table,
+                           std::string_view key) {
+  if (node.is_number()) return {.constant = finite_number(node, what)};
   if (!node.is_string()) {
-    table.fail(key, "expected a number or an expression (a string) of t and the bodies' signals");
+    table.fail(key, "expected a number or an expression (a string) of t and the scene's signals");
   }
-  return {0.0, std::make_shared<Expression>(node.as_string()->get(), node.source(), what, signals)};
+  return {
+      .is_expression = true, .text = node.as_string()->get(), .where = node.source(), .what = what};
 }
+
+// Where a signal comes from: a column of an admittance, or of the pending impedance `element`.
+struct Column {
+  const core::Admittance* admittance = nullptr;
+  int element = -1;  // index into pending_
+  int entry = 0;     // index among its component's columns
+};
 
 }  // namespace
 
-std::vector<std::string> ComponentBuilder::observable_signals() const {
-  std::vector<std::string> names;
-  for (const auto& a : network_.admittances()) {
-    const auto columns = core::column_names(a->name(), a->signals());
-    names.insert(names.end(), columns.begin(), columns.end());
-  }
-  return names;
-}
-
 void ComponentBuilder::add_source(TableReader& table, const std::string& type,
-                                  std::unique_ptr<core::CoordinateMap> joint,
-                                  std::unique_ptr<core::Impedance>& impedance,
-                                  std::unique_ptr<core::CoordinateMap>& map) {
-  const std::string name = table.path().substr(table.path().rfind('.') + 1);
-  const std::vector<std::string> signals = observable_signals();
-  std::vector<Entry> entries;
-  std::string signal_name;
+                                  std::unique_ptr<core::CoordinateMap> joint) {
+  auto spec = std::make_unique<SourceSpec>();
+  spec->name = table.path().substr(table.path().rfind('.') + 1);
+  spec->type = type;
   if (type == "torque_source") {
-    signal_name = "tau";
-    map = std::move(joint);
-    if (!map) {
+    spec->signal_name = "tau";
+    spec->map = std::move(joint);
+    if (!spec->map) {
       const core::Body* child = pose_body(table, "body");
       const core::Body* parent = table.has("parent") ? pose_body(table, "parent") : nullptr;
       if (!child->can_rotate() || (parent != nullptr && !parent->can_rotate())) {
@@ -67,20 +63,20 @@ void ComponentBuilder::add_source(TableReader& table, const std::string& type,
       if (parent == child) table.fail("parent", "must differ from `body`");
       const Vec3 axis = table.vec3("axis", Vec3::UnitZ());
       if (!(axis.norm() > 1e-12)) table.fail("axis", "must be a non-zero vector");
-      map = std::make_unique<AxisTorqueMap>(*child, parent, axis.normalized());
+      spec->map = std::make_unique<AxisTorqueMap>(*child, parent, axis.normalized());
     }
     const toml::node* node = table.node("torque");
     if (node == nullptr) table.fail("torque", "missing (a number or an expression is required)");
-    entries.push_back(entry_of(*node, table.path() + ".torque", table, "torque", signals));
+    spec->entries.push_back(entry_of(*node, table.path() + ".torque", table, "torque"));
   } else {  // force_source
-    signal_name = "f";
+    spec->signal_name = "f";
     const core::Body* body = pose_body(table, "body");
     const Vec3 point = table.vec3("point", Vec3::Zero());
     const std::string frame = table.string("frame", "world");
     if (frame == "world") {
-      map = std::make_unique<components::PointMap>(*body, point, nullptr, Vec3::Zero());
+      spec->map = std::make_unique<components::PointMap>(*body, point, nullptr, Vec3::Zero());
     } else if (frame == "body") {
-      map = std::make_unique<components::BodyFramePointMap>(*body, point);
+      spec->map = std::make_unique<components::BodyFramePointMap>(*body, point);
     } else {
       table.fail("frame", "expected \"world\" or \"body\", got \"" + frame + "\"");
     }
@@ -91,53 +87,160 @@ void ComponentBuilder::add_source(TableReader& table, const std::string& type,
       table.fail("force", "expected an array of 3 entries (numbers or expressions), [fx, fy, fz]");
     }
     for (std::size_t i = 0; i < 3; ++i) {
-      entries.push_back(entry_of(*array->get(i), table.path() + ".force[" + std::to_string(i) + "]",
-                                 table, "force", signals));
+      spec->entries.push_back(entry_of(
+          *array->get(i), table.path() + ".force[" + std::to_string(i) + "]", table, "force"));
     }
+  }
+  pending_.push_back({nullptr, nullptr, std::move(spec)});
+}
+
+void ComponentBuilder::wire_sources() {
+  // A source's columns, from a source of the same shape (its signals do not depend on its law).
+  auto source_columns = [](const SourceSpec& spec) {
+    std::vector<components::TorqueSource::StateProfile> zero(
+        spec.entries.size(), [](double, const double*) { return 0.0; });
+    const components::TorqueSource shape(spec.name, std::move(zero), 0, spec.signal_name,
+                                         spec.type);
+    return core::column_names(shape.name(), shape.signals());
+  };
+  // Every signal of the scene by its CSV column name.
+  std::vector<std::string> names;
+  std::map<std::string, Column> columns;
+  auto add = [&](const std::vector<std::string>& component, Column where) {
+    for (const auto& c : component) {
+      names.push_back(c);
+      columns[c] = where;
+      ++where.entry;
+    }
+  };
+  for (const auto& a : network_.admittances())
+    add(core::column_names(a->name(), a->signals()), {a.get()});
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    const Pending& p = pending_[i];
+    add(p.source ? source_columns(*p.source)
+                 : core::column_names(p.impedance->name(), p.impedance->signals()),
+        {nullptr, static_cast<int>(i)});
   }
 
-  // The signals the expressions use, once each: the map observes them from the stage state.
-  std::vector<std::string> observed;
-  for (const Entry& e : entries) {
-    if (!e.expression) continue;
-    for (const auto& s : e.expression->used_signals()) {
-      if (std::find(observed.begin(), observed.end(), s) == observed.end()) observed.push_back(s);
+  // Compile every source's expressions; note which sources each one reads.
+  std::vector<std::vector<std::shared_ptr<Expression>>> expressions(pending_.size());
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    if (!pending_[i].source) continue;
+    for (const auto& e : pending_[i].source->entries) {
+      expressions[i].push_back(
+          e.is_expression ? std::make_shared<Expression>(e.text, e.where, e.what, names) : nullptr);
     }
   }
-  std::vector<components::TorqueSource::StateProfile> profiles;
-  for (const Entry& e : entries) {
-    if (!e.expression) {
-      profiles.emplace_back([v = e.constant](double, const double*) { return v; });
-      continue;
+  // The first source `i` reads and the name it reads it by, for each source it reads.
+  auto reads = [&](std::size_t i) {
+    std::vector<std::pair<int, std::pair<const Expression*, std::string>>> out;
+    for (const auto& e : expressions[i]) {
+      if (!e) continue;
+      for (const auto& s : e->used_signals()) {
+        const int j = columns.at(s).element;
+        if (j < 0 || !pending_[j].source) continue;
+        if (std::none_of(out.begin(), out.end(), [&](const auto& o) { return o.first == j; }))
+          out.push_back({j, {e.get(), s}});
+      }
     }
-    // Where the expression's values sit among the observed ones; gathered into a buffer
-    // sized here, so a stage evaluation does not allocate.
-    std::vector<int> index;
-    for (const auto& s : e.expression->used_signals()) {
-      index.push_back(
-          static_cast<int>(std::find(observed.begin(), observed.end(), s) - observed.begin()));
+    return out;
+  };
+
+  // Build in dependency order (a source after those it reads), rejecting cycles.
+  enum class Mark { none, building, built };
+  std::vector<Mark> mark(pending_.size(), Mark::none);
+  std::vector<int> path;  // the sources being built, outermost first
+  auto build = [&](auto& self, int i) -> void {
+    mark[i] = Mark::building;
+    path.push_back(i);
+    for (const auto& [j, by] : reads(i)) {
+      if (mark[j] == Mark::built) continue;
+      if (mark[j] == Mark::building) {
+        const std::string& name = pending_[i].source->name;
+        if (j == i) {
+          by.first->fail_at(by.second, "'" + by.second + "' is the output of this source ('" +
+                                           name +
+                                           "'): a source may not read its own value (an "
+                                           "algebraic loop)");
+        }
+        std::string chain;
+        for (auto k = std::find(path.begin(), path.end(), j); k != path.end(); ++k)
+          chain += pending_[*k].source->name + " -> ";
+        by.first->fail_at(by.second, "'" + by.second + "' is the output of source '" +
+                                         pending_[j].source->name +
+                                         "', which reads this source's value: an algebraic loop (" +
+                                         chain + pending_[j].source->name +
+                                         "); a source may not depend on its own value");
+      }
+      self(self, j);
     }
-    auto buffer = std::make_shared<std::vector<double>>(index.size());
-    profiles.emplace_back(
-        [expression = e.expression, index, buffer](double t, const double* values) {
-          for (std::size_t k = 0; k < index.size(); ++k) (*buffer)[k] = values[index[k]];
-          return expression->evaluate(t, buffer->data());
-        });
+    SourceSpec& spec = *pending_[i].source;
+    // The signals the expressions use, once each: the map observes them from the stage state.
+    std::vector<std::string> observed;
+    for (const auto& e : expressions[i]) {
+      if (!e) continue;
+      for (const auto& s : e->used_signals()) {
+        if (std::find(observed.begin(), observed.end(), s) == observed.end()) observed.push_back(s);
+      }
+    }
+    std::vector<components::TorqueSource::StateProfile> profiles;
+    for (std::size_t k = 0; k < spec.entries.size(); ++k) {
+      const auto& e = expressions[i][k];
+      if (!e) {
+        profiles.emplace_back([v = spec.entries[k].constant](double, const double*) { return v; });
+        continue;
+      }
+      // Where the expression's values sit among the observed ones; gathered into a buffer
+      // sized here, so a stage evaluation does not allocate.
+      std::vector<int> index;
+      for (const auto& s : e->used_signals()) {
+        index.push_back(
+            static_cast<int>(std::find(observed.begin(), observed.end(), s) - observed.begin()));
+      }
+      auto buffer = std::make_shared<std::vector<double>>(index.size());
+      profiles.emplace_back([expression = e, index, buffer](double t, const double* values) {
+        for (std::size_t n = 0; n < index.size(); ++n) (*buffer)[n] = values[index[n]];
+        return expression->evaluate(t, buffer->data());
+      });
+    }
+    std::unique_ptr<core::CoordinateMap> map = std::move(spec.map);
+    int raw = 0;
+    components::TorqueSource::Observer observer;
+    if (!observed.empty()) {
+      std::vector<components::ObservingMap::Observed> wiring;
+      for (const auto& s : observed) {
+        const Column& c = columns.at(s);
+        if (c.admittance) {
+          wiring.push_back({.admittance = c.admittance, .entry = c.entry});
+        } else {
+          wiring.push_back({.impedance = pending_[c.element].impedance.get(),
+                            .map = pending_[c.element].map.get(),
+                            .entry = c.entry});
+        }
+      }
+      auto observing =
+          std::make_unique<components::ObservingMap>(std::move(map), std::move(wiring));
+      raw = observing->raw_size();
+      observer = [m = observing.get()](double t, double tau, const double* entries) {
+        return m->values(t, tau, entries);
+      };
+      observers_.push_back(observing.get());
+      map = std::move(observing);
+    }
+    pending_[i].impedance = std::make_unique<components::TorqueSource>(
+        spec.name, std::move(profiles), raw, spec.signal_name, spec.type, std::move(observer));
+    pending_[i].map = std::move(map);
+    pending_[i].source.reset();
+    mark[i] = Mark::built;
+    path.pop_back();
+  };
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    if (pending_[i].source && mark[i] == Mark::none) build(build, static_cast<int>(i));
   }
-  if (!observed.empty()) {
-    std::vector<components::ObservingMap::Observed> wiring;
-    for (const auto& s : observed) {
-      const std::string component = s.substr(0, s.find('.'));
-      const core::Admittance* a = network_.find_admittance(component);
-      const auto columns = core::column_names(a->name(), a->signals());
-      const int entry =
-          static_cast<int>(std::find(columns.begin(), columns.end(), s) - columns.begin());
-      wiring.push_back({a, entry});
-    }
-    map = std::make_unique<components::ObservingMap>(std::move(map), std::move(wiring));
-  }
-  impedance = std::make_unique<components::TorqueSource>(
-      name, std::move(profiles), static_cast<int>(observed.size()), signal_name, type);
+}
+
+void ComponentBuilder::locate_observed() {
+  for (components::ObservingMap* m : observers_) m->locate(network_);
 }
 
 }  // namespace stiction::scene

@@ -150,42 +150,79 @@ TEST_CASE("box on generated slopes: acceleration within 0.5% of the closed form"
 }
 
 namespace {
-// A tall box (0.2 x 0.2 x 0.4 m, 1 kg) settled on a floor with mu = 1, pushed along +x at
-// the middle of its back face's upper part (0.35 m above the floor) by a nearly constant
-// force: a spring of 1e-3 N/m stretched by F / k. It tips about its front edge when
-// F h > m g w / 2, i.e. F > 2.8 N. Returns the largest tilt of its z axis (rad) over 2 s.
-double tip_angle(double force) {
-  const double k = 1e-3;
-  const std::string text = std::string(
-                               "[simulation]\ndt = 1e-4\nduration = 2.0\noutput_rate = 100.0\n"
-                               "[bodies.tall]\ntype = \"rigid_body\"\nshape = \"box\"\nmass = "
-                               "1.0\nsize = [0.2, 0.2, 0.4]\n"
-                               "position = [0.0, 0.0, 0.2]\n"
-                               "[impedances.floor]\ntype = \"kikuuwe_contact\"\nbody = "
-                               "\"tall\"\nstiffness = 1e6\ndamping = 1000.0\n"
-                               "mu = 1.0\nsettle = true\n"
-                               "[impedances.push]\ntype = \"spring_damper\"\nbody = "
-                               "\"tall\"\npoint = [-0.1, 0.0, 0.15]\n"
-                               "other_point = [0.0, 0.0, 0.0]\nstiffness = ") +
-                           num(k) + "\nrest = [" + num(-0.1 - force / k) + ", 0.0, 0.35]\n";
+// A box of mass m, width w along x (depth d along y), height H, settled on a floor with
+// friction mu, pushed along +x by a force_source at a point of its back face at height h
+// above the floor: a world-frame horizontal force that follows the point as the box turns,
+// ramped up smoothly over 0.3 s to F and then held. It tips about its front edge when the
+// force's moment there exceeds the weight's, F h > m g w / 2.
+struct Tipping {
+  double m, w, d, H, h, mu;
+  double threshold() const { return m * 9.8 * (0.5 * w) / h; }
+};
+
+struct Tilt {
+  double tilt = 0.0;       // largest tilt of the box's z axis (rad)
+  double edge_slip = 0.0;  // largest motion of the front bottom edge along x while tilted < 10 deg
+};
+
+Tilt tip(const Tipping& b, double force, double duration) {
+  const double k = 1e6, damping = 2.0 * std::sqrt(k * b.m / 4.0);
+  const std::string body = "a_tall_box_with_a_rather_long_name";
+  const std::string text =
+      "[simulation]\ndt = 1e-4\noutput_rate = 100.0\nduration = " + num(duration) + "\n[bodies." +
+      body + "]\ntype = \"rigid_body\"\nshape = \"box\"\nmass = " + num(b.m) + "\nsize = [" +
+      num(b.w) + ", " + num(b.d) + ", " + num(b.H) + "]\nposition = [0.0, 0.0, " + num(0.5 * b.H) +
+      "]\n[impedances.floor]\ntype = \"kikuuwe_contact\"\nbody = \"" + body +
+      "\"\nstiffness = " + num(k) + "\ndamping = " + num(damping) + "\nmu = " + num(b.mu) +
+      "\nsettle = true\n"
+      "[impedances.push]\ntype = \"force_source\"\nbody = \"" +
+      body + "\"\nframe = \"world\"\npoint = [" + num(-0.5 * b.w) + ", 0.0, " +
+      num(b.h - 0.5 * b.H) + "]\nforce = [\"" + num(force) +
+      " * (t < 0.3 ? 0.5 - 0.5*cos(_pi*t/0.3) : 1)\", 0, 0]\n";
   const auto run = run_text(text);
   REQUIRE_FALSE(run.result.instability);
-  double worst = 0.0;
-  const auto qx = run.values("tall.q.x"), qy = run.values("tall.q.y");
+  Tilt out;
+  const auto px = run.values(body + ".p.x");
+  const auto qw = run.values(body + ".q.w"), qx = run.values(body + ".q.x"),
+             qy = run.values(body + ".q.y"), qz = run.values(body + ".q.z");
+  const Eigen::Vector3d edge(0.5 * b.w, 0.0, -0.5 * b.H);  // the front bottom edge, body frame
   for (std::size_t r = 0; r < qx.size(); ++r) {
+    const Eigen::Quaterniond q(qw[r], qx[r], qy[r], qz[r]);
     const double z = 1.0 - 2.0 * (qx[r] * qx[r] + qy[r] * qy[r]);  // the z axis's vertical part
-    worst = std::max(worst, std::acos(std::clamp(z, -1.0, 1.0)));
+    const double tilt = std::acos(std::clamp(z, -1.0, 1.0));
+    out.tilt = std::max(out.tilt, tilt);
+    // It turns about the front edge, which does not slide (until it falls past 10 degrees).
+    if (tilt < 10.0 * M_PI / 180.0) {
+      const double x = px[r] + (q * edge).x();
+      out.edge_slip = std::max(out.edge_slip, std::abs(x - 0.5 * b.w));
+    }
   }
-  return worst;
+  return out;
 }
 }  // namespace
 
-TEST_CASE("box pushed above its centre tips when F h exceeds m g w / 2, not below",
+TEST_CASE("box pushed above its centre by a force_source tips when F h exceeds m g w / 2",
           "[contacts][box]") {
-  const double threshold = 1.0 * 9.8 * 0.1 / 0.35;  // 2.8 N
-  const double below = tip_angle(0.97 * threshold), above = tip_angle(1.03 * threshold);
-  std::printf("tipping: F = 0.97 F* tilts at most %.3e rad, F = 1.03 F* tilts %.3f rad\n", below,
-              above);
-  CHECK(below < 1e-3);
-  CHECK(above > 0.5);
+  std::mt19937 rng(4242);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (int i = 0; i < 3; ++i) {
+    Tipping b{};
+    b.m = 0.5 + 2.5 * uni(rng);
+    b.w = 0.1 + 0.2 * uni(rng);
+    b.d = 0.1 + 0.2 * uni(rng);
+    b.H = b.w * (1.2 + 1.3 * uni(rng));
+    b.h = b.H * (0.6 + 0.4 * uni(rng));    // above the centre, at most the top
+    b.mu = 2.0 * b.w / (2.0 * b.h) + 0.3;  // F* / (m g) = w / (2 h): it does not slide
+    const double F = b.threshold();
+    const Tilt below = tip(b, 0.97 * F, 1.5), above = tip(b, 1.03 * F, 2.5);
+    std::printf(
+        "tipping (m %.3f kg, w %.3f m, H %.3f m, h %.3f m, F* %.4f N): 0.97 F* tilts at most "
+        "%.3e rad, 1.03 F* tilts %.3f rad; front edge slip %.1e / %.1e m\n",
+        b.m, b.w, b.H, b.h, F, below.tilt, above.tilt, below.edge_slip, above.edge_slip);
+    INFO("m " << b.m << " w " << b.w << " d " << b.d << " H " << b.H << " h " << b.h);
+    CHECK(below.tilt < 1e-3);
+    CHECK(above.tilt > 10.0 * M_PI / 180.0);
+    CHECK(below.edge_slip < 1e-4);
+    CHECK(above.edge_slip < 1e-4);
+  }
 }

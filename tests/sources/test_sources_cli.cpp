@@ -43,6 +43,13 @@ TEST_CASE("sources cli: bad values of the new keys exit 2 with FILE:LINE:COL") {
       {kBall + "[impedances.push]\ntype = \"force_source\"\nbody = \"ball\"\nforce = [1, 2, "
                "3]\npoint = \"top\"\n",
        "scene.toml:10:9: error: impedances.push.point"},
+      // A source reading its own value, and two reading each other (an algebraic loop).
+      {kBall + "[impedances.push]\ntype = \"force_source\"\nbody = \"ball\"\nforce = "
+               "[0, \"-push.f.y\", 0]\n",
+       "scene.toml:9:15: error: impedances.push.force[1]"},
+      {kBall + "[impedances.a]\ntype = \"torque_source\"\nbody = \"ball\"\ntorque = \"b.tau\"\n"
+               "[impedances.b]\ntype = \"torque_source\"\nbody = \"ball\"\ntorque = \"-a.tau\"\n",
+       "scene.toml:13:12: error: impedances.b.torque"},
   };
   for (const auto& c : cases) {
     { std::ofstream(dir / "scene.toml") << c.text; }

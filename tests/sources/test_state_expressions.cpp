@@ -62,14 +62,14 @@ TEST_CASE("state expression: in a scene, a bad signal name gives FILE:LINE:COL")
   // Line 9; the value's quote is at column 10, the name at column 4 of the expression.
   CHECK_THAT(m, StartsWith("gen.toml:9:14: error: impedances.pd.torque: invalid expression"));
   CHECK_THAT(m, Contains("unknown name '" + arm + ".theta.1'"));
-  // Impedance outputs are not observable (only the bodies' signals are).
+  // A misspelt element signal too (elements' outputs are observable: test_impedance_signals).
   const std::string m2 = testing::load_error(
       "[bodies.b]\ntype = \"point_mass\"\nmass = 1\n"
       "[impedances.s]\ntype = \"spring_damper\"\nbody = \"b\"\n"
-      "[impedances.push]\ntype = \"force_source\"\nbody = \"b\"\nforce = [\"s.f.x\", 0, 0]\n");
+      "[impedances.push]\ntype = \"force_source\"\nbody = \"b\"\nforce = [\"s.f.q\", 0, 0]\n");
   INFO(m2);
   CHECK_THAT(m2, StartsWith("gen.toml:10:11: error: impedances.push.force[0]"));
-  CHECK_THAT(m2, Contains("unknown name 's.f.x'"));
+  CHECK_THAT(m2, Contains("unknown name 's.f.q'"));
 }
 
 TEST_CASE("state expression: a feedback force sees the stage state (RK4 keeps its 4th order)") {

@@ -21,10 +21,11 @@ TorqueSource::TorqueSource(std::string name, std::vector<Profile> profiles, std:
                    "torque_source") {}
 
 TorqueSource::TorqueSource(std::string name, std::vector<StateProfile> profiles, int observed,
-                           std::string signal_name, std::string type)
+                           std::string signal_name, std::string type, Observer observer)
     : Impedance(std::move(name)),
       profiles_(std::move(profiles)),
       observed_(observed),
+      observer_(std::move(observer)),
       signal_name_(std::move(signal_name)),
       type_(std::move(type)) {
   if (profiles_.empty() || observed_ < 0) {
@@ -32,9 +33,10 @@ TorqueSource::TorqueSource(std::string name, std::vector<StateProfile> profiles,
   }
 }
 
-void TorqueSource::evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef /*y*/,
-                            double /*tau*/, core::VecRef u, core::VecRef /*y_dot*/) const {
+void TorqueSource::evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef /*y*/, double tau,
+                            core::VecRef u, core::VecRef /*y_dot*/) const {
   const double* observed = x_hat.data() + 2 * size();
+  if (observer_) observed = observer_(t, tau, observed);
   for (int i = 0; i < size(); ++i) u[i] = -profiles_[i](t, observed);
 }
 
