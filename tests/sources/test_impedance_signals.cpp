@@ -224,3 +224,42 @@ TEST_CASE("impedance signals: algebraic loops and unknown names are located erro
   CHECK_THAT(m, Contains("unknown name 's.f.w'"));
   CHECK_THAT(m, Contains("s.f.x, s.f.y, s.f.z"));
 }
+
+TEST_CASE("impedance signals: a box's corner contacts read by their element names") {
+  // A box sliding on its face has one contact element per corner (floor.0 .. floor.7); a
+  // probe's force is the sum of their friction forces, mu times the box's weight.
+  const double m = 1.3, mu = 0.35, v0 = 0.8, g = 9.8;
+  const std::string box = testing::long_name("box", 4);
+  std::string sum;
+  for (int i = 0; i < 8; ++i) sum += (i ? " + floor." : "floor.") + std::to_string(i) + ".f.x";
+  const std::string text =
+      "[simulation]\ndt = 1e-4\noutput_rate = 1000.0\nduration = 0.15\n[bodies." + box +
+      "]\ntype = \"rigid_body\"\nshape = \"box\"\nmass = " + num(m) +
+      "\nsize = [0.2, 0.15, 0.1]\nposition = [0.0, 0.0, 0.05]\nvelocity = [" + num(v0) +
+      ", 0.0, 0.0]\n[impedances.floor]\ntype = \"kikuuwe_contact\"\nbody = \"" + box +
+      "\"\nstiffness = 1e6\ndamping = 600.0\nmu = " + num(mu) +
+      "\nsettle = true\n[bodies.probe]\ntype = \"point_mass\"\nmass = 1.0\n"
+      "[impedances.reader]\ntype = \"force_source\"\nbody = \"probe\"\nforce = [\"" +
+      sum + "\", 0, 9.8]\n";
+  const auto run = testing::run_text(text);
+  REQUIRE_FALSE(run.result.instability);
+  const auto t = run.times();
+  const auto read = run.values("reader.f.x");
+  double worst = 0.0, mean = 0.0;
+  for (std::size_t r = 0; r < t.size(); ++r) {
+    double columns = 0.0, normals = 0.0;
+    for (int i = 0; i < 8; ++i) {
+      columns += run.values("floor." + std::to_string(i) + ".f.x")[r];
+      normals += run.values("floor." + std::to_string(i) + ".n_force")[r];
+    }
+    worst = std::max(worst, std::abs(read[r] - columns));
+    CHECK(read[r] == Approx(-mu * normals).epsilon(1e-12));  // every corner slides
+    mean += read[r] / static_cast<double>(t.size());
+  }
+  std::printf(
+      "impedance signals: box corners: read vs sum of columns %.1e N, mean %.6f N "
+      "(-mu m g = %.6f N)\n",
+      worst, mean, -mu * m * g);
+  CHECK(worst < 1e-12);
+  CHECK(mean == Approx(-mu * m * g).epsilon(1e-2));
+}
