@@ -255,8 +255,7 @@ int check_scene(const std::string& scene_name, const std::string& graph_path, bo
   // What `run` reads before it simulates, with the same readers, hence the same messages.
   CheckReport report;
   report.render = render::read_render_settings(scene);
-  std::vector<std::string> columns = network.signal_columns();
-  columns.insert(columns.begin(), "t");
+  const std::vector<core::ColumnInfo> columns = core::column_infos(network);
   std::vector<plot::PlotSpec> specs =
       plot::read_plot_specs(scene.document, scene.path.string(), columns);
   if (specs.empty()) specs = plot::default_plot_specs(columns);

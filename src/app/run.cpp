@@ -74,9 +74,10 @@ int run_command(const RunArguments& args) {
   if (!args.no_video || args.frames) render::check_frame_count(scene, render_settings);
   std::vector<std::string> columns = scene.network->signal_columns();
   columns.insert(columns.begin(), "t");
+  const std::vector<core::ColumnInfo> infos = core::column_infos(*scene.network);
   std::vector<plot::PlotSpec> plot_specs =
-      plot::read_plot_specs(scene.document, scene.path.string(), columns);
-  if (plot_specs.empty()) plot_specs = plot::default_plot_specs(core::column_infos(*scene.network));
+      plot::read_plot_specs(scene.document, scene.path.string(), infos);
+  if (plot_specs.empty()) plot_specs = plot::default_plot_specs(infos);
   read_verify_settings(scene.document, run.duration);  // [verify]: same errors as check/verify
 
   // Interrupted while loading: nothing was written, nothing to keep.
@@ -105,7 +106,7 @@ int run_command(const RunArguments& args) {
     suggestion = suggested_dt(scene);
     description.suggested_dt = suggestion->dt;
   }
-  description.columns = core::column_infos(*scene.network);
+  description.columns = infos;
 
   auto summary = io::make_summary(description, result);
   rows.commit_csv();  // the rows up to the last complete one, also when interrupted

@@ -50,8 +50,8 @@ VerifyJob prepare(const std::string& name, const VerifyArguments& args) {
   job.scene = scene::load_scene(name, args.overrides);
   apply_overrides(job.scene, {});
   job.render = render::read_render_settings(job.scene);
-  std::vector<std::string> columns = job.scene.network->signal_columns();
-  columns.insert(columns.begin(), "t");
+  // The figures `run` draws: the same specs, labels and units.
+  const std::vector<core::ColumnInfo> columns = core::column_infos(*job.scene.network);
   job.plots = plot::read_plot_specs(job.scene.document, job.scene.path.string(), columns);
   if (job.plots.empty()) job.plots = plot::default_plot_specs(columns);
   job.settings = read_verify_settings(job.scene.document, job.scene.run.duration);

@@ -30,6 +30,26 @@ std::vector<std::string> signal_columns(const std::vector<std::string>& columns)
   return out;
 }
 
+// A user's panel without a label or a unit gets them from the columns it shows.
+void complete_axis(PanelSpec& panel, const std::vector<core::ColumnInfo>& columns) {
+  const auto unit_of = [&](const std::string& name) {
+    const auto it = std::find_if(columns.begin(), columns.end(),
+                                 [&](const core::ColumnInfo& c) { return c.name == name; });
+    const std::string declared = it != columns.end() ? it->unit : std::string();
+    return declared.empty() ? core::guess_unit(name) : declared;
+  };
+  if (panel.unit.empty()) {
+    std::set<std::string> units;
+    for (const std::string& s : panel.signals) units.insert(unit_of(s));
+    if (units.size() == 1) panel.unit = *units.begin();
+  }
+  if (panel.label.empty()) {
+    constexpr std::size_t kLongest = 40;  // longer lists wrap the axis label into a column
+    const std::string names = join(panel.signals);
+    if (panel.signals.size() == 1 || names.size() <= kLongest) panel.label = names;
+  }
+}
+
 std::string unknown_signal_message(const std::string& where, const std::string& signal,
                                    const std::vector<std::string>& columns) {
   return where + ": unknown signal '" + signal + "'; the run has: " + join(signal_columns(columns));
@@ -267,6 +287,17 @@ std::vector<PlotSpec> read_plot_specs(const toml::table& document, const std::st
     if (!names.insert(specs.back().name).second) {
       plots[i].fail("name", "a plot named '" + specs.back().name + "' exists already");
     }
+  }
+  return specs;
+}
+
+std::vector<PlotSpec> read_plot_specs(const toml::table& document, const std::string& file,
+                                      const std::vector<core::ColumnInfo>& columns) {
+  std::vector<std::string> names;
+  for (const core::ColumnInfo& c : columns) names.push_back(c.name);
+  std::vector<PlotSpec> specs = read_plot_specs(document, file, names);
+  for (PlotSpec& spec : specs) {
+    for (PanelSpec& panel : spec.panels) complete_axis(panel, columns);
   }
   return specs;
 }

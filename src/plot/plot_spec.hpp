@@ -73,6 +73,12 @@ struct PlotSpec {
 std::vector<PlotSpec> read_plot_specs(const toml::table& document, const std::string& file,
                                       const std::vector<std::string>& columns);
 
+// The same, against the run's column descriptions, and with what a panel leaves out filled in
+// from them: no `unit`, the unit its signals share (none when they differ); no `label`, the
+// signal's name for one signal, else their names when short (the legend tells them apart).
+std::vector<PlotSpec> read_plot_specs(const toml::table& document, const std::string& file,
+                                      const std::vector<core::ColumnInfo>& columns);
+
 // Checks a spec built in code against a run's columns; scene::InputError naming the plot,
 // the signal and the existing columns.
 void check_signals(const PlotSpec& spec, const std::vector<std::string>& columns);

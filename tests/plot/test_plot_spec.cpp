@@ -261,3 +261,39 @@ TEST_CASE("a plot's format comes from its name's extension or `format`, dpi from
   CHECK_THAT(error_of(with("format = \"jpeg\"\n")), Catch::Contains("\"svg\""));
   CHECK_THAT(error_of(with("dpi = 5\n")), Catch::Contains("dpi"));
 }
+
+TEST_CASE("a panel without label or unit takes them from the columns it shows",
+          "[plot][spec]") {
+  // Generated names of every length: the label is the signal name for one signal, the names
+  // for a short list, nothing for a long one (the legend names them); the unit is the one the
+  // components declare when the signals share it, none when they differ.
+  for (const std::size_t length : {1u, 8u, 30u}) {
+    const std::string a(length, 'a');
+    const std::string b(length, 'b');
+    const std::vector<core::ColumnInfo> columns{{"t", "s", "", ""},
+                                                {a + ".f.x", "N", "world", "force"},
+                                                {b + ".tau", "N·m", "", "torque"},
+                                                {b + ".f.x", "N", "world", "force"},
+                                                {b + ".q.w", "", "", "quaternion"}};
+    const std::string text = "[[plots]]\n  [[plots.panels]]\n  signals = [\"" + a +
+                             ".f.x\"]\n  [[plots.panels]]\n  signals = [\"" + a + ".f.x\", \"" +
+                             b + ".f.x\"]\n  [[plots.panels]]\n  signals = [\"" + a +
+                             ".f.x\", \"" + b + ".tau\"]\n  label = \"Mixed\"\n" +
+                             "  [[plots.panels]]\n  signals = [\"" + b +
+                             ".q.w\"]\n  unit = \"-\"\n";
+    const toml::table doc = toml::parse(std::string_view(text), std::string_view("gen.toml"));
+    const auto specs = plot::read_plot_specs(doc, "gen.toml", columns);
+    REQUIRE(specs.size() == 1);
+    const auto& p = specs[0].panels;
+    REQUIRE(p.size() == 4);
+    CHECK(p[0].label == a + ".f.x");
+    CHECK(p[0].unit == "N");
+    const std::string both = a + ".f.x, " + b + ".f.x";
+    CHECK(p[1].label == (both.size() <= 40 ? both : std::string()));
+    CHECK(p[1].unit == "N");
+    CHECK(p[2].label == "Mixed");  // given: kept
+    CHECK(p[2].unit.empty());      // N and N·m: no common unit
+    CHECK(p[3].label == b + ".q.w");
+    CHECK(p[3].unit == "-");  // given: kept
+  }
+}
