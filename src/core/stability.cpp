@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "core/integrator.hpp"
 
@@ -46,46 +48,100 @@ void walk_run(Network& network, const RunOptions& options, Visit visit) {
   }
 }
 
-// dF/dx at x by central differences, F(at, out) any map of the state. Empty where x lies on
-// a switching surface of some element (the one-sided differences disagree at every
+// Groups of state indices that no linearization couples (see coupled_groups).
+using Groups = std::vector<std::vector<int>>;
+
+// Column i of dF/dx at x by central differences into J, from F at x (`center`); false where
+// x lies on a switching surface of some element (the one-sided differences disagree at every
 // perturbation size tried).
 template <typename Function>
-std::optional<Eigen::MatrixXd> central_jacobian(const Function& F, const Vec& x) {
+bool central_column(const Function& F, const Vec& x, const Vec& center, int i,
+                    Eigen::MatrixXd& J) {
   const int n = static_cast<int>(x.size());
-  Eigen::MatrixXd J(n, n);
-  Vec center(n), plus(n), minus(n), f_plus(n), f_minus(n);
+  Vec plus(n), minus(n), f_plus(n), f_minus(n);
+  // A state near a switching surface (a contact barely closed, friction near its limit)
+  // needs a perturbation smaller than its distance to the surface: try finer ones before
+  // giving up. Rounding limits the finest to about 1e-5 relative accuracy, enough here.
+  for (double relative : {1e-7, 1e-9, 1e-11}) {
+    const double delta = relative * std::max(std::abs(x[i]), 1e-3);
+    plus = x;
+    plus[i] += delta;
+    minus = x;
+    minus[i] -= delta;
+    F(plus, f_plus);
+    F(minus, f_minus);
+    const Vec forward = (f_plus - center) / delta;
+    const Vec backward = (center - f_minus) / delta;
+    const double scale =
+        1.0 + forward.lpNorm<Eigen::Infinity>() + backward.lpNorm<Eigen::Infinity>();
+    if ((forward - backward).lpNorm<Eigen::Infinity>() <= 1e-4 * scale) {
+      J.col(i) = 0.5 * (forward + backward);
+      return true;
+    }
+  }
+  return false;
+}
+
+// dF/dx at x by central differences, F(at, out) any map of the state; empty on a switching
+// surface. With `groups` (indices no entry couples across), one perturbation moves one
+// index of every group at once and each group reads its own rows (Curtis, Powell and Reid's
+// compression): a scene of many separate bodies costs the evaluations of its largest group,
+// not of all its states. A column whose compressed differences disagree is redone alone.
+template <typename Function>
+std::optional<Eigen::MatrixXd> central_jacobian(const Function& F, const Vec& x,
+                                                const Groups* groups = nullptr) {
+  const int n = static_cast<int>(x.size());
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
+  Vec center(n);
   F(x, center);
-  for (int i = 0; i < n; ++i) {
-    // A state near a switching surface (a contact barely closed, friction near its limit)
-    // needs a perturbation smaller than its distance to the surface: try finer ones before
-    // giving up. Rounding limits the finest to about 1e-5 relative accuracy, enough here.
-    bool smooth = false;
-    for (double relative : {1e-7, 1e-9, 1e-11}) {
-      const double delta = relative * std::max(std::abs(x[i]), 1e-3);
-      plus = x;
-      plus[i] += delta;
-      minus = x;
-      minus[i] -= delta;
-      F(plus, f_plus);
-      F(minus, f_minus);
-      const Vec forward = (f_plus - center) / delta;
-      const Vec backward = (center - f_minus) / delta;
+  if (groups == nullptr || groups->size() < 2) {
+    for (int i = 0; i < n; ++i) {
+      if (!central_column(F, x, center, i, J)) return std::nullopt;
+    }
+    return J;
+  }
+  std::size_t widest = 0;
+  for (const auto& g : *groups) widest = std::max(widest, g.size());
+  Vec plus(n), minus(n), f_plus(n), f_minus(n);
+  std::vector<double> delta(static_cast<std::size_t>(n), 0.0);
+  for (std::size_t k = 0; k < widest; ++k) {
+    plus = x;
+    minus = x;
+    for (const auto& g : *groups) {
+      if (k >= g.size()) continue;
+      const int i = g[k];
+      delta[static_cast<std::size_t>(i)] = 1e-7 * std::max(std::abs(x[i]), 1e-3);
+      plus[i] += delta[static_cast<std::size_t>(i)];
+      minus[i] -= delta[static_cast<std::size_t>(i)];
+    }
+    F(plus, f_plus);
+    F(minus, f_minus);
+    for (const auto& g : *groups) {
+      if (k >= g.size()) continue;
+      const int i = g[k];
+      const double d = delta[static_cast<std::size_t>(i)];
+      const int m = static_cast<int>(g.size());
+      Vec forward(m), backward(m);
+      for (int r = 0; r < m; ++r) {
+        const int row = g[static_cast<std::size_t>(r)];
+        forward[r] = (f_plus[row] - center[row]) / d;
+        backward[r] = (center[row] - f_minus[row]) / d;
+      }
       const double scale =
           1.0 + forward.lpNorm<Eigen::Infinity>() + backward.lpNorm<Eigen::Infinity>();
       if ((forward - backward).lpNorm<Eigen::Infinity>() <= 1e-4 * scale) {
-        J.col(i) = 0.5 * (forward + backward);
-        smooth = true;
-        break;
+        for (int r = 0; r < m; ++r) J(g[static_cast<std::size_t>(r)], i) = 0.5 * (forward[r] + backward[r]);
+      } else if (!central_column(F, x, center, i, J)) {
+        return std::nullopt;
       }
     }
-    if (!smooth) return std::nullopt;
   }
   return J;
 }
 
 // J = dF/dx at (t, x; tau), with clamping friction held at its value at x if asked.
 std::optional<Eigen::MatrixXd> jacobian(Network& network, double t, const Vec& x, double tau,
-                                        bool friction_held) {
+                                        bool friction_held, const Groups* groups = nullptr) {
   return central_jacobian(
       [&](const Vec& at, Vec& out) {
         if (friction_held) {
@@ -94,62 +150,106 @@ std::optional<Eigen::MatrixXd> jacobian(Network& network, double t, const Vec& x
           network.derivative(t, at, tau, out);
         }
       },
-      x);
+      x, groups);
 }
 
-// Linear step map of a Runge-Kutta tableau from the Jacobians at its stage sizes.
-std::optional<Eigen::MatrixXd> rk_step_map(Network& network, const Tableau& tab, double t,
-                                           const Vec& x, double h, bool friction_held) {
-  const int n = static_cast<int>(x.size());
-  const int s = tab.stages;
-  std::map<double, Eigen::MatrixXd> by_tau;  // one Jacobian per distinct stage size
-  std::vector<Eigen::MatrixXd> K(s);
-  const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
-  Eigen::MatrixXd phi = I;
-  for (int r = 0; r < s; ++r) {
-    const double tau = h * tab.d[r];
-    auto it = by_tau.find(tau);
-    if (it == by_tau.end()) {
-      auto J = jacobian(network, t, x, tau, friction_held);
-      if (!J) return std::nullopt;
-      it = by_tau.emplace(tau, std::move(*J)).first;
+// The state's indices in groups that no matrix of `matrices` couples (i and j share a group
+// when some matrix has a nonzero (i, j) or (j, i)). Bodies that never touch form groups of
+// their own: a step map built from such matrices is block diagonal over the groups, and its
+// spectral radius is the largest of the blocks'. Central differences leave the entries of
+// an uncoupled pair exactly zero.
+Groups coupled_groups(const std::vector<const Eigen::MatrixXd*>& matrices,
+                                             int n) {
+  std::vector<int> parent(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) parent[static_cast<std::size_t>(i)] = i;
+  const auto root = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) {
+      i = parent[static_cast<std::size_t>(i)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
     }
-    Eigen::MatrixXd stage = I;
-    for (int j = 0; j < r; ++j) {
-      if (tab.a[r * s + j] != 0.0) stage += h * tab.a[r * s + j] * K[j];
+    return i;
+  };
+  for (const Eigen::MatrixXd* m : matrices) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        if ((*m)(i, j) != 0.0) parent[static_cast<std::size_t>(root(i))] = root(j);
+      }
     }
-    K[r] = it->second * stage;
-    phi += h * tab.b[r] * K[r];
   }
-  return phi;
-}
-
-// Symplectic Euler: x' = x + h F(x; h), then the positions move with the new velocities,
-// p(k+1) = p(k) + h G(x'), G the admittances' kinematics.
-std::optional<Eigen::MatrixXd> symplectic_step_map(Network& network, double t, const Vec& x,
-                                                   double h, bool friction_held) {
-  const int n = static_cast<int>(x.size());
-  auto J = jacobian(network, t, x, h, friction_held);
-  if (!J) return std::nullopt;
-  const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) + h * *J;
-  // G's Jacobian: the kinematics are smooth (p_dot = v, q_dot = Q(w) q).
-  const auto G = central_jacobian(
-      [&](const Vec& at, Vec& out) { network.kinematics(at, out); }, x);
-  if (!G) return std::nullopt;
-  Eigen::MatrixXd phi = A;
-  const Eigen::MatrixXd moved = h * *G * A;
-  const auto& positions = network.position_slots();
-  for (int i = 0; i < n; ++i) {
-    if (!positions[i]) continue;
-    phi.row(i) = moved.row(i);
-    phi(i, i) += 1.0;
-  }
-  return phi;
+  std::map<int, std::vector<int>> by_root;
+  for (int i = 0; i < n; ++i) by_root[root(i)].push_back(i);
+  Groups groups;
+  for (auto& [r, members] : by_root) groups.push_back(std::move(members));
+  return groups;
 }
 
 double spectral_radius(const Eigen::MatrixXd& phi) {
   if (!phi.allFinite()) return INFINITY;
   return Eigen::EigenSolver<Eigen::MatrixXd>(phi, false).eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// Spectral radius of the linear step map of a Runge-Kutta tableau, from the Jacobians at its
+// stage sizes, built and solved group by group (coupled_groups): sum n_g^3, not n^3.
+std::optional<double> rk_step_radius(Network& network, const Tableau& tab, double t,
+                                     const Vec& x, double h, bool friction_held,
+                                     const Groups* groups) {
+  const int n = static_cast<int>(x.size());
+  const int s = tab.stages;
+  std::map<double, Eigen::MatrixXd> by_tau;  // one Jacobian per distinct stage size
+  for (int r = 0; r < s; ++r) {
+    const double tau = h * tab.d[r];
+    if (by_tau.count(tau) != 0) continue;
+    auto J = jacobian(network, t, x, tau, friction_held, groups);
+    if (!J) return std::nullopt;
+    by_tau.emplace(tau, std::move(*J));
+  }
+  std::vector<const Eigen::MatrixXd*> jacobians;
+  for (const auto& [tau, J] : by_tau) jacobians.push_back(&J);
+  double radius = 0.0;
+  for (const std::vector<int>& group : coupled_groups(jacobians, n)) {
+    const int m = static_cast<int>(group.size());
+    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(m, m);
+    std::vector<Eigen::MatrixXd> K(static_cast<std::size_t>(s));
+    Eigen::MatrixXd phi = I;
+    for (int r = 0; r < s; ++r) {
+      Eigen::MatrixXd stage = I;
+      for (int j = 0; j < r; ++j) {
+        if (tab.a[r * s + j] != 0.0) stage += h * tab.a[r * s + j] * K[static_cast<std::size_t>(j)];
+      }
+      K[static_cast<std::size_t>(r)] = by_tau.at(h * tab.d[r])(group, group) * stage;
+      phi += h * tab.b[r] * K[static_cast<std::size_t>(r)];
+    }
+    radius = std::max(radius, spectral_radius(phi));
+  }
+  return radius;
+}
+
+// Symplectic Euler: x' = x + h F(x; h), then the positions move with the new velocities,
+// p(k+1) = p(k) + h G(x'), G the admittances' kinematics. Group by group as above.
+std::optional<double> symplectic_step_radius(Network& network, double t, const Vec& x, double h,
+                                             bool friction_held, const Groups* groups) {
+  const int n = static_cast<int>(x.size());
+  auto J = jacobian(network, t, x, h, friction_held, groups);
+  if (!J) return std::nullopt;
+  // G's Jacobian: the kinematics are smooth (p_dot = v, q_dot = Q(w) q).
+  const auto G = central_jacobian(
+      [&](const Vec& at, Vec& out) { network.kinematics(at, out); }, x, groups);
+  if (!G) return std::nullopt;
+  const auto& positions = network.position_slots();
+  double radius = 0.0;
+  for (const std::vector<int>& group : coupled_groups({&*J, &*G}, n)) {
+    const int m = static_cast<int>(group.size());
+    const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(m, m) + h * (*J)(group, group);
+    Eigen::MatrixXd phi = A;
+    const Eigen::MatrixXd moved = h * (*G)(group, group) * A;
+    for (int i = 0; i < m; ++i) {
+      if (!positions[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])]) continue;
+      phi.row(i) = moved.row(i);
+      phi(i, i) += 1.0;
+    }
+    radius = std::max(radius, spectral_radius(phi));
+  }
+  return radius;
 }
 
 }  // namespace
@@ -181,25 +281,63 @@ std::vector<TimedState> sample_states(Network& network, const RunOptions& option
   return states;
 }
 
+namespace {
+
+// The groups of a state: the indices that the system at several stage sizes, with and without
+// friction held, and the kinematics couple. Only which entries move matters here, so one
+// forward difference per index is enough, also on a switching surface.
+Groups state_groups(Network& network, double t, const Vec& x) {
+  const int n = static_cast<int>(x.size());
+  Eigen::MatrixXd pattern = Eigen::MatrixXd::Zero(n, n);
+  Vec center(n), moved(n), plus(n);
+  const auto mark = [&](const auto& F) {
+    F(x, center);
+    for (int i = 0; i < n; ++i) {
+      plus = x;
+      plus[i] += 1e-7 * std::max(std::abs(x[i]), 1e-3);
+      F(plus, moved);
+      for (int r = 0; r < n; ++r) {
+        if (moved[r] != center[r] || !std::isfinite(moved[r])) pattern(r, i) = 1.0;
+      }
+    }
+  };
+  for (double tau : {1e-6, 1e-3, 1e-1}) {
+    mark([&](const Vec& at, Vec& out) { network.derivative(t, at, tau, out); });
+    mark([&](const Vec& at, Vec& out) { network.derivative_friction_held(t, at, tau, out, x); });
+  }
+  mark([&](const Vec& at, Vec& out) { network.kinematics(at, out); });
+  return coupled_groups({&pattern}, n);
+}
+
 StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
-                       double h) {
-  auto map = [&](bool held) -> std::optional<Eigen::MatrixXd> {
-    if (integrator == "symplectic_euler") return symplectic_step_map(network, t, x, h, held);
-    return rk_step_map(network, tableau_by_name(integrator), t, x, h, held);
+                       double h, const Groups* groups) {
+  auto radius = [&](bool held) -> std::optional<double> {
+    if (integrator == "symplectic_euler") {
+      return symplectic_step_radius(network, t, x, h, held, groups);
+    }
+    return rk_step_radius(network, tableau_by_name(integrator), t, x, h, held, groups);
   };
   StepRadius r;
-  const auto full = map(false);
+  const auto full = radius(false);
   if (!full) return r;
-  r.full = spectral_radius(*full);
+  r.full = *full;
   r.friction_held = r.full;
   r.friction_cap = network.friction_cap_energy(x);
   if (r.full > 1.0 + kUnstableGrowth && r.friction_cap > 0.0) {
-    const auto held = map(true);
+    const auto held = radius(true);
     if (!held) return r;
-    r.friction_held = spectral_radius(*held);
+    r.friction_held = *held;
   }
   r.smooth = true;
   return r;
+}
+
+}  // namespace
+
+StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
+                       double h) {
+  const Groups groups = state_groups(network, t, x);
+  return step_radius(network, integrator, t, x, h, &groups);
 }
 
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
@@ -209,9 +347,26 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
   // mode only stuck friction carries counts where the monitor would see it, or always if
   // chatter_counts.
   double limiting_time = 0.0;
+  // The two searches below (runaway, then chatter) visit the same grid: each radius is
+  // computed once.
+  std::map<std::pair<std::size_t, double>, StepRadius> radii;
+  std::map<std::size_t, Groups> groups;
+  auto radius_at = [&](std::size_t state, double h) {
+    auto it = radii.find({state, h});
+    if (it == radii.end()) {
+      const TimedState& s = states[state];
+      auto g = groups.find(state);
+      if (g == groups.end()) g = groups.emplace(state, state_groups(network, s.t, s.x)).first;
+      it = radii.emplace(std::make_pair(state, h),
+                         step_radius(network, integrator, s.t, s.x, h, &g->second))
+               .first;
+    }
+    return it->second;
+  };
   auto stable = [&](double h, bool chatter_counts) {
-    for (const auto& s : states) {
-      const StepRadius r = step_radius(network, integrator, s.t, s.x, h);
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      const TimedState& s = states[i];
+      const StepRadius r = radius_at(i, h);
       if (!r.smooth || r.full <= 1.0 + kUnstableGrowth) continue;
       const bool runaway = r.friction_held > 1.0 + kUnstableGrowth;
       if (runaway || chatter_counts || r.friction_cap > s.energy_headroom) {

@@ -2,7 +2,13 @@
 // prediction must not hang on which states happen to be sampled, and it must bracket the
 // real limit, which the energy monitor finds in whole runs.
 #include <catch2/catch.hpp>
+#include <array>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+#include <vector>
 #include <string>
 
 #include "core/stability.hpp"
@@ -78,4 +84,53 @@ TEST_CASE("two_link_lugre at 1e-4 s: the unstable bristle state is caught by its
   CHECK(r.instability->reason.find("bound") != std::string::npos);
   // The prediction from the scene's own (converged) run puts the limit below 1e-4 s.
   CHECK(predict("two_link_lugre", "rk4", 10).max_step < 1e-4);
+}
+
+namespace {
+
+// A scene of resting spheres, each on its own floor contact (stiffness, mass and radius per
+// sphere); `only` >= 0 keeps that sphere alone.
+std::string resting_spheres(const std::vector<std::array<double, 3>>& spheres, int only) {
+  std::string text =
+      "name = \"resting\"\n[simulation]\nintegrator = \"rk4\"\ndt = 1e-4\nduration = 0.05\n";
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    if (only >= 0 && static_cast<std::size_t>(only) != i) continue;
+    const auto [stiffness, mass, radius] = spheres[i];
+    const std::string b = "ball_number_" + std::to_string(i);
+    text += "[bodies." + b + "]\ntype = \"rigid_body\"\nshape = \"sphere\"\nmass = " +
+            std::to_string(mass) + "\nradius = " + std::to_string(radius) + "\nposition = [" +
+            std::to_string(2.0 * static_cast<double>(i)) + ", 0.0, " + std::to_string(radius) +
+            "]\n[impedances.floor_under_" + b + "]\ntype = \"kikuuwe_contact\"\nbody = \"" + b +
+            "\"\nstiffness = " + std::to_string(stiffness) +
+            "\ndamping = 20.0\nmu = 0.4\nsettle = true\n";
+  }
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("stiction_resting_" + std::to_string(::getpid()) + "_" +
+                     std::to_string(only + 1) + ".toml");
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+}  // namespace
+
+TEST_CASE("separate bodies: the predicted limit of the whole scene is the smallest of each "
+          "body's alone", "[stability]") {
+  // The analysis splits the step map into the groups of states that nothing couples (here
+  // one per sphere) and solves each alone: the answer must not change.
+  const std::vector<std::array<double, 3>> spheres{
+      {3.1e6, 0.7, 0.05}, {1.3e7, 2.3, 0.11}, {6.0e5, 0.4, 0.08}};
+  for (const std::string integrator : {"rk4", "symplectic_euler"}) {
+    double smallest = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+      const std::string file = resting_spheres(spheres, i);
+      smallest = std::min(smallest, predict(file, integrator, 3).max_step);
+      std::filesystem::remove(file);
+    }
+    const std::string file = resting_spheres(spheres, -1);
+    const double whole = predict(file, integrator, 3).max_step;
+    std::filesystem::remove(file);
+    std::printf("%s: whole scene %.6g s, smallest alone %.6g s\n", integrator.c_str(), whole, smallest);
+    CHECK(whole > 0.0);
+    CHECK(whole == Approx(smallest).epsilon(2e-3));
+  }
 }
