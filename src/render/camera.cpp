@@ -43,6 +43,22 @@ Camera frame_bounds(const Bounds& bounds, glm::vec3 direction, float fov_y_degre
   return camera;
 }
 
+glm::vec3 default_view_direction(const SceneDescription& scene) {
+  // A three-quarter view looking down ~28 degrees, slightly from the side: from the front
+  // (-y), or, for a scene with an arm swinging in a vertical plane, from in front of that
+  // plane (along its joint axis) so that the arm is seen face on, not edge on.
+  glm::vec3 forward(0.0f, 1.0f, 0.0f);
+  for (const BodyVisual& body : scene.bodies) {
+    if (body.kind != BodyVisual::Kind::arm) continue;
+    const glm::vec3 axis = to_glm(body.axis);
+    const glm::vec3 horizontal(axis.x, axis.y, 0.0f);
+    if (glm::length(horizontal) > 0.5f) forward = -glm::normalize(horizontal);
+    break;
+  }
+  const glm::vec3 side(-forward.y, forward.x, 0.0f);  // (-1, 0, 0) for the front view
+  return glm::normalize(forward + 0.30f * side + glm::vec3(0.0f, 0.0f, -0.55f));
+}
+
 CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& scene,
                      const PoseTrack& poses, float aspect)
     : poses_(poses) {
@@ -68,8 +84,7 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
     bounds = run_bounds(scene, poses);
   }
   if (bounds.empty()) bounds.add(glm::vec3(0.0f));
-  // A three-quarter view from the front (-y), slightly from +x, looking down ~28 degrees.
-  const glm::vec3 direction = glm::normalize(glm::vec3(-0.30f, 1.0f, -0.55f));
+  const glm::vec3 direction = default_view_direction(scene);
   const float fov = static_cast<float>(settings.fov_degrees);
   if (follow_ >= 0) {
     base_ = frame_bounds(bounds, direction, fov, aspect);

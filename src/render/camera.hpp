@@ -29,6 +29,10 @@ struct Camera {
 Camera frame_bounds(const Bounds& bounds, glm::vec3 direction, float fov_y_degrees, float aspect,
                     float margin = 0.12f);
 
+// The automatic camera's viewing direction: a three-quarter view from the front (-y), or
+// from in front of the plane of the first arm that swings in a vertical plane.
+glm::vec3 default_view_direction(const SceneDescription& scene);
+
 // The camera at every time of a run.
 class CameraRig {
  public:

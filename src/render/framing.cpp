@@ -23,15 +23,12 @@ std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrac
     const int index = static_cast<int>(i);
     switch (b.kind) {
       case BodyVisual::Kind::arm: {
-        // Joints and tip of the planar chain (as scene_view draws it), each with its width.
-        core::Vec3 p = b.base;
-        double phi = 0.0;
-        const float w0 = static_cast<float>(b.widths.front());
-        add_cube(points, to_glm(p), glm::vec3(w0));
-        for (std::size_t k = 0; k < b.lengths.size(); ++k) {
-          phi += poses.angle(index, static_cast<int>(k), t);
-          p += b.lengths[k] * core::Vec3(std::cos(phi), std::sin(phi), 0.0);
-          add_cube(points, to_glm(p), glm::vec3(static_cast<float>(b.widths[k])));
+        // Joints and tip of the planar chain, in its own plane (as scene_view draws it), each
+        // with the width of the link that ends there (the base with the first link's).
+        const std::vector<core::Vec3> joints = arm_joints(b, poses, index, t);
+        for (std::size_t k = 0; k < joints.size(); ++k) {
+          const double width = b.widths[k == 0 ? 0 : k - 1];
+          add_cube(points, to_glm(joints[k]), glm::vec3(static_cast<float>(width)));
         }
         break;
       }

@@ -443,6 +443,11 @@ double PoseTrack::signal(const std::string& name, double t) const {
   return any ? std::sqrt(sum) : std::numeric_limits<double>::quiet_NaN();
 }
 
+std::vector<core::Vec3> arm_joints(const BodyVisual& arm, const PoseTrack& poses, int index,
+                                   double t) {
+  return arm_pose(arm, poses, index, t).joints;
+}
+
 Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double t) {
   Bounds bounds;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

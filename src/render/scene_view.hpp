@@ -164,6 +164,10 @@ class PoseTrack {
 std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t,
                                   const Bounds& focus = Bounds{});
 
+// A planar arm's joints and then its tip at time t, as drawn (in the arm's plane of motion);
+// `index` is the arm's index in scene.bodies.
+std::vector<core::Vec3> arm_joints(const BodyVisual& arm, const PoseTrack& poses, int index,
+                                   double t);
 // Axis-aligned bounds of the bodies (not the surfaces) at time t.
 Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double t);
 // Union of body_bounds over `samples` times spread over the run.
