@@ -178,7 +178,8 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
   if (report.stiff.empty()) std::printf("  no stiff elements\n");
 
   std::printf("\npredicted step limits of the whole network (step map linearized at up to 10 "
-              "states of each regime of a pilot run at the scene's settings");
+              "states of each regime of a pilot run at the scene's settings (at most %zu in all)",
+              core::kMaxSampledStates);
   if (report.pilot.shortened) {
     std::printf(" over its first %g s of %g s, the part that fits its step budget (docs/limits.md)",
                 report.pilot.options.duration, run.duration);

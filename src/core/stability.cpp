@@ -262,8 +262,9 @@ std::vector<TimedState> sample_states(Network& network, const RunOptions& option
   walk_run(network, options, [&](long, double, const Vec& x, double) {
     ++steps_in[network.regime_signature(x, options.dt)];
   });
-  std::map<std::size_t, long> seen;
+  std::map<std::size_t, long> seen, taken;
   std::vector<TimedState> states;
+  std::vector<long> rank;  // of each state among those taken from its regime (0: the first)
   const double initial_energy = network.energy(network.initial_state());
   walk_run(network, options, [&](long, double t, const Vec& x, double work) {
     const std::size_t regime = network.regime_signature(x, options.dt);
@@ -274,8 +275,27 @@ std::vector<TimedState> sample_states(Network& network, const RunOptions& option
     const long n = std::max(1, per_regime);
     if (index == 0 || (index * n) / total != ((index - 1) * n) / total) {
       states.push_back({t, x, headroom(options, initial_energy, network.energy(x), work)});
+      rank.push_back(taken[regime]++);
     }
   });
+  // Bounded whatever the scene (a box bouncing on eight corners passes through hundreds of
+  // regimes): every regime's first state before any regime's second, and so on; the
+  // states of the last rank that fits only in part evenly spread over the run.
+  if (states.size() > kMaxSampledStates) {
+    std::vector<TimedState> kept;
+    for (long r = 0; kept.size() < kMaxSampledStates; ++r) {
+      std::vector<std::size_t> of_rank;
+      for (std::size_t i = 0; i < states.size(); ++i) {
+        if (rank[i] == r) of_rank.push_back(i);
+      }
+      const std::size_t room = kMaxSampledStates - kept.size();
+      for (std::size_t k = 0; k < std::min(room, of_rank.size()); ++k) {
+        const std::size_t pick = of_rank.size() <= room ? k : k * of_rank.size() / room;
+        kept.push_back(std::move(states[of_rank[pick]]));
+      }
+    }
+    states = std::move(kept);
+  }
   std::sort(states.begin(), states.end(),
             [](const TimedState& a, const TimedState& b) { return a.t < b.t; });
   return states;

@@ -33,7 +33,10 @@ struct TimedState {
 
 // States along a run of the scene at its own options: up to `per_regime` of the steps of
 // each smooth piece (regime signature) the run passes through, evenly spread over them, so
-// brief regimes (a contact closed for a few steps) are sampled as surely as long ones.
+// brief regimes (a contact closed for a few steps) are sampled as surely as long ones; at
+// most kMaxSampledStates in all (each regime's first ones first), so that the analysis
+// stays within seconds whatever the scene.
+inline constexpr std::size_t kMaxSampledStates = 48;
 std::vector<TimedState> sample_states(Network& network, const RunOptions& options,
                                       int per_regime);
 

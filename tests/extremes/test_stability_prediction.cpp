@@ -88,21 +88,30 @@ TEST_CASE("two_link_lugre at 1e-4 s: the unstable bristle state is caught by its
 
 namespace {
 
-// A scene of resting spheres, each on its own floor contact (stiffness, mass and radius per
-// sphere); `only` >= 0 keeps that sphere alone.
-std::string resting_spheres(const std::vector<std::array<double, 3>>& spheres, int only) {
-  std::string text =
-      "name = \"resting\"\n[simulation]\nintegrator = \"rk4\"\ndt = 1e-4\nduration = 0.05\n";
+struct Drop {
+  double damping = 20.0;   // of every contact, N s/m
+  double height = 0.0;     // of every sphere above its floor at t = 0; 0: resting (settled)
+  double duration = 0.05;  // s
+};
+
+// A scene of spheres, each on its own floor contact (stiffness, mass and radius per sphere);
+// `only` >= 0 keeps that sphere alone.
+std::string resting_spheres(const std::vector<std::array<double, 3>>& spheres, int only,
+                            const Drop& drop = {}) {
+  std::string text = "name = \"resting\"\n[simulation]\nintegrator = \"rk4\"\ndt = 1e-4\nduration = " +
+                     std::to_string(drop.duration) + "\n";
   for (std::size_t i = 0; i < spheres.size(); ++i) {
     if (only >= 0 && static_cast<std::size_t>(only) != i) continue;
     const auto [stiffness, mass, radius] = spheres[i];
     const std::string b = "ball_number_" + std::to_string(i);
     text += "[bodies." + b + "]\ntype = \"rigid_body\"\nshape = \"sphere\"\nmass = " +
             std::to_string(mass) + "\nradius = " + std::to_string(radius) + "\nposition = [" +
-            std::to_string(2.0 * static_cast<double>(i)) + ", 0.0, " + std::to_string(radius) +
+            std::to_string(2.0 * static_cast<double>(i)) + ", 0.0, " +
+            std::to_string(radius + drop.height) +
             "]\n[impedances.floor_under_" + b + "]\ntype = \"kikuuwe_contact\"\nbody = \"" + b +
-            "\"\nstiffness = " + std::to_string(stiffness) +
-            "\ndamping = 20.0\nmu = 0.4\nsettle = true\n";
+            "\"\nstiffness = " + std::to_string(stiffness) + "\ndamping = " +
+            std::to_string(drop.damping) + "\nmu = 0.4\nsettle = " +
+            (drop.height > 0.0 ? "false" : "true") + "\n";
   }
   const auto path = std::filesystem::temp_directory_path() /
                     ("stiction_resting_" + std::to_string(::getpid()) + "_" +
@@ -133,4 +142,23 @@ TEST_CASE("separate bodies: the predicted limit of the whole scene is the smalle
     CHECK(whole > 0.0);
     CHECK(whole == Approx(smallest).epsilon(2e-3));
   }
+}
+
+TEST_CASE("sampled states are bounded whatever the number of regimes, each regime first",
+          "[stability]") {
+  // Spheres dropped from 0.2 m onto undamped floors of different stiffness: their contacts
+  // open and close at unrelated times, so the run passes through many combined regimes.
+  std::vector<std::array<double, 3>> spheres;
+  for (int i = 0; i < 8; ++i) spheres.push_back({2e5 * (1 + i), 0.3 + 0.2 * i, 0.05 + 0.01 * i});
+  const std::string file = resting_spheres(spheres, -1, {0.0, 0.2, 2.0});
+  auto scene = scene::load_scene(file);
+  std::filesystem::remove(file);
+  const auto states = core::sample_states(*scene.network, scene.run, 10);
+  CHECK(states.size() == core::kMaxSampledStates);
+  CHECK(states.front().t == 0.0);  // the first regime's first state
+  for (std::size_t i = 1; i < states.size(); ++i) CHECK(states[i - 1].t <= states[i].t);
+  // A scene with few regimes keeps all its states.
+  auto few_regimes = scene::load_scene("sphere_roll");
+  const auto few = core::sample_states(*few_regimes.network, few_regimes.run, 10);
+  CHECK(few.size() < core::kMaxSampledStates);
 }
