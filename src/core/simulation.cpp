@@ -41,7 +41,7 @@ constexpr long kMonitorEvery = 8;  // steps between two checks of the monitor
 
 // The run's monitor beyond finiteness: the network energy against its start plus what the
 // sources put in (energy_margin), and every state with a bound its model keeps
-// (Impedance::state_bound) against twice that bound, for instabilities whose error
+// (BoundedState) against twice that bound, for instabilities whose error
 // dissipates and so does not show in the energy.
 class InstabilityMonitor {
  public:
@@ -52,10 +52,11 @@ class InstabilityMonitor {
     for (std::size_t i = 0; i < network.impedances().size(); ++i) {
       const Impedance& imp = *network.impedances()[i];
       const Slot s = network.impedance_slot(static_cast<int>(i));
-      if (!std::isfinite(imp.state_bound()) || s.state_size == 0) continue;
+      const auto* bound = network.capabilities(static_cast<int>(i)).bound;  // BoundedState
+      if (bound == nullptr || !std::isfinite(bound->state_bound()) || s.state_size == 0) continue;
       // Twice the bound (or the initial value, if larger) is past any rounding.
       const double start = x0.segment(s.state_offset, s.state_size).lpNorm<Eigen::Infinity>();
-      bounded_.push_back({imp.name(), s, 2.0 * std::max(imp.state_bound(), start)});
+      bounded_.push_back({imp.name(), s, 2.0 * std::max(bound->state_bound(), start)});
     }
   }
 
@@ -175,17 +176,18 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   // `tau`: the step just taken, with which a Kikuuwe element tells stuck from sliding.
   auto observe_slip = [&](std::size_t m, double time, const Vec& state, double tau) {
     const int i = slipping[m];
-    const Impedance& imp = *network.impedances()[i];
+    const Capabilities& c = network.capabilities(i);
     SlipMonitor& monitor = result.slip_events[m].monitor;
     const ConstVecRef x_hat = network.impedance_input(i, state);
     const bool open = contacts[m] != nullptr && !(contacts[m]->contact_normal_force(x_hat) > 0.0);
-    const Vec3 slip = imp.slip_velocity(x_hat);
+    const Vec3 slip = c.slip->slip_velocity(x_hat);
     // The friction law (Kikuuwe: stuck while within its limit), asked only where it matters
     // (it costs an evaluation): while stuck, to bound a slip onset, and above the threshold.
     SlipMonitor::Law law = SlipMonitor::Law::unknown;
-    if (!open && imp.clamps_friction() && (monitor.sticking() || slip.norm() > monitor.threshold())) {
+    if (!open && c.friction != nullptr &&
+        (monitor.sticking() || slip.norm() > monitor.threshold())) {
       const Slot s = network.impedance_slot(i);
-      law = imp.regime(x_hat, state.segment(s.state_offset, s.state_size), tau) == 1
+      law = c.friction->regime(x_hat, state.segment(s.state_offset, s.state_size), tau) == 1
                 ? SlipMonitor::Law::held
                 : SlipMonitor::Law::released;
     }
@@ -193,12 +195,12 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   };
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
     const auto& imp = *network.impedances()[i];
-    if (!imp.has_slip()) continue;
+    if (network.capabilities(i).slip == nullptr) continue;
     const auto it = options.stick_thresholds.find(imp.name());
     const double threshold =
         it != options.stick_thresholds.end() ? it->second : options.default_stick_threshold;
     slipping.push_back(i);
-    contacts.push_back(dynamic_cast<const NormalContact*>(&imp));
+    contacts.push_back(network.capabilities(i).contact);
     result.slip_events.push_back({imp.name(), SlipMonitor(threshold, resolution)});
     observe_slip(slipping.size() - 1, 0.0, x, T);
   }

@@ -7,7 +7,7 @@
 // that closes for less than a step is still analysed as closed). A step size is stable at
 // a state when the spectral radius of Phi does not exceed 1 (plus a small allowance).
 //
-// Friction that clamps its force at a limit (Impedance::clamps_friction) is linearized a
+// Friction that clamps its force at a limit (the ClampedFriction capability) is linearized a
 // second time with its force held. A mode that only the first linearization shows lives
 // in a stuck friction spring: it cannot run away, since it ends where the force reaches the
 // limit and the element slides. It holds at most friction_cap_energy(), so the run's energy

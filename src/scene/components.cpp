@@ -365,7 +365,9 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     add_source(table, type, type == "torque_source" ? joint_map() : nullptr, impedance, map);
   }
   // Elements with a slip speed (contacts, joint friction) get stick/slip events.
-  if (impedance->has_slip()) stick_thresholds_[name] = table.positive("stick_threshold", 1e-3);
+  if (core::capabilities_of(*impedance).slip != nullptr) {
+    stick_thresholds_[name] = table.positive("stick_threshold", 1e-3);
+  }
   table.finish();
   impedance_types_.emplace(name, type);
   network_.add_impedance(std::move(impedance), std::move(map));
