@@ -28,6 +28,10 @@ class Source {
   virtual ~Source() = default;
   // Power fed into the admittances at (x_hat, u).
   virtual double power_in(ConstVecRef x_hat, ConstVecRef u) const = 0;
+  // True for a feedback law, whose output reads the state (a PD controller): a spring or
+  // damper in disguise, whose work the energy monitor cannot take as put in from outside
+  // (core/feedback_monitor.hpp). False for a source driven by time alone.
+  virtual bool reads_state() const { return false; }
 };
 
 // A sliding pair (contacts, joint friction): stick/slip events are detected on its slip

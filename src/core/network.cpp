@@ -317,9 +317,17 @@ std::size_t Network::regime_signature(ConstVecRef x, double tau) {
 
 bool Network::has_sources() const { return !sources_.empty(); }
 
-double Network::source_power(double t, ConstVecRef x) {
+bool Network::has_feedback_sources() const {
+  for (const int i : sources_) {
+    if (capabilities_[i].source->reads_state()) return true;
+  }
+  return false;
+}
+
+double Network::source_power(double t, ConstVecRef x, bool driven_only) {
   double power = 0.0;
   for (const int i : sources_) {
+    if (driven_only && capabilities_[i].source->reads_state()) continue;
     const Slot& s = impedance_slots_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
     auto u = u_.segment(output_offsets_[i], impedances_[i]->output_size());

@@ -66,9 +66,11 @@ class Network {
   // same smooth piece of the system (see PiecewiseLaw).
   std::size_t regime_signature(ConstVecRef x, double tau);
 
-  // Power fed in by source elements at (t, x).
-  double source_power(double t, ConstVecRef x);
+  // Power fed in by source elements at (t, x); with driven_only, by those whose output is
+  // a function of time alone (not Source::reads_state()).
+  double source_power(double t, ConstVecRef x, bool driven_only = false);
   bool has_sources() const;
+  bool has_feedback_sources() const;
 
   // Energy of the admittances plus what the impedances' springs hold (NaN if an
   // admittance does not define its energy).

@@ -8,6 +8,7 @@
 
 #include "core/run_limits.hpp"
 #include "core/contact.hpp"
+#include "core/feedback_monitor.hpp"
 
 namespace stiction::core {
 namespace {
@@ -48,7 +49,8 @@ class InstabilityMonitor {
   InstabilityMonitor(Network& network, const RunOptions& options, const Vec& x0)
       : network_(network), options_(options), initial_energy_(network.energy(x0)),
         has_sources_(network.has_sources()),
-        power_checked_(has_sources_ ? std::abs(network.source_power(0.0, x0)) : 0.0) {
+        power_checked_(has_sources_ ? std::abs(network.source_power(0.0, x0)) : 0.0),
+        feedback_(network, options, x0, initial_energy_) {
     for (std::size_t i = 0; i < network.impedances().size(); ++i) {
       const Impedance& imp = *network.impedances()[i];
       const Slot s = network.impedance_slot(static_cast<int>(i));
@@ -68,10 +70,14 @@ class InstabilityMonitor {
       t_checked_ = t;
     }
     const double energy = network_.energy(x);
-    if (std::isfinite(initial_energy_) && std::isfinite(energy) &&
+    // With feedback sources, their work is neither credited nor charged: FeedbackMonitor.
+    if (!feedback_.active() && std::isfinite(initial_energy_) && std::isfinite(energy) &&
         energy - initial_energy_ > energy_margin(options_, initial_energy_, work_in_)) {
       return Instability{t, fastest_growing(network_, x_prev, x),
                          "energy grew beyond what the sources put in"};
+    }
+    if (auto reason = feedback_.check(t, x_prev, x, energy, work_in_)) {
+      return Instability{t, fastest_growing(network_, x_prev, x), std::move(*reason)};
     }
     for (const auto& b : bounded_) {
       if (x.segment(b.slot.state_offset, b.slot.state_size).lpNorm<Eigen::Infinity>() > b.limit) {
@@ -95,6 +101,7 @@ class InstabilityMonitor {
   double power_checked_;
   double t_checked_ = 0.0;
   std::vector<BoundedState> bounded_;
+  FeedbackMonitor feedback_;  // feedback sources' work: core/feedback_monitor.hpp
 };
 
 }  // namespace

@@ -37,6 +37,11 @@ struct TimedState {
 std::vector<TimedState> sample_states(Network& network, const RunOptions& options,
                                       int per_regime);
 
+// A step is called unstable where it amplifies some mode by more than this per step: such
+// growth runs away within tens of steps. Weaker growth is left out on purpose: a rolling
+// contact linearized about a point of its orbit grows at a few 1/s (physics, not the step).
+inline constexpr double kUnstableGrowth = 0.05;
+
 struct StepRadius {
   double full = 0.0;           // spectral radius of the linear step map
   double friction_held = 0.0;  // same, with clamping friction held
@@ -48,6 +53,12 @@ struct StepRadius {
 // Fixed-step integrators only (euler, symplectic_euler, heun, rk4).
 StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
                        double h);
+
+// Whether radii r make the step unstable at a state where the energy monitor has `headroom`
+// left: a mode grows faster than kUnstableGrowth and either runs away with the friction
+// held, or is a stuck friction's chatter holding more energy than the monitor allows (with
+// chatter_counts: any such mode). False on a switching surface (no answer there).
+bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts = false);
 
 struct StepLimit {
   double max_step = 0.0;       // largest stable step found (0: none above h_min)

@@ -39,6 +39,8 @@ class TorqueSource final : public core::Impedance, public core::Source {
   double power_in(core::ConstVecRef x_hat, core::ConstVecRef u) const override {
     return -u.dot(x_hat.segment(size(), size()));
   }
+  // A feedback law when it observes signals of the scene.
+  bool reads_state() const override { return observed_ > 0; }
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
 
