@@ -6,7 +6,7 @@
 namespace example {
 
 ViscousCoulombJoint::ViscousCoulombJoint(std::string name, const ViscousCoulombParams& params)
-    : Impedance(std::move(name)), params_(params) {
+    : Impedance(std::move(name)), StiffnessHint(params.stiffness), params_(params) {
   if (!(params.stiffness > 0.0 && params.damping >= 0.0 && params.coulomb >= 0.0 && params.viscous >= 0.0)) {
     throw std::invalid_argument("viscous_coulomb_joint: K > 0 and B, F, b >= 0 required");
   }

@@ -6,6 +6,8 @@
 // Coulomb part is not saturated, e_dot == v exactly, so a stuck joint does not drift.
 #pragma once
 
+#include <stiction/components/impedance/friction_capabilities.hpp>
+#include <stiction/core/capabilities.hpp>
 #include <stiction/core/impedance.hpp>
 
 namespace example {
@@ -17,7 +19,12 @@ struct ViscousCoulombParams {
   double viscous = 0.2;       // b, Nms/rad
 };
 
-class ViscousCoulombJoint final : public stiction::core::Impedance {
+// Beyond its law it offers two capabilities (stiction/core/capabilities.hpp): a slip velocity,
+// the joint's rate (JointSlip: stick/slip events), and a stiffness for `stiction check`'s
+// advice (StiffnessHint, stated at construction).
+class ViscousCoulombJoint final : public stiction::core::Impedance,
+                                  public stiction::components::JointSlip,
+                                  public stiction::core::StiffnessHint {
  public:
   ViscousCoulombJoint(std::string name, const ViscousCoulombParams& params);
   std::string_view type() const override { return "viscous_coulomb_joint"; }
@@ -30,11 +37,6 @@ class ViscousCoulombJoint final : public stiction::core::Impedance {
   std::vector<stiction::core::SignalInfo> signals() const override;
   void write_signals(stiction::core::ConstVecRef x_hat, stiction::core::ConstVecRef y,
                      stiction::core::ConstVecRef u, stiction::core::VecRef out) const override;
-  double stiffness() const override { return params_.stiffness; }
-  bool has_slip() const override { return true; }
-  stiction::core::Vec3 slip_velocity(stiction::core::ConstVecRef x_hat) const override {
-    return {x_hat[1], 0.0, 0.0};
-  }
 
  private:
   ViscousCoulombParams params_;

@@ -265,8 +265,10 @@ int check_scene(const std::string& scene_name, const std::string& graph_path, bo
 
   for (std::size_t i = 0; i < network.impedances().size(); ++i) {
     const core::Impedance& imp = *network.impedances()[i];
+    const core::StiffnessHint* hint = network.capabilities(static_cast<int>(i)).stiffness;
+    if (hint == nullptr) continue;
     StiffElement s;
-    s.stiffness = imp.stiffness();
+    s.stiffness = hint->stiffness();
     if (!(s.stiffness > 0.0)) continue;
     s.component = imp.name();
     s.type = std::string(imp.type());
@@ -274,7 +276,7 @@ int check_scene(const std::string& scene_name, const std::string& graph_path, bo
     s.wired = s.mobility > 0.0;
     if (s.wired) {
       s.omega = std::sqrt(s.stiffness * s.mobility);
-      const double B = imp.damping();
+      const double B = hint->damping();
       s.damping_ratio = std::isfinite(B) ? B * s.mobility / (2.0 * s.omega) : std::nan("");
     }
     report.stiff.push_back(s);

@@ -76,7 +76,7 @@ class Study {
     }
     for (const auto& name : result_.key_signals) key_columns_.push_back(index_of(columns, name));
     for (const auto& imp : scene_.network->impedances()) {
-      if (!imp->has_slip()) continue;
+      if (core::capabilities_of(*imp).slip == nullptr) continue;
       result_.slip_components.push_back(imp->name());
       for (const char* kind : kEventKinds) events_.push_back({imp->name(), kind});
     }

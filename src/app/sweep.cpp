@@ -63,8 +63,11 @@ Probe probe_scene(const SweepArguments& args, const SweepPlan& plan) {
   Probe probe;
   probe.name = scene.name;
   probe.signals = scene.network->signal_columns();
-  for (const auto& imp : scene.network->impedances()) {
-    if (imp->has_slip()) probe.slip_components.push_back(imp->name());
+  const core::Network& network = *scene.network;
+  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
+    if (network.capabilities(i).slip != nullptr) {
+      probe.slip_components.push_back(network.impedances()[i]->name());
+    }
   }
   return probe;
 }

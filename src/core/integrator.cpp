@@ -177,12 +177,15 @@ void AdaptiveRk4Stepper::set_error_floors(Network& network, const Vec& x) {
   // step that swings e from +F/K to -F/K (through a stick and out again) would pass.
   floor_.setOnes();
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
-    const Impedance& imp = *network.impedances()[i];
+    const Capabilities& c = network.capabilities(i);
     const Slot s = network.impedance_slot(i);
-    if (!imp.clamps_friction() || s.state_size == 0 || !(imp.stiffness() > 0.0)) continue;
+    if (c.friction == nullptr || c.stiffness == nullptr || s.state_size == 0 ||
+        !(c.stiffness->stiffness() > 0.0)) {
+      continue;
+    }
     // friction_cap_energy = F^2 / K.
-    const double cap = imp.friction_cap_energy(network.impedance_input(i, x));
-    const double size = std::sqrt(cap / imp.stiffness());
+    const double cap = c.friction->friction_cap_energy(network.impedance_input(i, x));
+    const double size = std::sqrt(cap / c.stiffness->stiffness());
     if (size > 0.0 && size < 1.0) floor_.segment(s.state_offset, s.state_size).setConstant(size);
   }
 }
@@ -194,14 +197,15 @@ bool AdaptiveRk4Stepper::same_regimes(Network& network, const Vec& a, std::size_
   // zero, where its friction holds: a switch there and back within the step. (A stuck
   // element's spring vibrating reverses all the time; that is no switch.)
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
-    const Impedance& imp = *network.impedances()[i];
-    if (!imp.has_slip() || !imp.clamps_friction()) continue;
+    const Capabilities& c = network.capabilities(i);
+    if (c.slip == nullptr || c.friction == nullptr) continue;
     const Slot s = network.impedance_slot(i);
-    const Vec3 before = imp.slip_velocity(network.impedance_input(i, a));
-    if (imp.regime(network.impedance_input(i, a), a.segment(s.state_offset, s.state_size), tau) != 2) {
+    const Vec3 before = c.slip->slip_velocity(network.impedance_input(i, a));
+    if (c.friction->regime(network.impedance_input(i, a), a.segment(s.state_offset, s.state_size),
+                           tau) != 2) {
       continue;
     }
-    if (imp.slip_velocity(network.impedance_input(i, b)).dot(before) < 0.0) return false;
+    if (c.slip->slip_velocity(network.impedance_input(i, b)).dot(before) < 0.0) return false;
   }
   return true;
 }

@@ -76,6 +76,10 @@ void Network::finalize() {
   int motion = 0;
   int output = 0;
   for (const auto& i : impedances_) {
+    capabilities_.push_back(capabilities_of(*i));
+    if (capabilities_.back().source != nullptr) {
+      sources_.push_back(static_cast<int>(capabilities_.size()) - 1);
+    }
     impedance_slots_.push_back({state, i->state_size(), motion, i->input_size()});
     output_offsets_.push_back(output);
     output_sizes_.push_back(i->output_size());
@@ -170,15 +174,16 @@ void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
     auto u = u_.segment(output_offsets_[i], output_sizes_[i]);
     auto y_dot = x_dot.segment(s.state_offset, s.state_size);
-    if (friction_reference != nullptr && imp.clamps_friction()) {
+    const ClampedFriction* friction = capabilities_[i].friction;
+    if (friction_reference != nullptr && friction != nullptr) {
       const Vec& reference = *friction_reference;
       Vec u_ref(output_sizes_[i]), y_dot_ref(s.state_size);
       maps_[i]->motion(reference, x_hat);
       imp.evaluate(t, x_hat, reference.segment(s.state_offset, s.state_size), tau, u_ref,
                    y_dot_ref);
       maps_[i]->motion(x, x_hat);
-      imp.evaluate_friction_held(t, x_hat, x.segment(s.state_offset, s.state_size), tau, u_ref,
-                                 y_dot_ref, u, y_dot);
+      friction->evaluate_friction_held(t, x_hat, x.segment(s.state_offset, s.state_size), tau,
+                                       u_ref, y_dot_ref, u, y_dot);
     } else {
       maps_[i]->motion(x, x_hat);
       imp.evaluate(t, x_hat, x.segment(s.state_offset, s.state_size), tau, u, y_dot);
@@ -212,11 +217,12 @@ void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecR
 double Network::friction_cap_energy(ConstVecRef x) {
   double total = 0.0;
   for (std::size_t i = 0; i < impedances_.size(); ++i) {
-    if (!impedances_[i]->clamps_friction()) continue;
+    const ClampedFriction* friction = capabilities_[i].friction;
+    if (friction == nullptr) continue;
     const Slot& s = impedance_slots_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
     maps_[i]->motion(x, x_hat);
-    total += impedances_[i]->friction_cap_energy(x_hat);
+    total += friction->friction_cap_energy(x_hat);
   }
   return total;
 }
@@ -284,7 +290,7 @@ Vec3 Network::slip_velocity(int impedance, ConstVecRef x) {
   const Slot& s = impedance_slots_[impedance];
   auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
   maps_[impedance]->motion(x, x_hat);
-  return impedances_[impedance]->slip_velocity(x_hat);
+  return capabilities_[impedance].slip->slip_velocity(x_hat);
 }
 
 ConstVecRef Network::impedance_input(int impedance, ConstVecRef x) {
@@ -297,33 +303,38 @@ ConstVecRef Network::impedance_input(int impedance, ConstVecRef x) {
 std::size_t Network::regime_signature(ConstVecRef x, double tau) {
   std::size_t signature = 0;
   for (std::size_t i = 0; i < impedances_.size(); ++i) {
-    const Slot& s = impedance_slots_[i];
-    auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
-    maps_[i]->motion(x, x_hat);
-    const int r = impedances_[i]->regime(x_hat, x.segment(s.state_offset, s.state_size), tau);
+    int r = 0;  // smooth elements have one piece
+    if (const PiecewiseLaw* law = capabilities_[i].law) {
+      const Slot& s = impedance_slots_[i];
+      auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
+      maps_[i]->motion(x, x_hat);
+      r = law->regime(x_hat, x.segment(s.state_offset, s.state_size), tau);
+    }
     signature = signature * 31 + static_cast<std::size_t>(r + 1);
   }
   return signature;
 }
 
-bool Network::has_sources() const {
-  for (const auto& i : impedances_) {
-    if (i->is_source()) return true;
+bool Network::has_sources() const { return !sources_.empty(); }
+
+bool Network::has_feedback_sources() const {
+  for (const int i : sources_) {
+    if (capabilities_[i].source->reads_state()) return true;
   }
   return false;
 }
 
-double Network::source_power(double t, ConstVecRef x) {
+double Network::source_power(double t, ConstVecRef x, bool driven_only) {
   double power = 0.0;
-  for (std::size_t i = 0; i < impedances_.size(); ++i) {
-    if (!impedances_[i]->is_source()) continue;
+  for (const int i : sources_) {
+    if (driven_only && capabilities_[i].source->reads_state()) continue;
     const Slot& s = impedance_slots_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
     auto u = u_.segment(output_offsets_[i], impedances_[i]->output_size());
     auto y_dot = scratch_dot_.segment(s.state_offset, s.state_size);
     maps_[i]->motion(x, x_hat);
     impedances_[i]->evaluate(t, x_hat, x.segment(s.state_offset, s.state_size), 0.0, u, y_dot);
-    power += impedances_[i]->power_in(x_hat, u);
+    power += capabilities_[i].source->power_in(x_hat, u);
   }
   return power;
 }
@@ -335,10 +346,12 @@ double Network::energy(ConstVecRef x) {
     total += admittances_[j]->energy(x.segment(s.state_offset, s.state_size));
   }
   for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const EnergyStore* store = capabilities_[i].energy;
+    if (store == nullptr) continue;  // holds none
     const Slot& s = impedance_slots_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
     maps_[i]->motion(x, x_hat);
-    total += impedances_[i]->stored_energy(x_hat, x.segment(s.state_offset, s.state_size));
+    total += store->stored_energy(x_hat, x.segment(s.state_offset, s.state_size));
   }
   return total;
 }

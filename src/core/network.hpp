@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/admittance.hpp"
+#include "core/capabilities.hpp"
 #include "core/coordinate_map.hpp"
 #include "core/impedance.hpp"
 
@@ -35,8 +36,8 @@ class Network {
 
   // x_dot = F(x, t; tau): (13b)-(13g) with (22).
   void derivative(double t, ConstVecRef x, double tau, VecRef x_dot);
-  // F(x, t; tau) with the friction of every friction-clamping element held at what it is at
-  // `reference` (see Impedance::clamps_friction): for stability analysis only.
+  // F(x, t; tau) with the friction of every ClampedFriction element held at what it is at
+  // `reference`: for stability analysis only.
   void derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
                                 const Vec& reference);
   // Most energy the friction-clamping elements' bounded oscillations can hold at x.
@@ -56,18 +57,20 @@ class Network {
   // Evaluates the network at (t, x; tau) and writes one value per signal column.
   void write_signals(double t, ConstVecRef x, double tau, VecRef row);
 
-  // Slip velocity of impedance i (which must have has_slip()) at state x.
+  // Slip velocity of impedance i (which must be a SlipElement) at state x.
   Vec3 slip_velocity(int impedance, ConstVecRef x);
   // Impedance i's input x_hat at state x (the map's Psi), valid until the next call.
   ConstVecRef impedance_input(int impedance, ConstVecRef x);
 
   // Regimes of all impedances at (x; tau) folded into one number: equal numbers mean the
-  // same smooth piece of the system (see Impedance::regime).
+  // same smooth piece of the system (see PiecewiseLaw).
   std::size_t regime_signature(ConstVecRef x, double tau);
 
-  // Power fed in by source elements at (t, x).
-  double source_power(double t, ConstVecRef x);
+  // Power fed in by source elements at (t, x); with driven_only, by those whose output is
+  // a function of time alone (not Source::reads_state()).
+  double source_power(double t, ConstVecRef x, bool driven_only = false);
   bool has_sources() const;
+  bool has_feedback_sources() const;
 
   // Energy of the admittances plus what the impedances' springs hold (NaN if an
   // admittance does not define its energy).
@@ -77,6 +80,8 @@ class Network {
   const std::vector<std::unique_ptr<Admittance>>& admittances() const { return admittances_; }
   const std::vector<std::unique_ptr<Impedance>>& impedances() const { return impedances_; }
   const CoordinateMap& map_of(int impedance) const { return *maps_[impedance]; }
+  // Impedance i's capabilities (core/capabilities.hpp), resolved once by finalize().
+  const Capabilities& capabilities(int impedance) const { return capabilities_[impedance]; }
   Slot admittance_slot(int admittance) const { return admittance_slots_[admittance]; }
   // Impedance i's state slice (state_offset, state_size) and where its x_hat starts in the
   // network's motion vector (input_offset, input_size).
@@ -96,6 +101,8 @@ class Network {
   std::vector<std::unique_ptr<Impedance>> impedances_;
   std::vector<std::unique_ptr<CoordinateMap>> maps_;
   std::vector<std::unique_ptr<Coupling>> couplings_;  // one per impedance, built by finalize()
+  std::vector<Capabilities> capabilities_;            // one per impedance, found by finalize()
+  std::vector<int> sources_;                          // the impedances that are Sources
   std::vector<Slot> admittance_slots_;
   std::vector<Slot> impedance_slots_;  // state slice; input_offset/size index x_hat, u
   std::vector<int> output_offsets_;    // where each impedance's u lives in u_

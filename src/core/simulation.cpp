@@ -8,6 +8,7 @@
 
 #include "core/run_limits.hpp"
 #include "core/contact.hpp"
+#include "core/feedback_monitor.hpp"
 #include "core/flush_subnormals.hpp"
 
 namespace stiction::core {
@@ -42,21 +43,23 @@ constexpr long kMonitorEvery = 8;  // steps between two checks of the monitor
 
 // The run's monitor beyond finiteness: the network energy against its start plus what the
 // sources put in (energy_margin), and every state with a bound its model keeps
-// (Impedance::state_bound) against twice that bound, for instabilities whose error
+// (BoundedState) against twice that bound, for instabilities whose error
 // dissipates and so does not show in the energy.
 class InstabilityMonitor {
  public:
   InstabilityMonitor(Network& network, const RunOptions& options, const Vec& x0)
       : network_(network), options_(options), initial_energy_(network.energy(x0)),
         has_sources_(network.has_sources()),
-        power_checked_(has_sources_ ? std::abs(network.source_power(0.0, x0)) : 0.0) {
+        power_checked_(has_sources_ ? std::abs(network.source_power(0.0, x0)) : 0.0),
+        feedback_(network, options, x0, initial_energy_) {
     for (std::size_t i = 0; i < network.impedances().size(); ++i) {
       const Impedance& imp = *network.impedances()[i];
       const Slot s = network.impedance_slot(static_cast<int>(i));
-      if (!std::isfinite(imp.state_bound()) || s.state_size == 0) continue;
+      const auto* bound = network.capabilities(static_cast<int>(i)).bound;  // BoundedState
+      if (bound == nullptr || !std::isfinite(bound->state_bound()) || s.state_size == 0) continue;
       // Twice the bound (or the initial value, if larger) is past any rounding.
       const double start = x0.segment(s.state_offset, s.state_size).lpNorm<Eigen::Infinity>();
-      bounded_.push_back({imp.name(), s, 2.0 * std::max(imp.state_bound(), start)});
+      bounded_.push_back({imp.name(), s, 2.0 * std::max(bound->state_bound(), start)});
     }
   }
 
@@ -68,10 +71,14 @@ class InstabilityMonitor {
       t_checked_ = t;
     }
     const double energy = network_.energy(x);
-    if (std::isfinite(initial_energy_) && std::isfinite(energy) &&
+    // With feedback sources, their work is neither credited nor charged: FeedbackMonitor.
+    if (!feedback_.active() && std::isfinite(initial_energy_) && std::isfinite(energy) &&
         energy - initial_energy_ > energy_margin(options_, initial_energy_, work_in_)) {
       return Instability{t, fastest_growing(network_, x_prev, x),
                          "energy grew beyond what the sources put in"};
+    }
+    if (auto reason = feedback_.check(t, x_prev, x, energy, work_in_)) {
+      return Instability{t, fastest_growing(network_, x_prev, x), std::move(*reason)};
     }
     for (const auto& b : bounded_) {
       if (x.segment(b.slot.state_offset, b.slot.state_size).lpNorm<Eigen::Infinity>() > b.limit) {
@@ -95,6 +102,7 @@ class InstabilityMonitor {
   double power_checked_;
   double t_checked_ = 0.0;
   std::vector<BoundedState> bounded_;
+  FeedbackMonitor feedback_;  // feedback sources' work: core/feedback_monitor.hpp
 };
 
 }  // namespace
@@ -177,17 +185,18 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   // `tau`: the step just taken, with which a Kikuuwe element tells stuck from sliding.
   auto observe_slip = [&](std::size_t m, double time, const Vec& state, double tau) {
     const int i = slipping[m];
-    const Impedance& imp = *network.impedances()[i];
+    const Capabilities& c = network.capabilities(i);
     SlipMonitor& monitor = result.slip_events[m].monitor;
     const ConstVecRef x_hat = network.impedance_input(i, state);
     const bool open = contacts[m] != nullptr && !(contacts[m]->contact_normal_force(x_hat) > 0.0);
-    const Vec3 slip = imp.slip_velocity(x_hat);
+    const Vec3 slip = c.slip->slip_velocity(x_hat);
     // The friction law (Kikuuwe: stuck while within its limit), asked only where it matters
     // (it costs an evaluation): while stuck, to bound a slip onset, and above the threshold.
     SlipMonitor::Law law = SlipMonitor::Law::unknown;
-    if (!open && imp.clamps_friction() && (monitor.sticking() || slip.norm() > monitor.threshold())) {
+    if (!open && c.friction != nullptr &&
+        (monitor.sticking() || slip.norm() > monitor.threshold())) {
       const Slot s = network.impedance_slot(i);
-      law = imp.regime(x_hat, state.segment(s.state_offset, s.state_size), tau) == 1
+      law = c.friction->regime(x_hat, state.segment(s.state_offset, s.state_size), tau) == 1
                 ? SlipMonitor::Law::held
                 : SlipMonitor::Law::released;
     }
@@ -195,12 +204,12 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   };
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
     const auto& imp = *network.impedances()[i];
-    if (!imp.has_slip()) continue;
+    if (network.capabilities(i).slip == nullptr) continue;
     const auto it = options.stick_thresholds.find(imp.name());
     const double threshold =
         it != options.stick_thresholds.end() ? it->second : options.default_stick_threshold;
     slipping.push_back(i);
-    contacts.push_back(dynamic_cast<const NormalContact*>(&imp));
+    contacts.push_back(network.capabilities(i).contact);
     result.slip_events.push_back({imp.name(), SlipMonitor(threshold, resolution)});
     observe_slip(slipping.size() - 1, 0.0, x, T);
   }

@@ -13,11 +13,6 @@
 namespace stiction::core {
 namespace {
 
-// A step is called unstable where it amplifies some mode by more than 5% per step: such
-// growth runs away within tens of steps. Weaker growth is left out on purpose: a rolling
-// contact linearized about a point of its orbit grows at a few 1/s (physics, not the step).
-constexpr double kUnstableGrowth = 0.05;
-
 // Headroom of the energy monitor (simulation.cpp) at a state of energy `energy`, with
 // `work` done by sources so far.
 double headroom(const RunOptions& options, double initial_energy, double energy, double work) {
@@ -360,6 +355,12 @@ StepRadius step_radius(Network& network, const std::string& integrator, double t
   return step_radius(network, integrator, t, x, h, &groups);
 }
 
+bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts) {
+  if (!r.smooth || r.full <= 1.0 + kUnstableGrowth) return false;
+  const bool runaway = r.friction_held > 1.0 + kUnstableGrowth;
+  return runaway || chatter_counts || r.friction_cap > headroom;
+}
+
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
                              const std::vector<TimedState>& states, double h_min,
                              double h_max) {
@@ -386,10 +387,7 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
   auto stable = [&](double h, bool chatter_counts) {
     for (std::size_t i = 0; i < states.size(); ++i) {
       const TimedState& s = states[i];
-      const StepRadius r = radius_at(i, h);
-      if (!r.smooth || r.full <= 1.0 + kUnstableGrowth) continue;
-      const bool runaway = r.friction_held > 1.0 + kUnstableGrowth;
-      if (runaway || chatter_counts || r.friction_cap > s.energy_headroom) {
+      if (unstable_step(radius_at(i, h), s.energy_headroom, chatter_counts)) {
         limiting_time = s.t;
         return false;
       }

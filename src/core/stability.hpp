@@ -7,7 +7,7 @@
 // that closes for less than a step is still analysed as closed). A step size is stable at
 // a state when the spectral radius of Phi does not exceed 1 (plus a small allowance).
 //
-// Friction that clamps its force at a limit (Impedance::clamps_friction) is linearized a
+// Friction that clamps its force at a limit (the ClampedFriction capability) is linearized a
 // second time with its force held. A mode that only the first linearization shows lives
 // in a stuck friction spring: it cannot run away, since it ends where the force reaches the
 // limit and the element slides. It holds at most friction_cap_energy(), so the run's energy
@@ -40,6 +40,11 @@ inline constexpr std::size_t kMaxSampledStates = 48;
 std::vector<TimedState> sample_states(Network& network, const RunOptions& options,
                                       int per_regime);
 
+// A step is called unstable where it amplifies some mode by more than this per step: such
+// growth runs away within tens of steps. Weaker growth is left out on purpose: a rolling
+// contact linearized about a point of its orbit grows at a few 1/s (physics, not the step).
+inline constexpr double kUnstableGrowth = 0.05;
+
 struct StepRadius {
   double full = 0.0;           // spectral radius of the linear step map
   double friction_held = 0.0;  // same, with clamping friction held
@@ -51,6 +56,12 @@ struct StepRadius {
 // Fixed-step integrators only (euler, symplectic_euler, heun, rk4).
 StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
                        double h);
+
+// Whether radii r make the step unstable at a state where the energy monitor has `headroom`
+// left: a mode grows faster than kUnstableGrowth and either runs away with the friction
+// held, or is a stuck friction's chatter holding more energy than the monitor allows (with
+// chatter_counts: any such mode). False on a switching surface (no answer there).
+bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts = false);
 
 struct StepLimit {
   double max_step = 0.0;       // largest stable step found (0: none above h_min)

@@ -368,7 +368,9 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     return;
   }
   // Elements with a slip speed (contacts, joint friction) get stick/slip events.
-  if (impedance->has_slip()) stick_thresholds_[name] = table.positive("stick_threshold", 1e-3);
+  if (core::capabilities_of(*impedance).slip != nullptr) {
+    stick_thresholds_[name] = table.positive("stick_threshold", 1e-3);
+  }
   table.finish();
   impedance_types_.emplace(name, type);
   add_element(std::move(impedance), std::move(map));

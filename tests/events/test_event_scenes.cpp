@@ -38,7 +38,7 @@ std::map<std::string, NormalForceTrace> normal_forces(scene::Scene& s) {
   std::map<std::string, int> column_of;
   for (const auto& imp : net.impedances()) {
     const auto it = std::find(columns.begin(), columns.end(), imp->name() + ".n_force");
-    if (imp->has_slip() && it != columns.end())
+    if (core::capabilities_of(*imp).slip != nullptr && it != columns.end())
       column_of[imp->name()] = static_cast<int>(it - columns.begin());
   }
   if (column_of.empty()) return traces;

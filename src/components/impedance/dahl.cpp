@@ -6,7 +6,10 @@
 namespace stiction::components {
 
 Dahl::Dahl(std::string name, const DahlParams& params)
-    : core::Impedance(std::move(name)), params_(params) {
+    : core::Impedance(std::move(name)),
+      FrictionSpring(params.stiffness),
+      core::BoundedState(params.force_limit / params.stiffness),
+      params_(params) {
   if (!(params_.stiffness > 0.0) || !(params_.force_limit > 0.0)) {
     throw std::invalid_argument("dahl '" + this->name() +
                                 "': stiffness and force_limit must be > 0");

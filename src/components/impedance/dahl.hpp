@@ -10,6 +10,7 @@
 // Signals: tau = -u (the torque/force on the driven side), e.
 #pragma once
 
+#include "components/impedance/friction_capabilities.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -20,7 +21,12 @@ struct DahlParams {
   double initial_e = 0.0;
 };
 
-class Dahl final : public core::Impedance {
+// A friction spring (0.5 K e^2) with stick/slip events on the sliding velocity; e_dot <= 0
+// at e = F / K while v > 0 (and the mirror for v < 0), so |e| <= F / K.
+class Dahl final : public core::Impedance,
+                   public FrictionSpring,
+                   public JointSlip,
+                   public core::BoundedState {
  public:
   Dahl(std::string name, const DahlParams& params);
   std::string_view type() const override { return "dahl"; }
@@ -34,18 +40,6 @@ class Dahl final : public core::Impedance {
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
-  double stiffness() const override { return params_.stiffness; }
-  // The bristle spring 0.5 K e^2, for the energy monitor.
-  double stored_energy(core::ConstVecRef /*x_hat*/, core::ConstVecRef y) const override {
-    return 0.5 * params_.stiffness * y[0] * y[0];
-  }
-  // Stick/slip events on the sliding velocity (x entry, as for joints).
-  bool has_slip() const override { return true; }
-  core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override {
-    return core::Vec3(x_hat[1], 0.0, 0.0);
-  }
-  // e_dot <= 0 at e = F / K while v > 0 (and the mirror for v < 0).
-  double state_bound() const override { return params_.force_limit / params_.stiffness; }
   const DahlParams& params() const { return params_; }
 
  private:

@@ -11,7 +11,11 @@ using core::Vec3;
 using core::VecRef;
 
 KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& params)
-    : Impedance(std::move(name)), params_(params) {
+    : Impedance(std::move(name)),
+      ContactCapabilities(
+          params.stiffness, params.damping, params.mu,
+          params.tangential_stiffness >= 0.0 ? params.tangential_stiffness : params.stiffness),
+      params_(params) {
   if (!(params_.normal.norm() > 0.0)) throw std::invalid_argument("contact: zero normal");
   if (!(params_.stiffness > 0.0) || !(params_.damping >= 0.0) || !(params_.mu >= 0.0)) {
     throw std::invalid_argument("contact: need K > 0, B >= 0, mu >= 0");
@@ -45,11 +49,6 @@ void KikuuweContact::evaluate_friction_held(double /*t*/, ConstVecRef x_hat, Con
   const Vec3 held = u_ref.head<3>();
   u.head<3>() = held - n_.dot(held) * n_ - normal_force(x_hat) * n_;
   y_dot.head<2>() = y_dot_ref.head<2>();
-}
-
-double KikuuweContact::friction_cap_energy(ConstVecRef x_hat) const {
-  const double limit = params_.mu * normal_force(x_hat);
-  return limit * limit / kt_;
 }
 
 Vec3 KikuuweContact::slip_velocity(ConstVecRef x_hat) const {

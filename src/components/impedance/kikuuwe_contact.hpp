@@ -15,9 +15,9 @@
 
 #include <algorithm>
 
+#include "components/impedance/contact_capabilities.hpp"
 #include "components/impedance/contact_law.hpp"
 #include "components/impedance/surface_extent.hpp"
-#include "core/contact.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -36,7 +36,7 @@ struct KikuuweContactParams {
   Eigen::Vector2d initial_e = Eigen::Vector2d::Zero();  // friction state at t = 0 (m)
 };
 
-class KikuuweContact final : public core::Impedance, public core::NormalContact {
+class KikuuweContact final : public core::Impedance, public ContactCapabilities {
  public:
   KikuuweContact(std::string name, const KikuuweContactParams& params);
   std::string_view type() const override { return "kikuuwe_contact"; }
@@ -58,18 +58,13 @@ class KikuuweContact final : public core::Impedance, public core::NormalContact 
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
-  double stiffness() const override { return params_.stiffness; }
-  double damping() const override { return params_.damping; }
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
-  bool has_slip() const override { return true; }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
-  bool clamps_friction() const override { return true; }
   // The tangential force and e's rate held, the normal force live.
   void evaluate_friction_held(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
                               core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref, core::VecRef u,
                               core::VecRef y_dot) const override;
-  double friction_cap_energy(core::ConstVecRef x_hat) const override;
   double contact_normal_force(core::ConstVecRef x_hat) const override { return normal_force(x_hat); }
   const KikuuweContactParams& params() const { return params_; }
   const core::Vec3& tangent1() const { return t1_; }

@@ -13,8 +13,13 @@ void saturate(double limit, VecRef x) {
 }
 
 KikuuweFriction::KikuuweFriction(std::string name, const KikuuweFrictionParams& params)
-    : Impedance(std::move(name)), params_(params) {
-  if (params_.dimension < 1) throw std::invalid_argument("kikuuwe friction: dimension < 1");
+    : Impedance(std::move(name)),
+      FrictionSpring(params.stiffness, params.damping),
+      params_(params) {
+  // Up to 3: its slip velocity is a 3-vector (a joint, a point).
+  if (params_.dimension < 1 || params_.dimension > 3) {
+    throw std::invalid_argument("kikuuwe friction: dimension must be 1, 2 or 3");
+  }
   if (!(params_.stiffness > 0.0) || !(params_.damping >= 0.0) || !(params_.force_limit >= 0.0)) {
     throw std::invalid_argument("kikuuwe friction: need K > 0, B >= 0, F >= 0");
   }

@@ -7,6 +7,7 @@
 // -f (applied by the map). Signals: tau (n = 1) or f (n > 1), and e.
 #pragma once
 
+#include "components/impedance/friction_capabilities.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -21,7 +22,12 @@ struct KikuuweFrictionParams {
 // gsat(X, x) of eq. (15): x if |x| <= X, else X x / |x|. Writes the result into x.
 void saturate(double limit, core::VecRef x);
 
-class KikuuweFriction final : public core::Impedance {
+// Its spring K holds 0.5 K |e|^2; it clamps at F (stuck: regime 1, sliding: 2), and its slip
+// velocity is the velocity part of x_hat (so dimension <= 3).
+class KikuuweFriction final : public core::Impedance,
+                              public FrictionSpring,
+                              public core::ClampedFriction,
+                              public core::SlipElement {
  public:
   KikuuweFriction(std::string name, const KikuuweFrictionParams& params);
   std::string_view type() const override { return "kikuuwe_friction"; }
@@ -39,20 +45,13 @@ class KikuuweFriction final : public core::Impedance {
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
-  double stiffness() const override { return params_.stiffness; }
-  double damping() const override { return params_.damping; }
-  bool has_slip() const override { return params_.dimension <= 3; }
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override {
     const int n = params_.dimension;
     const double norm = ((params_.damping + tau * params_.stiffness) * x_hat.segment(n, n) +
                          params_.stiffness * y).norm();
     return norm <= params_.force_limit ? 1 : 2;
   }
-  double stored_energy(core::ConstVecRef /*x_hat*/, core::ConstVecRef y) const override {
-    return 0.5 * params_.stiffness * y.squaredNorm();
-  }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
-  bool clamps_friction() const override { return true; }
   // The whole output is friction: held entirely.
   void evaluate_friction_held(double /*t*/, core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,
                               double /*tau*/, core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref,

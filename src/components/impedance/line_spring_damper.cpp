@@ -5,7 +5,9 @@
 namespace stiction::components {
 
 LineSpringDamper::LineSpringDamper(std::string name, const LineSpringDamperParams& params)
-    : core::Impedance(std::move(name)), params_(params) {
+    : core::Impedance(std::move(name)),
+      core::StiffnessHint(params.stiffness, params.damping),
+      params_(params) {
   if (!(params_.stiffness >= 0.0) || !(params_.damping >= 0.0) || !(params_.length >= 0.0)) {
     throw std::invalid_argument("spring_damper '" + this->name() +
                                 "': stiffness, damping and length must be >= 0");

@@ -7,6 +7,7 @@
 // Signals: `f` (the force on the moving side, -u) and `length` (|d|).
 #pragma once
 
+#include "core/capabilities.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -17,7 +18,9 @@ struct LineSpringDamperParams {
   double length = 0.0;     // L, the free length (m)
 };
 
-class LineSpringDamper final : public core::Impedance {
+class LineSpringDamper final : public core::Impedance,
+                               public core::EnergyStore,
+                               public core::StiffnessHint {
  public:
   LineSpringDamper(std::string name, const LineSpringDamperParams& params);
   std::string_view type() const override { return "spring_damper"; }
@@ -28,8 +31,6 @@ class LineSpringDamper final : public core::Impedance {
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
-  double stiffness() const override { return params_.stiffness; }
-  double damping() const override { return params_.damping; }
   // 0.5 K (|d| - L)^2, for the energy monitor.
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
 

@@ -1,12 +1,26 @@
 #include "components/impedance/lugre.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace stiction::components {
+namespace {
+
+// The highest steady deflection max g: F / K, or the static level's Fs / K with Stribeck.
+double bristle_bound(const LuGreParams& p) {
+  const double top =
+      p.stribeck_velocity > 0.0 ? std::max(p.force_limit, p.static_limit) : p.force_limit;
+  return top / p.stiffness;
+}
+
+}  // namespace
 
 LuGre::LuGre(std::string name, const LuGreParams& params)
-    : core::Impedance(std::move(name)), params_(params) {
+    : core::Impedance(std::move(name)),
+      FrictionSpring(params.stiffness, params.damping),
+      core::BoundedState(bristle_bound(params)),
+      params_(params) {
   const LuGreParams& p = params_;
   if (!(p.stiffness > 0.0) || !(p.force_limit > 0.0) || !(p.damping >= 0.0) ||
       !(p.viscous >= 0.0)) {

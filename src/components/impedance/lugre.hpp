@@ -14,6 +14,7 @@
 
 #include <algorithm>
 
+#include "components/impedance/friction_capabilities.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -29,7 +30,13 @@ struct LuGreParams {
   double initial_e = 0.0;
 };
 
-class LuGre final : public core::Impedance {
+// A friction spring (the bristle, 0.5 K e^2) with stick/slip events on the sliding
+// velocity; e_dot <= 0 at e = max g, so the bristle never bends further than the highest
+// steady deflection (the state bound).
+class LuGre final : public core::Impedance,
+                    public FrictionSpring,
+                    public JointSlip,
+                    public core::BoundedState {
  public:
   LuGre(std::string name, const LuGreParams& params);
   std::string_view type() const override { return "lugre"; }
@@ -43,25 +50,6 @@ class LuGre final : public core::Impedance {
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
-  double stiffness() const override { return params_.stiffness; }
-  double damping() const override { return params_.damping; }
-  // The bristle spring 0.5 K e^2, for the energy monitor.
-  double stored_energy(core::ConstVecRef /*x_hat*/, core::ConstVecRef y) const override {
-    return 0.5 * params_.stiffness * y[0] * y[0];
-  }
-  // Stick/slip events on the sliding velocity (x entry, as for joints).
-  bool has_slip() const override { return true; }
-  core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override {
-    return core::Vec3(x_hat[1], 0.0, 0.0);
-  }
-  // e_dot <= 0 at e = max g: the bristle never bends further than the highest steady
-  // deflection.
-  double state_bound() const override {
-    const double top = params_.stribeck_velocity > 0.0
-                           ? std::max(params_.force_limit, params_.static_limit)
-                           : params_.force_limit;
-    return top / params_.stiffness;
-  }
   const LuGreParams& params() const { return params_; }
 
   // g(v) above (a displacement: the steady bristle deflection while sliding at v).

@@ -12,7 +12,13 @@ using core::VecRef;
 
 MovingContact::MovingContact(std::string name, const KikuuweContactParams& params,
                              const SurfaceMotion& motion, double radius)
-    : Impedance(std::move(name)), params_(params), motion_(motion), radius_(radius) {
+    : Impedance(std::move(name)),
+      ContactCapabilities(
+          params.stiffness, params.damping, params.mu,
+          params.tangential_stiffness > 0.0 ? params.tangential_stiffness : params.stiffness),
+      params_(params),
+      motion_(motion),
+      radius_(radius) {
   // The fixed contact checks the parameters and builds the rest frame the same way.
   const KikuuweContact fixed("rest", params_);
   rest_ = {fixed.normal(), fixed.tangent1(), fixed.tangent2()};
@@ -113,11 +119,6 @@ void MovingContact::evaluate_friction_held(double /*t*/, ConstVecRef x_hat, Cons
   u.head<3>() = force;
   u.segment<3>(3) = c.lever.cross(force);
   y_dot.head<2>() = y_dot_ref.head<2>();
-}
-
-double MovingContact::friction_cap_energy(ConstVecRef x_hat) const {
-  const double limit = params_.mu * normal_force(touch(x_hat));
-  return limit * limit / coefficients_.kt;
 }
 
 Vec3 MovingContact::slip_velocity(ConstVecRef x_hat) const {

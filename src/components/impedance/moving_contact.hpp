@@ -40,7 +40,9 @@ struct SurfaceState {
   double angle = 0.0, speed = 0.0;
 };
 
-class MovingContact final : public core::Impedance, public core::NormalContact {
+class MovingContact final : public core::Impedance,
+                            public ContactCapabilities,
+                            public core::Source {
  public:
   MovingContact(std::string name, const KikuuweContactParams& params, const SurfaceMotion& motion,
                 double radius);
@@ -56,18 +58,13 @@ class MovingContact final : public core::Impedance, public core::NormalContact {
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
-  double stiffness() const override { return params_.stiffness; }
-  double damping() const override { return params_.damping; }
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
-  bool has_slip() const override { return true; }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
-  bool clamps_friction() const override { return true; }
   void evaluate_friction_held(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
                               core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref, core::VecRef u,
                               core::VecRef y_dot) const override;
-  double friction_cap_energy(core::ConstVecRef x_hat) const override;
-  bool is_source() const override { return true; }
+  // The power the moving surface gives the body (a source: the surface's motion is prescribed).
   double power_in(core::ConstVecRef x_hat, core::ConstVecRef u) const override;
   // Open while the point is off the surface or outside its extent: no stick or slip events.
   double contact_normal_force(core::ConstVecRef x_hat) const override {

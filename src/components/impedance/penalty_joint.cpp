@@ -36,7 +36,9 @@ double wrap_angle(double a) {
 }  // namespace
 
 PenaltyJoint::PenaltyJoint(std::string name, const PenaltyJointParams& params)
-    : core::Impedance(std::move(name)), params_(params) {
+    : core::Impedance(std::move(name)),
+      core::StiffnessHint(params.separation_stiffness, params.separation_damping),
+      params_(params) {
   const auto& p = params_;
   auto fail = [this](const std::string& what) {
     throw std::invalid_argument("penalty_joint '" + this->name() + "': " + what);

@@ -22,6 +22,7 @@
 // torque on the child about n, i.e. -f_F) and e.
 #pragma once
 
+#include "core/capabilities.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -44,7 +45,14 @@ struct PenaltyJointParams {
   double initial_e = 0.0;
 };
 
-class PenaltyJoint final : public core::Impedance {
+// Stick/slip events and regimes (1 stuck, 2 sliding) of its friction about the axis, the
+// energy of its three springs, and its separation stiffness for stability advice. Its
+// friction is not a ClampedFriction: its stability is analysed with the friction live.
+class PenaltyJoint final : public core::Impedance,
+                           public core::EnergyStore,
+                           public core::SlipElement,
+                           public core::PiecewiseLaw,
+                           public core::StiffnessHint {
  public:
   PenaltyJoint(std::string name, const PenaltyJointParams& params);
   std::string_view type() const override { return "penalty_joint"; }
@@ -58,14 +66,11 @@ class PenaltyJoint final : public core::Impedance {
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
-  double stiffness() const override { return params_.separation_stiffness; }
-  double damping() const override { return params_.separation_damping; }
   // 0.5 (Ks |d|^2 + Kb phi^2 + Kf e^2): separation, bending and friction springs.
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
-  // Stick/slip events on the relative rate about the axis (in the x entry, as for joints).
-  bool has_slip() const override { return true; }
   // 1 while the friction about the axis is stuck, 2 while it slides.
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
+  // The relative rate about the axis (in the x entry, as for joints).
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
   const PenaltyJointParams& params() const { return params_; }
 

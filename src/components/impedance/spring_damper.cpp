@@ -5,7 +5,9 @@
 namespace stiction::components {
 
 SpringDamper::SpringDamper(std::string name, const SpringDamperParams& params)
-    : core::Impedance(std::move(name)), params_(params) {
+    : core::Impedance(std::move(name)),
+      core::StiffnessHint(params.stiffness, params.damping),
+      params_(params) {
   const int n = params_.dimension;
   if (n < 1) throw std::invalid_argument("spring_damper '" + this->name() + "': dimension < 1");
   if (!(params_.stiffness >= 0.0) || !(params_.damping >= 0.0)) {

@@ -10,6 +10,7 @@
 // for n = 3, 0 1 ... otherwise).
 #pragma once
 
+#include "core/capabilities.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -21,7 +22,9 @@ struct SpringDamperParams {
   core::Vec rest;  // n entries, or empty for zero
 };
 
-class SpringDamper final : public core::Impedance {
+class SpringDamper final : public core::Impedance,
+                           public core::EnergyStore,
+                           public core::StiffnessHint {
  public:
   SpringDamper(std::string name, const SpringDamperParams& params);
   std::string_view type() const override { return "spring_damper"; }
@@ -32,8 +35,6 @@ class SpringDamper final : public core::Impedance {
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
-  double stiffness() const override { return params_.stiffness; }
-  double damping() const override { return params_.damping; }
   // 0.5 K |p - rest|^2, for the energy monitor.
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   const SpringDamperParams& params() const { return params_; }

@@ -15,11 +15,12 @@
 #include <functional>
 #include <string>
 
+#include "core/capabilities.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
 
-class TorqueSource final : public core::Impedance {
+class TorqueSource final : public core::Impedance, public core::Source {
  public:
   using Profile = std::function<double(double t)>;
   // Value at time t from the m observed values.
@@ -39,11 +40,12 @@ class TorqueSource final : public core::Impedance {
   void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
                 core::VecRef y_dot) const override;
   std::vector<core::SignalInfo> signals() const override;
-  bool is_source() const override { return true; }
   // The driven side receives -u while moving at the velocity part of x_hat.
   double power_in(core::ConstVecRef x_hat, core::ConstVecRef u) const override {
     return -u.dot(x_hat.segment(size(), size()));
   }
+  // A feedback law when it observes signals of the scene.
+  bool reads_state() const override { return observed_ > 0; }
   void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
                      core::VecRef out) const override;
 
