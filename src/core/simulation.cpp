@@ -217,6 +217,13 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   bool slips_pending = false;  // the slips of the state at pending_time are not observed yet
   bool capture_requested = false;
   double pending_time = 0.0, pending_tau = 0.0;
+  std::vector<ConstVecRef> captured_inputs, captured_states;  // views, made once
+  if (capture_slips) {
+    for (int i : slipping) {
+      captured_inputs.push_back(network.captured_input(i));
+      captured_states.push_back(network.captured_state(i));
+    }
+  }
   // Observes the pending slips from the capture, or at `state` (the pending state itself)
   // if no evaluation served a request for them.
   auto settle_slips = [&](const Vec& state) {
@@ -231,8 +238,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
       return;
     }
     for (std::size_t m = 0; m < slipping.size(); ++m) {
-      observe_slip_from(m, pending_time, network.captured_input(slipping[m]),
-                        network.captured_state(slipping[m]), pending_tau);
+      observe_slip_from(m, pending_time, captured_inputs[m], captured_states[m], pending_tau);
     }
   };
 
