@@ -171,6 +171,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   // Elements with a slip speed, and for contacts the capability that says when they are open.
   std::vector<int> slipping;
   std::vector<const NormalContact*> contacts;
+  std::vector<char> clamps;  // Impedance::clamps_friction, asked once
   const double resolution = options.event_resolution >= 0.0 ? options.event_resolution : T;
   // `tau`: the step just taken, with which a Kikuuwe element tells stuck from sliding;
   // x_hat and y: the element's input and state at the observed state.
@@ -183,7 +184,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     // The friction law (Kikuuwe: stuck while within its limit), asked only where it matters
     // (it costs an evaluation): while stuck, to bound a slip onset, and above the threshold.
     SlipMonitor::Law law = SlipMonitor::Law::unknown;
-    if (!open && imp.clamps_friction() && (monitor.sticking() || slip.norm() > monitor.threshold())) {
+    if (!open && clamps[m] && (monitor.sticking() || slip.norm() > monitor.threshold())) {
       law = imp.regime(x_hat, y, tau) == 1 ? SlipMonitor::Law::held : SlipMonitor::Law::released;
     }
     monitor.observe(time, slip, open, law);
@@ -203,6 +204,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
         it != options.stick_thresholds.end() ? it->second : options.default_stick_threshold;
     slipping.push_back(i);
     contacts.push_back(dynamic_cast<const NormalContact*>(&imp));
+    clamps.push_back(imp.clamps_friction());
     result.slip_events.push_back({imp.name(), SlipMonitor(threshold, resolution)});
     observe_slip(slipping.size() - 1, 0.0, x, T);
   }
