@@ -37,7 +37,7 @@ class ContactPointMap final : public core::CoordinateMap {
   // that made the 100-sphere step 25% slower.
   template <typename BodyType>
   [[gnu::always_inline]] inline core::BodyMotion motion_of(const BodyType& body, const double* x,
-                                                         core::VecRef x_hat) const {
+                                                           core::VecRef x_hat) const {
     const core::BodyMotion m =
         body.motion(Eigen::Map<const core::Vec>(x + slot_.state_offset, slot_.state_size));
     // (27d): contact point velocity v + w x a, with a the lever arm in world coordinates.
