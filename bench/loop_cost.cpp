@@ -33,6 +33,16 @@ double seconds_since(double start) { return Clock::now() - start; }
 // minimum is the closest to the code's own cost.
 double best(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
 
+// The median of the per-repeat ratios a[r] / b[r] (each repeat's three runs are adjacent in
+// time, so a load that comes and goes hits them alike).
+double median_ratio(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> r;
+  for (std::size_t i = 0; i < a.size(); ++i) r.push_back(a[i] / b[i]);
+  std::sort(r.begin(), r.end());
+  const std::size_t n = r.size();
+  return n % 2 == 1 ? r[n / 2] : 0.5 * (r[n / 2 - 1] + r[n / 2]);
+}
+
 // n spheres of different radii, launched at different speeds on one ground, each with its
 // own contact: the network grows with n, the loop's per-row work too.
 scene::Scene many_spheres(int n, double duration) {
@@ -84,8 +94,9 @@ void loop_ratio(const char* label, scene::Scene& scene, int repeats) {
   const double step_us = best(bare) / static_cast<double>(steps) * 1e6;
   std::printf(
       "%-28s bare step %.2f us; simulate / bare step: %.3f (rows in memory), %.3f (rows "
-      "streamed to a sink)\n",
-      label, step_us, best(in_memory) / best(bare), best(streamed) / best(bare));
+      "streamed to a sink); median of %d repeats: %.3f, %.3f\n",
+      label, step_us, best(in_memory) / best(bare), best(streamed) / best(bare), repeats,
+      median_ratio(in_memory, bare), median_ratio(streamed, bare));
 }
 
 // Least-squares slope of log(time) against log(n).

@@ -1,6 +1,7 @@
 // Ratios printed by bench_step (issue 13): the run loop against the bare step, and the
 // planar arm's cost exponent. Times are the thread's CPU time, the least of a few repeats
-// (other processes only add time), and the figures are ratios measured in one process.
+// (other processes only add time), and the figures are ratios measured in one process; the
+// loop ratios also as the median of the per-repeat ratios.
 #pragma once
 
 namespace stiction::bench {

@@ -157,7 +157,8 @@ int dispatch(int argc, char** argv) {
   app::SweepArguments sweep_args;
   double sweep_dt = 0.0, sweep_duration = 0.0;
   CLI::App* sweep = cli.add_subcommand(
-      "sweep", "run a scene over a grid of --set values; writes sweep.csv, sweep.md, sweep.png");
+      "sweep",
+      "run a scene over a grid of --set values; writes sweep.csv, sweep.md, sweep.png, sweep.svg");
   sweep->add_option("SCENE", sweep_args.scene, "bundled scene name or path to a .toml file");
   sweep->add_option("--vary", sweep_args.vary,
                     "KEY=v1,v2,... or KEY=start:stop:count[:log] (repeatable: a grid)")

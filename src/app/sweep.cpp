@@ -399,7 +399,8 @@ int sweep_command(const SweepArguments& args) {
     if (shard.sharded()) {
       std::printf("  when every shard is done: stiction sweep --merge %s\n", out.c_str());
     } else {
-      std::printf("  wrote %s and %s\n", (out / "sweep.md").c_str(), (out / "sweep.png").c_str());
+      std::printf("  wrote %s, %s and %s\n", (out / "sweep.md").c_str(),
+                  (out / "sweep.png").c_str(), (out / "sweep.svg").c_str());
     }
   }
   return kExitOk;

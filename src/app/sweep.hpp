@@ -1,5 +1,5 @@
 // `stiction sweep` (docs/sweeps.md): one run of a scene per point of a grid of --set values,
-// in one process on several threads; sweep.csv, sweep.md, sweep.png; shards and their merge.
+// in one process on several threads; sweep.csv, .md, .png, .svg; shards and their merge.
 #pragma once
 
 #include <cstddef>
@@ -26,7 +26,7 @@ struct SweepPlan {
   static SweepPlan from_json(const std::string& text, const std::filesystem::path& origin);
 };
 
-// sweep.md and sweep.png (plus .svg when the figure code can write one) of a full table.
+// sweep.md, sweep.png and sweep.svg (the same figure as vectors) of a full table.
 void write_sweep_report(const SweepPlan& plan, const SweepTable& table,
                         const std::filesystem::path& dir);
 

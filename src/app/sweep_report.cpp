@@ -1,5 +1,6 @@
-// sweep.md (the table as Markdown, with the status counts) and sweep.png (the chosen records
-// against the first varied key, one line per combination of the other keys' values).
+// sweep.md (the table as Markdown, with the status counts) and sweep.png / sweep.svg (the
+// chosen records against the first varied key, one line per combination of the other keys'
+// values; the same figure as a bitmap and as vectors).
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -7,11 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include "app/sweep.hpp"
-#include "image/png.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/figure.hpp"
 #include "scene/toml_reader.hpp"
-#include "text/font.hpp"
 
 namespace stiction::app {
 namespace {
@@ -43,7 +42,7 @@ std::string markdown(const SweepPlan& plan, const SweepTable& table) {
   }
   md += ".\n\nStatus:";
   for (const auto& [name, count] : statuses) md += " " + name + " " + std::to_string(count) + ";";
-  md += "\n\nThe full table is `sweep.csv`; `sweep.png` plots";
+  md += "\n\nThe full table is `sweep.csv`; `sweep.png` (and `sweep.svg`) plot";
   for (const std::string& p : plan.plot) md += " `" + p + "`";
   md += " against `" + plan.keys.front().key + "`.\n\n";
   // The Markdown table keeps the parameters, the status and the plotted records.
@@ -109,8 +108,8 @@ void write_sweep_report(const SweepPlan& plan, const SweepTable& table,
       }
     }
   }
-  text::Font font = text::Font::open_default();
-  image::write_png(dir / "sweep.png", plot::render(figure, font), image::PngSpeed::small);
+  plot::write_figure(figure, dir / "sweep.png", plot::Format::png);
+  plot::write_figure(figure, dir / "sweep.svg", plot::Format::svg);
 }
 
 std::string SweepPlan::to_json() const {

@@ -9,6 +9,8 @@
 // it removes most of what the network costs over a hand-written loop (README, Performance).
 #pragma once
 
+#include <memory>
+
 #include "core/types.hpp"
 
 namespace stiction::core {
@@ -21,6 +23,12 @@ class Coupling {
   // state rate, admittance inputs; the coupling knows its slices): views passed by value
   // live on the stack, and every call would read them back from there first.
   virtual void exchange(double t, const double* x, double tau, double* x_dot, double* u_hat) = 0;
+  // The same coupling, except that each exchange() also copies the x_hat it computes to
+  // `motion_out` and the impedance's state to `state_out` (Network::capture_slip_inputs_next),
+  // or nullptr if this coupling has no such twin (the network then wraps it).
+  virtual std::unique_ptr<Coupling> capturing(double* /*motion_out*/, double* /*state_out*/) const {
+    return nullptr;
+  }
 };
 
 }  // namespace stiction::core

@@ -54,6 +54,9 @@ class Stepper {
   virtual double advance(Network& network, double t, double limit, Vec& x) = 0;
   // Number of network evaluations so far (the cost in `stiction study`).
   long evaluations() const { return evaluations_; }
+  // Whether advance() evaluates the network first at (t, x) itself, so that what that
+  // evaluation computes is the state's own (the run loop reads slips from it).
+  virtual bool evaluates_start_first() const { return false; }
 
  protected:
   long evaluations_ = 0;
@@ -66,6 +69,7 @@ class RungeKuttaStepper final : public Stepper {
   int order() const override { return tableau_.order; }
   const Tableau& tableau() const { return tableau_; }
   double advance(Network& network, double t, double limit, Vec& x) override;
+  bool evaluates_start_first() const override { return true; }  // explicit: stage 1 is at x
   // One step of exactly T from t (no projection skipped), for tests and benchmarks.
   void step(Network& network, double t, double T, Vec& x);
 
@@ -92,6 +96,7 @@ class SymplecticEulerStepper final : public Stepper {
   const std::string& name() const override { return name_; }
   int order() const override { return 1; }
   double advance(Network& network, double t, double limit, Vec& x) override;
+  bool evaluates_start_first() const override { return true; }
   void step(Network& network, double t, double T, Vec& x);
 
  private:

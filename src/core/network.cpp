@@ -8,19 +8,38 @@ namespace stiction::core {
 namespace {
 
 // Psi, the impedance and Phi through their interfaces, x_hat and u handed over in the
-// network's vectors.
+// network's vectors. The capturing twin (kCapture) also copies x_hat and the impedance's
+// state out (Network::capture_slip_inputs_next).
+template <bool kCapture = false>
 class GenericCoupling final : public Coupling {
  public:
   GenericCoupling(const CoordinateMap& map, const Impedance& impedance, const Slot& state,
-                  int state_dim, int input_dim, VecRef x_hat, VecRef u)
-      : map_(map), impedance_(impedance), state_(state), state_dim_(state_dim),
-        input_dim_(input_dim), x_hat_(x_hat), u_(u) {}
+                  int state_dim, int input_dim, VecRef x_hat, VecRef u,
+                  double* motion_out = nullptr, double* state_out = nullptr)
+      : map_(map),
+        impedance_(impedance),
+        state_(state),
+        state_dim_(state_dim),
+        input_dim_(input_dim),
+        x_hat_(x_hat),
+        u_(u),
+        motion_out_(motion_out),
+        state_out_(state_out) {}
   void exchange(double t, const double* x_data, double tau, double* x_dot, double* u_hat) override {
     const Eigen::Map<const Vec> x(x_data, state_dim_);
     map_.motion(x, x_hat_);
+    if constexpr (kCapture) {
+      Eigen::Map<Vec>(motion_out_, x_hat_.size()) = x_hat_;
+      Eigen::Map<Vec>(state_out_, state_.state_size) =
+          x.segment(state_.state_offset, state_.state_size);
+    }
     impedance_.evaluate(t, x_hat_, x.segment(state_.state_offset, state_.state_size), tau, u_,
                         Eigen::Map<Vec>(x_dot + state_.state_offset, state_.state_size));
     map_.apply(x, u_, Eigen::Map<Vec>(u_hat, input_dim_));
+  }
+  std::unique_ptr<Coupling> capturing(double* motion_out, double* state_out) const override {
+    return std::make_unique<GenericCoupling<true>>(map_, impedance_, state_, state_dim_, input_dim_,
+                                                   x_hat_, u_, motion_out, state_out);
   }
 
  private:
@@ -30,6 +49,38 @@ class GenericCoupling final : public Coupling {
   int state_dim_, input_dim_;
   VecRef x_hat_;
   VecRef u_;
+  double* motion_out_;
+  double* state_out_;
+};
+
+// For a direct coupling without a capturing twin: the coupling, then the map's Psi once more
+// into the capture (the same bits, at the cost of a second evaluation of the map).
+class CaptureAfter final : public Coupling {
+ public:
+  CaptureAfter(Coupling& inner, const CoordinateMap& map, const Slot& state, int state_dim,
+               int motion_size, double* motion_out, double* state_out)
+      : inner_(inner),
+        map_(map),
+        state_(state),
+        state_dim_(state_dim),
+        motion_size_(motion_size),
+        motion_out_(motion_out),
+        state_out_(state_out) {}
+  void exchange(double t, const double* x_data, double tau, double* x_dot, double* u_hat) override {
+    inner_.exchange(t, x_data, tau, x_dot, u_hat);
+    const Eigen::Map<const Vec> x(x_data, state_dim_);
+    map_.motion(x, Eigen::Map<Vec>(motion_out_, motion_size_));
+    Eigen::Map<Vec>(state_out_, state_.state_size) =
+        x.segment(state_.state_offset, state_.state_size);
+  }
+
+ private:
+  Coupling& inner_;
+  const CoordinateMap& map_;
+  Slot state_;
+  int state_dim_, motion_size_;
+  double* motion_out_;
+  double* state_out_;
 };
 
 }  // namespace
@@ -126,13 +177,14 @@ void Network::finalize() {
     const Slot& s = impedance_slots_[i];
     auto coupling = maps_[i]->direct_coupling(*impedances_[i], s);
     if (!coupling) {
-      coupling = std::make_unique<GenericCoupling>(
-          *maps_[i], *impedances_[i], s, state_dim_, input,
-          x_hat_.segment(s.input_offset, s.input_size),
-          u_.segment(output_offsets_[i], output_sizes_[i]));
+      coupling =
+          std::make_unique<GenericCoupling<>>(*maps_[i], *impedances_[i], s, state_dim_, input,
+                                              x_hat_.segment(s.input_offset, s.input_size),
+                                              u_.segment(output_offsets_[i], output_sizes_[i]));
     }
     couplings_.push_back(std::move(coupling));
   }
+  prepare_capture();
   finalized_ = true;
 }
 
@@ -202,10 +254,52 @@ void Network::evaluate_admittances(ConstVecRef x, VecRef x_dot) {
 }
 
 void Network::derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
-  // (13d) Psi, (22) impedances, (13f) Phi.
+  // (13d) Psi, (22) impedances, (13f) Phi. The capturing couplings serve one call only.
+  Coupling* const* couplings = active_;
+  active_ = plain_.data();
   u_hat_.setZero();
-  for (auto& coupling : couplings_) coupling->exchange(t, x.data(), tau, x_dot.data(), u_hat_.data());
+  for (std::size_t i = 0; i < plain_.size(); ++i) {
+    couplings[i]->exchange(t, x.data(), tau, x_dot.data(), u_hat_.data());
+  }
   evaluate_admittances(x, x_dot);
+}
+
+void Network::prepare_capture() {
+  int size = 0;
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    const bool slips = capabilities_[i].slip != nullptr;
+    capture_offsets_.push_back(slips ? size : -1);
+    if (slips) size += impedance_slots_[i].input_size + impedance_slots_[i].state_size;
+  }
+  captured_ = Vec::Zero(size);
+  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+    Coupling* plain = couplings_[i].get();
+    plain_.push_back(plain);
+    if (capture_offsets_[i] < 0) {
+      capturing_.push_back(plain);
+      continue;
+    }
+    const Slot& s = impedance_slots_[i];
+    double* motion = captured_.data() + capture_offsets_[i];
+    double* state = motion + s.input_size;
+    std::unique_ptr<Coupling> twin = plain->capturing(motion, state);
+    if (!twin) {
+      twin = std::make_unique<CaptureAfter>(*plain, *maps_[i], s, state_dim_, s.input_size, motion,
+                                            state);
+    }
+    capturing_.push_back(twin.get());
+    capturing_owned_.push_back(std::move(twin));
+  }
+  active_ = plain_.data();
+}
+
+ConstVecRef Network::captured_input(int impedance) const {
+  return captured_.segment(capture_offsets_.at(impedance), impedance_slots_[impedance].input_size);
+}
+
+ConstVecRef Network::captured_state(int impedance) const {
+  const Slot& s = impedance_slots_[impedance];
+  return captured_.segment(capture_offsets_.at(impedance) + s.input_size, s.state_size);
 }
 
 void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,

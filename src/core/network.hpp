@@ -62,6 +62,19 @@ class Network {
   // Impedance i's input x_hat at state x (the map's Psi), valid until the next call.
   ConstVecRef impedance_input(int impedance, ConstVecRef x);
 
+  // Slip inputs from the step's own evaluation (issue 13): after capture_slip_inputs_next(),
+  // the next derivative() call also keeps every slip element's x_hat and state as it
+  // evaluated them, so the run loop observes slips without evaluating the maps again. Without
+  // a request derivative() runs the plain couplings (no copy, no test); the request swaps in
+  // the capturing twins (Coupling::capturing) for that one call.
+  void capture_slip_inputs_next() { active_ = capturing_.data(); }
+  // True between a request and the derivative() call that serves it.
+  bool capture_pending() const { return active_ != plain_.data(); }
+  void cancel_capture() { active_ = plain_.data(); }
+  // Impedance i's x_hat and state (i must be a slip element) at the last captured evaluation.
+  ConstVecRef captured_input(int impedance) const;
+  ConstVecRef captured_state(int impedance) const;
+
   // Regimes of all impedances at (x; tau) folded into one number: equal numbers mean the
   // same smooth piece of the system (see PiecewiseLaw).
   std::size_t regime_signature(ConstVecRef x, double tau);
@@ -118,6 +131,15 @@ class Network {
   Vec scratch_dot_;
   Vec zero_input_;
   std::vector<bool> position_slots_;
+  // Slip capture (capture_slip_inputs_next): the couplings derivative() runs, plain or with
+  // the capturing twins of the slip elements, and where each slip element's x_hat and state go.
+  void prepare_capture();
+  std::vector<Coupling*> plain_;
+  std::vector<Coupling*> capturing_;
+  std::vector<std::unique_ptr<Coupling>> capturing_owned_;
+  Coupling* const* active_ = nullptr;  // plain_ or capturing_ (their buffers survive a move)
+  std::vector<int> capture_offsets_;   // -1: no slip
+  Vec captured_;
 };
 
 }  // namespace stiction::core

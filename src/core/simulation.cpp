@@ -182,12 +182,12 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   std::vector<int> slipping;
   std::vector<const NormalContact*> contacts;
   const double resolution = options.event_resolution >= 0.0 ? options.event_resolution : T;
-  // `tau`: the step just taken, with which a Kikuuwe element tells stuck from sliding.
-  auto observe_slip = [&](std::size_t m, double time, const Vec& state, double tau) {
-    const int i = slipping[m];
-    const Capabilities& c = network.capabilities(i);
+  // `tau`: the step just taken, with which a Kikuuwe element tells stuck from sliding;
+  // x_hat and y: the element's input and state at the observed state.
+  auto observe_slip_from = [&](std::size_t m, double time, ConstVecRef x_hat, ConstVecRef y,
+                               double tau) {
+    const Capabilities& c = network.capabilities(slipping[m]);
     SlipMonitor& monitor = result.slip_events[m].monitor;
-    const ConstVecRef x_hat = network.impedance_input(i, state);
     const bool open = contacts[m] != nullptr && !(contacts[m]->contact_normal_force(x_hat) > 0.0);
     const Vec3 slip = c.slip->slip_velocity(x_hat);
     // The friction law (Kikuuwe: stuck while within its limit), asked only where it matters
@@ -195,12 +195,17 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     SlipMonitor::Law law = SlipMonitor::Law::unknown;
     if (!open && c.friction != nullptr &&
         (monitor.sticking() || slip.norm() > monitor.threshold())) {
-      const Slot s = network.impedance_slot(i);
-      law = c.friction->regime(x_hat, state.segment(s.state_offset, s.state_size), tau) == 1
-                ? SlipMonitor::Law::held
-                : SlipMonitor::Law::released;
+      law = c.friction->regime(x_hat, y, tau) == 1 ? SlipMonitor::Law::held
+                                                   : SlipMonitor::Law::released;
     }
     monitor.observe(time, slip, open, law);
+  };
+  // The same with the map evaluated here, at `state`.
+  auto observe_slip = [&](std::size_t m, double time, const Vec& state, double tau) {
+    const int i = slipping[m];
+    const Slot s = network.impedance_slot(i);
+    observe_slip_from(m, time, network.impedance_input(i, state),
+                      state.segment(s.state_offset, s.state_size), tau);
   };
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
     const auto& imp = *network.impedances()[i];
@@ -215,6 +220,39 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   }
 
   InstabilityMonitor monitor(network, options, x);
+
+  // Slips without a second evaluation of the maps (issue 13): when the stepper evaluates the
+  // network first at the step's start state, the slips of the state a step ends at are read
+  // from the next step's first evaluation (Network::capture_slip_inputs_next), one step later
+  // but with the same bits; the state the run ends at is observed directly.
+  const bool capture_slips = !slipping.empty() && stepper->evaluates_start_first();
+  bool slips_pending = false;  // the slips of the state at pending_time are not observed yet
+  bool capture_requested = false;
+  double pending_time = 0.0, pending_tau = 0.0;
+  std::vector<ConstVecRef> captured_inputs, captured_states;  // views, made once
+  if (capture_slips) {
+    for (int i : slipping) {
+      captured_inputs.push_back(network.captured_input(i));
+      captured_states.push_back(network.captured_state(i));
+    }
+  }
+  // Observes the pending slips from the capture, or at `state` (the pending state itself)
+  // if no evaluation served a request for them.
+  auto settle_slips = [&](const Vec& state) {
+    if (!slips_pending) return;
+    slips_pending = false;
+    const bool served = capture_requested && !network.capture_pending();
+    capture_requested = false;
+    if (!served) {
+      network.cancel_capture();
+      for (std::size_t m = 0; m < slipping.size(); ++m)
+        observe_slip(m, pending_time, state, pending_tau);
+      return;
+    }
+    for (std::size_t m = 0; m < slipping.size(); ++m) {
+      observe_slip_from(m, pending_time, captured_inputs[m], captured_states[m], pending_tau);
+    }
+  };
 
   const auto start = std::chrono::steady_clock::now();
   long sample = 0;
@@ -239,13 +277,19 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
         (sample < total_samples && next_sample <= t_next + 1e-9 * T &&
          (next_sample - t) / (t_next - t) <= 1.0 - 1e-9);
     if (keep_prev) x_prev = x;
+    if (slips_pending) {
+      network.capture_slip_inputs_next();
+      capture_requested = true;
+    }
     double h = 0.0;
     try {
       h = stepper->advance(network, t, end - t, x);
     } catch (const std::runtime_error& error) {
+      settle_slips(x);  // the fixed steppers change x only once they have evaluated
       result.instability = Instability{t, "integrator", error.what()};
       break;
     }
+    settle_slips(x);  // served by the step's first evaluation
     // Fixed steps: time from the step count, so a long run does not accumulate rounding.
     const double t_now = fixed_step ? ((k + 1 >= total_steps) ? end : (k + 1) * T) : t + h;
     result.steps = k + 1;
@@ -264,7 +308,13 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
       }
     }
 
-    for (std::size_t m = 0; m < slipping.size(); ++m) observe_slip(m, t_now, x, t_now - t);
+    if (capture_slips) {
+      slips_pending = true;
+      pending_time = t_now;
+      pending_tau = t_now - t;
+    } else {
+      for (std::size_t m = 0; m < slipping.size(); ++m) observe_slip(m, t_now, x, t_now - t);
+    }
 
     // Samples that fall in (t, t_now]: interpolate between the signals at both ends.
     bool have_prev = false;
@@ -294,6 +344,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     if (progress && (k + 1) % progress_every == 0) progress(t_now / end);
     t = t_now;
   }
+  settle_slips(x);  // the state the run ends at (no step after it)
   for (auto& history : result.slip_events) history.monitor.finish();
   if (sink != nullptr) {
     flush();

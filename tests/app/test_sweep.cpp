@@ -1,7 +1,8 @@
 // `stiction sweep` as a user runs it: the sphere_roll grid against the closed form of a
 // sphere released at rest on the ground with speed v0 (sliding ends at 2 v0 / (7 mu g), then
 // it rolls at 5/7 v0), shards run as separate processes merged into the unsharded table,
-// resume after an interruption, unstable points recorded, bad input.
+// resume after an interruption, unstable points recorded, bad input; sweep.svg is valid SVG
+// with one polyline per v0 in the order of the closed form.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "run_stiction.hpp"
+#include "svg_check.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -135,6 +137,31 @@ TEST_CASE("sweep: sphere_roll over mu and v0 matches 2 v0 / (7 mu g) at every po
   CHECK(std::stod(t.rows[1][mu_c]) == 0.05);  // the grid: the last key fastest
   CHECK(std::stod(t.rows[29][mu_c]) == 0.5);
   CHECK(fs::file_size(dir / "grid" / "sweep.png") > 1000);
+  // The same figure as vectors: a well-formed SVG whose three series (v0 = 1, 2, 4, in that
+  // order) are polylines of the ten mu values, falling with mu (y grows downwards), and
+  // ordered as 2 v0 / (7 mu g) at every mu.
+  const stiction::testing::SvgDocument svg =
+      stiction::testing::parse_svg(read_text(dir / "grid" / "sweep.svg"));
+  INFO(svg.error);
+  REQUIRE(svg.well_formed);
+  CHECK(svg.root == "svg");
+  std::vector<std::vector<stiction::testing::SvgPoint>> series;
+  for (const auto& path : svg.paths) {
+    if (path.points.size() == 10 && path.style.find("fill:none") != std::string::npos)
+      series.push_back(path.points);
+  }
+  REQUIRE(series.size() == 3);
+  for (const auto& line : series) {
+    for (std::size_t i = 1; i < line.size(); ++i) {
+      CHECK(line[i].x > line[i - 1].x);
+      CHECK(line[i].y > line[i - 1].y);
+    }
+  }
+  for (std::size_t i = 0; i < 10; ++i) {
+    CHECK(series[0][i].x == series[2][i].x);
+    CHECK(series[0][i].y > series[1][i].y);
+    CHECK(series[1][i].y > series[2][i].y);
+  }
   CHECK_THAT(read_text(dir / "grid" / "sweep.md"), Contains("ok 30"));
   CHECK_FALSE(fs::exists(dir / "grid" / "points"));  // --keep none
 }
@@ -191,6 +218,7 @@ TEST_CASE("sweep: four shards as separate processes merge into the unsharded tab
   CHECK(read_table(dir / "whole" / "sweep.csv").rows.size() == 10);
   CHECK(without_wall_time(dir / "sharded" / "sweep.csv") == whole);
   CHECK(fs::exists(dir / "sharded" / "sweep.png"));
+  CHECK(stiction::testing::parse_svg(read_text(dir / "sharded" / "sweep.svg")).well_formed);
 
   // A missing shard, or a point twice, is refused.
   fs::rename(dir / "sharded" / "sweep.shard-2.csv", dir / "shard2.csv");

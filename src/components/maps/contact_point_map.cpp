@@ -8,22 +8,38 @@ namespace stiction::components {
 namespace {
 
 // Psi, Kikuuwe's contact law and Phi with every call direct (final classes, inline hot
-// paths): the compiler keeps x_hat and u in registers (core/coupling.hpp).
-template <typename BodyType>
+// paths): the compiler keeps x_hat and u in registers (core/coupling.hpp). The capturing
+// twin (kCapture) also stores x_hat and e for the run loop's slip observation; the plain one
+// has no trace of it.
+template <typename BodyType, bool kCapture = false>
 class KikuuweContactCoupling final : public core::Coupling {
  public:
   KikuuweContactCoupling(const ContactPointMap& map, const BodyType& body,
-                         const KikuuweContact& contact, const core::Slot& state)
-      : map_(map), body_(body), contact_(contact), state_(state) {}
+                         const KikuuweContact& contact, const core::Slot& state,
+                         double* motion_out = nullptr, double* state_out = nullptr)
+      : map_(map),
+        body_(body),
+        contact_(contact),
+        state_(state),
+        motion_out_(motion_out),
+        state_out_(state_out) {}
 
   void exchange(double t, const double* x, double tau, double* x_dot, double* u_hat) override {
     Eigen::Matrix<double, 6, 1> x_hat;
     Eigen::Vector3d u;
     const core::BodyMotion at = map_.motion_of(body_, x, x_hat);
+    if constexpr (kCapture) {
+      for (int k = 0; k < 6; ++k) motion_out_[k] = x_hat[k];
+      for (int k = 0; k < 2; ++k) state_out_[k] = x[state_.state_offset + k];
+    }
     contact_.evaluate(t, x_hat,
                       Eigen::Map<const core::Vec>(x + state_.state_offset, state_.state_size), tau,
                       u, Eigen::Map<core::Vec>(x_dot + state_.state_offset, state_.state_size));
     map_.apply_to(body_, at, u, u_hat);
+  }
+  std::unique_ptr<core::Coupling> capturing(double* motion_out, double* state_out) const override {
+    return std::make_unique<KikuuweContactCoupling<BodyType, true>>(map_, body_, contact_, state_,
+                                                                    motion_out, state_out);
   }
 
  private:
@@ -31,6 +47,8 @@ class KikuuweContactCoupling final : public core::Coupling {
   const BodyType& body_;
   const KikuuweContact& contact_;
   core::Slot state_;
+  double* motion_out_;
+  double* state_out_;
 };
 
 }  // namespace
