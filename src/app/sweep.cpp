@@ -126,8 +126,10 @@ class PointRunner {
       }
       std::size_t c = base + 5;
       for (const core::SlipHistory& h : result.slip_events) {
-        const double stick = h.monitor.stick_time();
-        row[c++] = stick >= 0.0 ? number_text(stick) : "";
+        for (const double time :
+             {h.monitor.stick_time(), h.monitor.first_slip(), h.monitor.last_stick()}) {
+          row[c++] = time >= 0.0 ? number_text(time) : "";
+        }
         std::string events;
         for (const core::SlipEvent& e : h.monitor.events()) {
           events += (events.empty() ? "" : ";") + e.kind + ":" + number_text(e.time);
@@ -298,8 +300,8 @@ int sweep_command(const SweepArguments& args) {
   for (const char* c : {"status", "steps", "wall_s", "suggested_dt", "note"})
     plan.columns.push_back(c);
   for (const std::string& c : probe.slip_components) {
-    plan.columns.push_back(c + ".stick_time");
-    plan.columns.push_back(c + ".events");
+    for (const char* event : {".stick_time", ".first_slip", ".last_stick", ".events"})
+      plan.columns.push_back(c + event);
   }
   for (const std::string& r : records) plan.columns.push_back(r);
   if (!args.plot.empty()) {
@@ -310,8 +312,12 @@ int sweep_command(const SweepArguments& args) {
     }
     plan.plot = args.plot;
   } else {
-    for (const std::string& c : probe.slip_components) plan.plot.push_back(c + ".stick_time");
-    if (plan.plot.empty() && !records.empty()) plan.plot.push_back(records.front());
+    // Every element's first stick and first slip; the report leaves out those no point has
+    // and falls back to the first record (plotted_columns).
+    for (const std::string& c : probe.slip_components) {
+      plan.plot.push_back(c + ".stick_time");
+      plan.plot.push_back(c + ".first_slip");
+    }
   }
 
   const fs::path out =
@@ -392,15 +398,17 @@ int sweep_command(const SweepArguments& args) {
   std::size_t ok = 0;
   const std::size_t status = 1 + plan.keys.size();
   for (const auto& [index, row] : table.rows) ok += row[status] == "ok";
-  if (!shard.sharded()) write_sweep_report(plan, table, out);
+  const bool figure = !shard.sharded() && write_sweep_report(plan, table, out);
   if (!args.quiet) {
     std::printf("  %zu ok, %zu unstable or failed\n  wrote %s\n", ok, table.rows.size() - ok,
                 table_path.c_str());
     if (shard.sharded()) {
       std::printf("  when every shard is done: stiction sweep --merge %s\n", out.c_str());
-    } else {
+    } else if (figure) {
       std::printf("  wrote %s, %s and %s\n", (out / "sweep.md").c_str(),
                   (out / "sweep.png").c_str(), (out / "sweep.svg").c_str());
+    } else {
+      std::printf("  wrote %s (no column has a value to plot)\n", (out / "sweep.md").c_str());
     }
   }
   return kExitOk;

@@ -26,8 +26,10 @@ struct SweepPlan {
   static SweepPlan from_json(const std::string& text, const std::filesystem::path& origin);
 };
 
-// sweep.md, sweep.png and sweep.svg (the same figure as vectors) of a full table.
-void write_sweep_report(const SweepPlan& plan, const SweepTable& table,
+// sweep.md, sweep.png and sweep.svg (the same figure as vectors) of a full table. The figure
+// shows the plan's columns that some finished point has a value of (at most four), else the
+// first record; false (and no figure left in `dir`) when there is nothing to plot.
+bool write_sweep_report(const SweepPlan& plan, const SweepTable& table,
                         const std::filesystem::path& dir);
 
 }  // namespace stiction::app

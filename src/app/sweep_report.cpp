@@ -31,6 +31,43 @@ int column_of(const std::vector<std::string>& header, const std::string& name) {
   return -1;
 }
 
+bool is_event_time(const std::string& column) {
+  for (const std::string suffix : {".stick_time", ".first_slip", ".last_stick"}) {
+    if (column.size() > suffix.size() &&
+        column.compare(column.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return true;
+  }
+  return false;
+}
+
+// The columns the figure shows: the plan's, less those no finished point has a value of (a
+// ball that only slips has no stick time), at most kPanels; when none is left, the first
+// record (the first column after the event columns).
+constexpr std::size_t kPanels = 4;
+std::vector<std::string> plotted_columns(const SweepPlan& plan, const SweepTable& table) {
+  const int status = column_of(table.header, "status");
+  const auto has_value = [&](int c) {
+    for (const auto& [index, row] : table.rows) {
+      if (row[status] == "ok" && std::isfinite(number(row[c]))) return true;
+    }
+    return false;
+  };
+  std::vector<std::string> shown;
+  for (const std::string& p : plan.plot) {
+    const int c = column_of(table.header, p);
+    if (c >= 0 && has_value(c) && shown.size() < kPanels) shown.push_back(p);
+  }
+  if (!shown.empty() || plan.plot.empty()) return shown;
+  int first_record = column_of(table.header, "note") + 1;
+  for (int c = first_record; c < static_cast<int>(table.header.size()); ++c) {
+    const std::string& name = table.header[c];
+    if (name.size() > 7 && name.compare(name.size() - 7, 7, ".events") == 0) first_record = c + 1;
+  }
+  if (first_record > 0 && first_record < static_cast<int>(table.header.size()))
+    shown.push_back(table.header[first_record]);
+  return shown;
+}
+
 std::string markdown(const SweepPlan& plan, const SweepTable& table) {
   std::map<std::string, int> statuses;
   const int status = column_of(table.header, "status");
@@ -42,14 +79,20 @@ std::string markdown(const SweepPlan& plan, const SweepTable& table) {
   }
   md += ".\n\nStatus:";
   for (const auto& [name, count] : statuses) md += " " + name + " " + std::to_string(count) + ";";
-  md += "\n\nThe full table is `sweep.csv`; `sweep.png` (and `sweep.svg`) plot";
-  for (const std::string& p : plan.plot) md += " `" + p + "`";
-  md += " against `" + plan.keys.front().key + "`.\n\n";
+  const std::vector<std::string> plotted = plotted_columns(plan, table);
+  md += "\n\nThe full table is `sweep.csv`";
+  if (plotted.empty()) {
+    md += "; no column has a value to plot.\n\n";
+  } else {
+    md += "; `sweep.png` (and `sweep.svg`) plot";
+    for (const std::string& p : plotted) md += " `" + p + "`";
+    md += " against `" + plan.keys.front().key + "`.\n\n";
+  }
   // The Markdown table keeps the parameters, the status and the plotted records.
   std::vector<int> shown;
   for (std::size_t i = 0; i <= plan.keys.size(); ++i) shown.push_back(static_cast<int>(i));
   for (const char* c : {"status", "steps", "wall_s"}) shown.push_back(column_of(table.header, c));
-  for (const std::string& p : plan.plot) shown.push_back(column_of(table.header, p));
+  for (const std::string& p : plotted) shown.push_back(column_of(table.header, p));
   std::string head = "|", rule = "|";
   for (int c : shown) {
     head += " " + table.header[c] + " |";
@@ -71,22 +114,26 @@ std::string markdown(const SweepPlan& plan, const SweepTable& table) {
 
 }  // namespace
 
-void write_sweep_report(const SweepPlan& plan, const SweepTable& table,
+bool write_sweep_report(const SweepPlan& plan, const SweepTable& table,
                         const std::filesystem::path& dir) {
   io::write_file_atomically(dir / "sweep.md", markdown(plan, table));
-  if (plan.plot.empty()) return;
+  if (plotted_columns(plan, table).empty()) {
+    // Nothing to draw: no figure of an earlier run of this sweep may stay as if it were this.
+    std::filesystem::remove(dir / "sweep.png");
+    std::filesystem::remove(dir / "sweep.svg");
+    return false;
+  }
 
   const int status = column_of(table.header, "status");
   plot::Figure figure;
   figure.title = "Sweep of " + plan.scene;
   figure.x_label = plan.keys.front().key;
   figure.x_unit.clear();
-  for (const std::string& record : plan.plot) {
+  for (const std::string& record : plotted_columns(plan, table)) {
     const int c = column_of(table.header, record);
     plot::Panel& panel = figure.panels.emplace_back();
     panel.label = record;
-    if (record.size() > 11 && record.compare(record.size() - 11, 11, ".stick_time") == 0)
-      panel.unit = "s";
+    if (is_event_time(record)) panel.unit = "s";
     // One series per combination of the other keys' values, points in order of x.
     std::map<std::string, std::map<double, double>> lines;
     for (const auto& [index, row] : table.rows) {
@@ -110,6 +157,7 @@ void write_sweep_report(const SweepPlan& plan, const SweepTable& table,
   }
   plot::write_figure(figure, dir / "sweep.png", plot::Format::png);
   plot::write_figure(figure, dir / "sweep.svg", plot::Format::svg);
+  return true;
 }
 
 std::string SweepPlan::to_json() const {

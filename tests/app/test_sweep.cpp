@@ -292,3 +292,43 @@ TEST_CASE("sweep: an unstable point is a row with its suggestion, bad input exit
                                       dir);
   CHECK(bad.code == 2);
 }
+
+TEST_CASE("sweep: a ball pushed until it slips never sticks: first_slip is tabled and plotted") {
+  // A generated ball on a floor pushed at its centre by c t: rolling, the floor carries 2/7
+  // of the push, so it slips when 2 c t / 7 = mu m g, at t = 3.5 mu m g / c.
+  const fs::path dir = scratch("pushed");
+  const double c = 7.3, g = 9.81;
+  std::ostringstream s;
+  s << "name = \"generated_pushed_ball\"\ngravity = [0.0, 0.0, " << -g << "]\n"
+    << "[simulation]\ndt = 1e-4\nduration = 3.0\noutput_rate = 100.0\n"
+    << "[bodies.pushed_ball]\ntype = \"rigid_body\"\nmass = 1.0\nshape = \"sphere\"\n"
+    << "radius = 0.13\nposition = [0.0, 0.0, 0.13]\n"
+    << "[impedances.floor_under_the_ball]\ntype = \"kikuuwe_contact\"\nbody = \"pushed_ball\"\n"
+    << "stiffness = 1e6\ndamping = 300.0\nmu = 0.2\nsettle = true\n"
+    << "[impedances.push]\ntype = \"force_source\"\nbody = \"pushed_ball\"\n"
+    << "force = [\"" << c << "*t\", \"0\", \"0\"]\n";
+  std::ofstream(dir / "pushed.toml") << s.str();
+  const Outcome o = stiction::testing::run_stiction(
+      {"sweep", "pushed.toml", "--vary", "impedances.floor_under_the_ball.mu=0.1:0.3:3", "--vary",
+       "bodies.pushed_ball.mass=0.5,1.5", "--keep", "none", "--out", "sweep"},
+      dir);
+  INFO(o.out);
+  REQUIRE(o.code == 0);
+  const Table t = read_table(dir / "sweep" / "sweep.csv");
+  REQUIRE(t.rows.size() == 6);
+  for (const auto& row : t.rows) {
+    const double mu = std::stod(row[t.column("impedances.floor_under_the_ball.mu")]);
+    const double m = std::stod(row[t.column("bodies.pushed_ball.mass")]);
+    INFO("mu = " << mu << ", m = " << m);
+    CHECK(row[t.column("floor_under_the_ball.stick_time")].empty());
+    CHECK(row[t.column("floor_under_the_ball.last_stick")].empty());
+    // Located within a step of the closed form.
+    CHECK(std::abs(std::stod(row[t.column("floor_under_the_ball.first_slip")]) -
+                   3.5 * mu * m * g / c) <= 1.01e-4);
+  }
+  // The figure shows the first slips, not the empty stick times.
+  const std::string md = read_text(dir / "sweep" / "sweep.md");
+  CHECK_THAT(md, Contains("plot `floor_under_the_ball.first_slip` against"));
+  CHECK_FALSE(md.find("`floor_under_the_ball.stick_time`") != std::string::npos);
+  CHECK(fs::file_size(dir / "sweep" / "sweep.png") > 1000);
+}
