@@ -132,12 +132,7 @@ TEST_CASE("impedance signals: a force proportional to a spring's force (RK4 keep
         body + "\"\nstiffness = " + num(k) + "\n";
     const auto run = testing::run_text(text);
     if (run.result.instability) FAIL_CHECK(run.result.instability->reason);
-    const auto t = run.times();
-    const auto x = run.values(body + ".p.x");
-    double worst = 0.0;
-    for (std::size_t i = 0; i < t.size(); ++i)
-      worst = std::max(worst, std::abs(x[i] - x0 * std::cos(w * t[i])));
-    return worst;
+    return run.worst_deviation(body + ".p.x", [&](double t) { return x0 * std::cos(w * t); });
   };
   const double coarse = error_at(0.02), fine = error_at(0.01);
   std::printf(

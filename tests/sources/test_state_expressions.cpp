@@ -103,12 +103,7 @@ TEST_CASE("state expression: a feedback force sees the stage state (RK4 keeps it
         testing::num(k) + "*" + body + ".p.x - " + testing::num(c) + "*" + body + ".v.x\", 0, 0]\n";
     const auto run = testing::run_text(text);
     if (run.result.instability) FAIL_CHECK(run.result.instability->reason);
-    const auto t = run.times();
-    const auto x = run.values(body + ".p.x");
-    double worst = 0.0;
-    for (std::size_t i = 0; i < t.size(); ++i)
-      worst = std::max(worst, std::abs(x[i] - exact(t[i])));
-    return worst;
+    return run.worst_deviation(body + ".p.x", exact);
   };
   const double coarse = error_at(0.02), fine = error_at(0.01);
   INFO("error at dt 0.02: " << coarse << ", at dt 0.01: " << fine);
