@@ -9,6 +9,16 @@ option(STICTION_FUZZ "Build the libFuzzer target fuzz_scene (clang)" OFF)
 
 set(STICTION_SANITIZER_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=undefined
                              -fno-omit-frame-pointer)
+# The test folders the instrumented build builds and runs (tests/CMakeLists.txt): those that
+# exercise memory and undefined behaviour over distinct code (the loader and its fuzz
+# regressions, signals and the output directory, events, physics, components, contacts,
+# sources, the plots and the renderer, the command line), not those made of whole trial runs
+# repeated many times over (ci: suggested steps and verify, study, scenarios), which are
+# minutes each under ASan and add no code path the others miss. See
+# docs/sanitizers_fuzzing.md.
+set(STICTION_SANITIZE_TESTS "app;components;contacts;events;extremes;physics;plot;reliability;render;scene;sources"
+    CACHE STRING "With STICTION_SANITIZE: the tests/ folders to build and run")
+
 if(STICTION_SANITIZE OR STICTION_FUZZ)
   add_compile_options(${STICTION_SANITIZER_FLAGS})
   add_link_options(-fsanitize=address,undefined)
