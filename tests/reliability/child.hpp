@@ -117,7 +117,8 @@ class Child {
 // suites running at once apart).
 inline std::filesystem::path scratch_dir(const std::string& group, const std::string& name) {
   const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("stiction_" + group + "_" + name + "_" + std::to_string(::getpid()));
+      std::filesystem::temp_directory_path() /
+      ("stiction_" + group + "_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

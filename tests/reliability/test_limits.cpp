@@ -59,12 +59,14 @@ TEST_CASE("command-line numbers must be finite and positive", "[limits]") {
   const fs::path scene = write_scene(dir, {});
   for (const std::string value : {"nan", "NaN", "inf", "-inf", "0", "-1", "1e400"}) {
     INFO("--dt " << value);
-    const RunResult r = run_child({"run", scene.string(), "--dt", value, "--no-video", "--no-plots", "--out", "o"}, dir);
+    const RunResult r = run_child(
+        {"run", scene.string(), "--dt", value, "--no-video", "--no-plots", "--out", "o"}, dir);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Contains("--dt"));
     CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));
   }
-  const RunResult r = run_child({"run", scene.string(), "--duration", "nan", "--no-video", "--out", "o"}, dir);
+  const RunResult r =
+      run_child({"run", scene.string(), "--duration", "nan", "--no-video", "--out", "o"}, dir);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("--duration"));
 }
@@ -118,7 +120,8 @@ TEST_CASE("integers beyond 2^53 are located errors, not crashes", "[limits]") {
   std::ofstream(dir / "big.toml") << text;
   int line = 1;
   for (std::size_t i = 0; i < at; ++i) line += text[i] == '\n';
-  const RunResult r = run_child({"run", (dir / "big.toml").string(), "--no-video", "--out", "o"}, dir);
+  const RunResult r =
+      run_child({"run", (dir / "big.toml").string(), "--no-video", "--out", "o"}, dir);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains((dir / "big.toml").string() + ":" + std::to_string(line) + ":8: error: bodies.mass_0.mass:"));
   CHECK_THAT(r.err, Contains("2^53"));
@@ -131,16 +134,21 @@ TEST_CASE("integers beyond 2^53 are located errors, not crashes", "[limits]") {
 
   // The same through --set, and in an array.
   const fs::path scene = write_scene(dir, spec);
-  RunResult s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set", "bodies.mass_0.mass=-9223372036854775808"}, dir);
+  RunResult s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set",
+                           "bodies.mass_0.mass=-9223372036854775808"},
+                          dir);
   CHECK(s.code == 2);
   CHECK_THAT(s.err, Contains("--set bodies.mass_0.mass:1:"));
   CHECK_THAT(s.err, Contains("2^53"));
-  s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set", "bodies.mass_0.velocity=[1, 0, 18014398509481984]"}, dir);
+  s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set",
+                 "bodies.mass_0.velocity=[1, 0, 18014398509481984]"},
+                dir);
   CHECK(s.code == 2);
   CHECK_THAT(s.err, Contains("bodies.mass_0.velocity"));
   CHECK_THAT(s.err, Contains("2^53"));
   // A non-finite value through --set.
-  s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set", "simulation.dt=nan"}, dir);
+  s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set", "simulation.dt=nan"},
+                dir);
   CHECK(s.code == 2);
   CHECK_THAT(s.err, Contains("simulation.dt: expected a finite number"));
 }
@@ -151,8 +159,8 @@ TEST_CASE("a --set array index past the limit does not wrap to element 0", "[lim
   for (const std::string index : {"18446744073709551616", "18446744073709551617", "99999999999999999999999", "3"}) {
     INFO(index);
     const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set",
-                          "bodies.mass_0.velocity[" + index + "]=5.0"},
-                         dir);
+                                   "bodies.mass_0.velocity[" + index + "]=5.0"},
+                                  dir);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Contains("out of range"));
     CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));

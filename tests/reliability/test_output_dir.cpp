@@ -3,13 +3,12 @@
 // symlink is replaced or removed but its target never written, a second run into a locked
 // directory fails at once, scene names cannot escape out/, and --out is a file name even
 // when it looks like a URL.
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 
 #include "child.hpp"
 #include "generated_scene.hpp"
@@ -73,7 +72,8 @@ TEST_CASE("a run removes the earlier run's outputs and lists what it wrote", "[o
 
   // A second run with fewer outputs (no plots) leaves none of the first run's plots, even
   // those named only in the first summary.
-  const RunResult again = run_child({"run", scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
+  const RunResult again =
+      run_child({"run", scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
   REQUIRE(again.code == 0);
   CHECK(listed(out) == std::vector<std::string>{"trajectory.csv", "summary.json"});
   CHECK(files_under(out) == std::vector<std::string>{"notes.txt", "plots/README", "summary.json", "trajectory.csv"});
@@ -113,14 +113,16 @@ TEST_CASE("a second run into a directory in use fails at once", "[outdir]") {
   REQUIRE(wait_until(first, [&] { return !temporaries_under(dir / "o").empty(); }));
   REQUIRE(first.running());
   const fs::path short_scene = write_scene(dir, {}, "short.toml");
-  const RunResult second = run_child({"run", short_scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
+  const RunResult second =
+      run_child({"run", short_scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
   CHECK(second.code == 1);
   CHECK_THAT(second.err, Contains("another stiction run is writing into this directory"));
   CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));  // the second wrote nothing
   first.signal(SIGINT);
   CHECK(first.wait(std::chrono::seconds(30)) == 130);
   // The lock went with the first run.
-  const RunResult third = run_child({"run", short_scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
+  const RunResult third =
+      run_child({"run", short_scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
   CHECK(third.code == 0);
 }
 

@@ -5,15 +5,14 @@
 // time reached, trajectory.csv up to its last complete row, video.partial.mp4) and leaves
 // no temporary. The time from the signal to the exit is printed (run with -s or ctest -V);
 // it is bounded here only as a hang guard, not asserted as a timing.
+#include <catch2/catch.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 
 #include "child.hpp"
 #include "generated_scene.hpp"
@@ -174,7 +173,8 @@ TEST_CASE("a signal during the render keeps video.partial.mp4 and the frames", "
   CHECK(temporaries_under(dir).empty());
 }
 
-TEST_CASE("a second signal exits at once with the first one's code and leaves no temporary", "[signals]") {
+TEST_CASE("a second signal exits at once with the first one's code and leaves no temporary",
+          "[signals]") {
   // The contract (sys/interrupt.hpp): the first signal a handler receives is recorded there,
   // atomically; a second one exits at once with the first one's code after unlinking every
   // temporary. To land the second signal while the run still holds its trajectory temporary,
