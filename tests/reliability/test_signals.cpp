@@ -75,6 +75,24 @@ void report(const char* phase, int sig, double seconds) {
   std::printf("signal latency: %s during %s: exited %.3f s after the signal\n", name_of(sig), phase, seconds);
 }
 
+// Signals the running child, waits for it and checks what every interrupted run shares:
+// exit 128 + sig, "interrupted" in `phase` by this signal in summary.json, every file it
+// lists present, no temporary anywhere under `dir`. Returns the summary.
+nlohmann::json interrupt(Child& child, int sig, const char* phase, const fs::path& dir) {
+  REQUIRE(child.running());
+  child.signal(sig);
+  const int code = child.wait(std::chrono::seconds(30));
+  report(phase, sig, child.seconds_waited);
+  CHECK(code == 128 + sig);
+  const nlohmann::json s = summary_of(dir / "o");
+  CHECK(s["status"] == "interrupted");
+  CHECK(s["interrupted"]["phase"] == phase);
+  CHECK(s["interrupted"]["signal"] == name_of(sig));
+  check_listed_files_exist(dir / "o", s);
+  CHECK(temporaries_under(dir).empty());
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("a signal during the simulation keeps the rows so far", "[signals]") {
@@ -89,22 +107,12 @@ TEST_CASE("a signal during the simulation keeps the rows so far", "[signals]") {
   // Rows reach the trajectory's temporary in chunks: once it is not empty, rows after t = 0
   // exist, and the run is still far from its end.
   REQUIRE(wait_until(child, [&] { return streamed_bytes(dir / "o") > 0; }));
-  REQUIRE(child.running());
-  child.signal(sig);
-  const int code = child.wait(std::chrono::seconds(30));
-  report("simulate", sig, child.seconds_waited);
-  CHECK(code == 128 + sig);
-  const nlohmann::json s = summary_of(dir / "o");
-  CHECK(s["status"] == "interrupted");
-  CHECK(s["interrupted"]["phase"] == "simulate");
-  CHECK(s["interrupted"]["signal"] == name_of(sig));
+  const nlohmann::json s = interrupt(child, sig, "simulate", dir);
   const double reached = s["interrupted"]["time_reached"].get<double>();
   CHECK(reached > 0.0);
   CHECK(reached < spec.duration);
   CHECK(check_complete_rows(dir / "o" / "trajectory.csv") == Approx(reached));
   CHECK(s["files"] == nlohmann::json::array({"trajectory.csv", "summary.json"}));
-  check_listed_files_exist(dir / "o", s);
-  CHECK(temporaries_under(dir).empty());
   CHECK(child.err().find("interrupted by " + std::string(name_of(sig))) != std::string::npos);
 }
 
@@ -126,22 +134,13 @@ TEST_CASE("a signal while the plots are drawn keeps the plots done", "[signals]"
   // summary.json is written (atomically) right before the first plot.
   REQUIRE(wait_until(child, [&] { return fs::exists(dir / "o" / "summary.json"); }));
   REQUIRE(wait_until(child, [&] { return fs::exists(dir / "o" / "plots" / "p1.png"); }));
-  REQUIRE(child.running());
-  child.signal(sig);
-  const int code = child.wait(std::chrono::seconds(30));
-  report("plots", sig, child.seconds_waited);
-  CHECK(code == 128 + sig);
-  const nlohmann::json s = summary_of(dir / "o");
-  CHECK(s["status"] == "interrupted");
-  CHECK(s["interrupted"]["phase"] == "plots");
+  const nlohmann::json s = interrupt(child, sig, "plots", dir);
   CHECK(s["interrupted"]["time_reached"].get<double>() == Approx(spec.duration));
-  check_listed_files_exist(dir / "o", s);
   long plots = 0;
   for (const auto& e : fs::directory_iterator(dir / "o" / "plots")) plots += e.path().extension() == ".png";
   CHECK(plots >= 2);
   CHECK(plots < kPlots);
   CHECK(static_cast<long>(s["files"].size()) == plots + 2);  // + trajectory.csv, summary.json
-  CHECK(temporaries_under(dir).empty());
 }
 
 TEST_CASE("a signal during the render keeps video.partial.mp4 and the frames", "[signals]") {
@@ -156,21 +155,12 @@ TEST_CASE("a signal during the render keeps video.partial.mp4 and the frames", "
   const fs::path scene = write_scene(dir, spec);
   Child child({"run", scene.string(), "--no-plots", "--frames", "--out", "o"}, dir);
   REQUIRE(wait_until(child, [&] { return fs::exists(dir / "o" / "frames" / "000003.png"); }));
-  REQUIRE(child.running());
-  child.signal(sig);
-  const int code = child.wait(std::chrono::seconds(30));
-  report("render", sig, child.seconds_waited);
-  CHECK(code == 128 + sig);
-  const nlohmann::json s = summary_of(dir / "o");
-  CHECK(s["status"] == "interrupted");
-  CHECK(s["interrupted"]["phase"] == "render");
-  check_listed_files_exist(dir / "o", s);
+  const nlohmann::json s = interrupt(child, sig, "render", dir);
   CHECK(fs::is_regular_file(dir / "o" / "video.partial.mp4"));
   CHECK_FALSE(fs::exists(dir / "o" / "video.mp4"));
   const auto& files = s["files"];
   CHECK(std::find(files.begin(), files.end(), "video.partial.mp4") != files.end());
   CHECK(std::find(files.begin(), files.end(), "frames/000003.png") != files.end());
-  CHECK(temporaries_under(dir).empty());
 }
 
 TEST_CASE("a second signal exits at once with the first one's code and leaves no temporary",
