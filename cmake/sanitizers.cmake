@@ -9,6 +9,17 @@ option(STICTION_FUZZ "Build the libFuzzer target fuzz_scene (clang)" OFF)
 
 set(STICTION_SANITIZER_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=undefined
                              -fno-omit-frame-pointer)
+# The test folders the instrumented build builds and runs (tests/CMakeLists.txt): the scene
+# loader and its fuzz regressions (scene, reliability), signals, limits and the output
+# directory with the real binary (reliability), events, physics, the renderer with its video
+# and images (render), the plots, components, contacts, sources, extremes and the command line
+# (app). Left out to keep CI within its time: the folders made of whole trial runs repeated
+# many times over (ci: suggested steps and verify; study; scenarios), minutes each under
+# ASan. See docs/sanitizers_fuzzing.md.
+set(STICTION_SANITIZE_TESTS
+    "app;components;contacts;events;extremes;physics;plot;reliability;render;scene;sources"
+    CACHE STRING "With STICTION_SANITIZE: the tests/ folders to build and run")
+
 if(STICTION_SANITIZE OR STICTION_FUZZ)
   add_compile_options(${STICTION_SANITIZER_FLAGS})
   add_link_options(-fsanitize=address,undefined)

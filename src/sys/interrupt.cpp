@@ -14,6 +14,11 @@ std::atomic<bool> flag{false};
 std::atomic<int> received{0};
 static_assert(std::atomic<bool>::is_always_lock_free);
 
+// The first signal to reach a handler is the one recorded (compare-and-swap), and its code
+// is the exit code whatever comes after. Both signals are blocked while either handler runs
+// (sa_mask below): otherwise two signals pending together (SIGINT then SIGTERM sent at once)
+// are delivered nested, the later one's handler running before the first one's could record
+// it, and the process would exit with the second signal's code.
 extern "C" void on_signal(int signal) {
   int expected = 0;
   if (received.compare_exchange_strong(expected, signal)) {
@@ -31,6 +36,8 @@ void install_interrupt_handlers() {
   struct sigaction action {};
   action.sa_handler = on_signal;
   sigemptyset(&action.sa_mask);
+  sigaddset(&action.sa_mask, SIGINT);
+  sigaddset(&action.sa_mask, SIGTERM);
   action.sa_flags = SA_RESTART;
   ::sigaction(SIGINT, &action, nullptr);
   ::sigaction(SIGTERM, &action, nullptr);

@@ -57,6 +57,20 @@ class Child {
   Child& operator=(const Child&) = delete;
 
   void signal(int sig) const { ::kill(pid_, sig); }
+  // SIGSTOP, returning once the child has stopped: signals sent now stay pending and are
+  // delivered together at resume(), which makes their order of arrival deterministic.
+  void stop() {
+    ::kill(pid_, SIGSTOP);
+    int status = 0;
+    const pid_t r = ::waitpid(pid_, &status, WUNTRACED);
+    REQUIRE(r == pid_);
+    if (!WIFSTOPPED(status)) {  // it ended first: keep its status for wait()
+      reaped_ = true;
+      status_ = status;
+    }
+    REQUIRE(WIFSTOPPED(status));
+  }
+  void resume() const { ::kill(pid_, SIGCONT); }
   bool running() {
     if (reaped_) return false;
     int status = 0;
@@ -98,6 +112,29 @@ class Child {
   int status_ = 0;
   std::filesystem::path out_, err_;
 };
+
+// A fresh, empty directory for one test: TMP/stiction_GROUP_NAME_PID (the pid keeps two
+// suites running at once apart).
+inline std::filesystem::path scratch_dir(const std::string& group, const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("stiction_" + group + "_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+struct RunResult {
+  int code;         // as Child::wait returns it
+  std::string err;  // stderr, then stdout
+};
+
+// Runs `stiction ARGS` in `cwd` to its end (bounded by Child::wait's hang guard).
+inline RunResult run_child(const std::vector<std::string>& args, const std::filesystem::path& cwd) {
+  Child child(args, cwd);
+  const int code = child.wait();
+  return {code, child.err() + child.out()};
+}
 
 // Polls `ready` every 5 ms until it holds or the child ends or `limit` passes.
 template <typename Predicate>

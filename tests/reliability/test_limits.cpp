@@ -18,23 +18,7 @@ using namespace stiction::testing;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("stiction_limits_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-struct Result {
-  int code;
-  std::string err;
-};
-
-Result run(const std::vector<std::string>& args, const fs::path& cwd) {
-  Child child(args, cwd);
-  const int code = child.wait();
-  return {code, child.err() + child.out()};
-}
+fs::path scratch(const std::string& name) { return scratch_dir("limits", name); }
 
 }  // namespace
 
@@ -75,12 +59,14 @@ TEST_CASE("command-line numbers must be finite and positive", "[limits]") {
   const fs::path scene = write_scene(dir, {});
   for (const std::string value : {"nan", "NaN", "inf", "-inf", "0", "-1", "1e400"}) {
     INFO("--dt " << value);
-    const Result r = run({"run", scene.string(), "--dt", value, "--no-video", "--no-plots", "--out", "o"}, dir);
+    const RunResult r = run_child(
+        {"run", scene.string(), "--dt", value, "--no-video", "--no-plots", "--out", "o"}, dir);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Contains("--dt"));
     CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));
   }
-  const Result r = run({"run", scene.string(), "--duration", "nan", "--no-video", "--out", "o"}, dir);
+  const RunResult r =
+      run_child({"run", scene.string(), "--duration", "nan", "--no-video", "--out", "o"}, dir);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("--duration"));
 }
@@ -104,7 +90,7 @@ TEST_CASE("step and row counts beyond the limits exit 2 before writing anything"
     std::vector<std::string> args{"run", scene.string(), "--no-video", "--no-plots", "--out", "o"};
     args.insert(args.end(), c.args.begin(), c.args.end());
     INFO(c.args[0] << " " << c.args[1]);
-    const Result r = run(args, dir);
+    const RunResult r = run_child(args, dir);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Contains(c.says));
     CHECK_THAT(r.err, Contains("error:"));
@@ -117,7 +103,7 @@ TEST_CASE("a scene value past a limit is reported at its FILE:LINE:COL", "[limit
   SceneSpec spec;
   spec.output_rate = 1e12;  // line 7 of the generated scene: output_rate = ...
   const fs::path scene = write_scene(dir, spec);
-  const Result r = run({"run", scene.string(), "--no-video", "--out", "o"}, dir);
+  const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "o"}, dir);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains(scene.string() + ":7:15: error: simulation.output_rate:"));
 }
@@ -134,7 +120,8 @@ TEST_CASE("integers beyond 2^53 are located errors, not crashes", "[limits]") {
   std::ofstream(dir / "big.toml") << text;
   int line = 1;
   for (std::size_t i = 0; i < at; ++i) line += text[i] == '\n';
-  const Result r = run({"run", (dir / "big.toml").string(), "--no-video", "--out", "o"}, dir);
+  const RunResult r =
+      run_child({"run", (dir / "big.toml").string(), "--no-video", "--out", "o"}, dir);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains((dir / "big.toml").string() + ":" + std::to_string(line) + ":8: error: bodies.mass_0.mass:"));
   CHECK_THAT(r.err, Contains("2^53"));
@@ -142,21 +129,26 @@ TEST_CASE("integers beyond 2^53 are located errors, not crashes", "[limits]") {
   // 2^53 itself is exact, and accepted.
   text.replace(at, std::string("mass = 9007199254740993").size(), "mass = 9007199254740992");
   std::ofstream(dir / "exact.toml") << text;
-  const Result ok = run({"check", (dir / "exact.toml").string()}, dir);
+  const RunResult ok = run_child({"check", (dir / "exact.toml").string()}, dir);
   CHECK(ok.code == 0);
 
   // The same through --set, and in an array.
   const fs::path scene = write_scene(dir, spec);
-  Result s = run({"run", scene.string(), "--no-video", "--out", "o", "--set", "bodies.mass_0.mass=-9223372036854775808"}, dir);
+  RunResult s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set",
+                           "bodies.mass_0.mass=-9223372036854775808"},
+                          dir);
   CHECK(s.code == 2);
   CHECK_THAT(s.err, Contains("--set bodies.mass_0.mass:1:"));
   CHECK_THAT(s.err, Contains("2^53"));
-  s = run({"run", scene.string(), "--no-video", "--out", "o", "--set", "bodies.mass_0.velocity=[1, 0, 18014398509481984]"}, dir);
+  s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set",
+                 "bodies.mass_0.velocity=[1, 0, 18014398509481984]"},
+                dir);
   CHECK(s.code == 2);
   CHECK_THAT(s.err, Contains("bodies.mass_0.velocity"));
   CHECK_THAT(s.err, Contains("2^53"));
   // A non-finite value through --set.
-  s = run({"run", scene.string(), "--no-video", "--out", "o", "--set", "simulation.dt=nan"}, dir);
+  s = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set", "simulation.dt=nan"},
+                dir);
   CHECK(s.code == 2);
   CHECK_THAT(s.err, Contains("simulation.dt: expected a finite number"));
 }
@@ -166,9 +158,9 @@ TEST_CASE("a --set array index past the limit does not wrap to element 0", "[lim
   const fs::path scene = write_scene(dir, {});
   for (const std::string index : {"18446744073709551616", "18446744073709551617", "99999999999999999999999", "3"}) {
     INFO(index);
-    const Result r = run({"run", scene.string(), "--no-video", "--out", "o", "--set",
-                          "bodies.mass_0.velocity[" + index + "]=5.0"},
-                         dir);
+    const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "o", "--set",
+                                   "bodies.mass_0.velocity[" + index + "]=5.0"},
+                                  dir);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Contains("out of range"));
     CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));
@@ -189,7 +181,7 @@ TEST_CASE("fps and slow_motion are bounded, and so is the frame count", "[limits
     spec.extra = "[render]\n" + c.render + "\n";
     const fs::path scene = write_scene(dir, spec);
     INFO(c.render);
-    const Result r = run({"run", scene.string(), "--out", "o"}, dir);
+    const RunResult r = run_child({"run", scene.string(), "--out", "o"}, dir);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Contains(c.key));
     CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));  // refused before simulating
@@ -201,7 +193,7 @@ TEST_CASE("fps and slow_motion are bounded, and so is the frame count", "[limits
   spec.dt = 1.0;
   spec.extra = "[render]\nfps = 60\n";
   const fs::path scene = write_scene(dir, spec);
-  const Result r = run({"run", scene.string(), "--out", "o"}, dir);
+  const RunResult r = run_child({"run", scene.string(), "--out", "o"}, dir);
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("render.fps"));
   CHECK_THAT(r.err, Contains("frames"));

@@ -3,14 +3,12 @@
 // symlink is replaced or removed but its target never written, a second run into a locked
 // directory fails at once, scene names cannot escape out/, and --out is a file name even
 // when it looks like a URL.
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
-#include <string>
-#include <thread>
-#include <vector>
-
-#include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "child.hpp"
 #include "generated_scene.hpp"
@@ -21,23 +19,7 @@ using namespace stiction::testing;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("stiction_outdir_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-struct Result {
-  int code;
-  std::string err;
-};
-
-Result run(const std::vector<std::string>& args, const fs::path& cwd) {
-  Child child(args, cwd);
-  const int code = child.wait();
-  return {code, child.err() + child.out()};
-}
+fs::path scratch(const std::string& name) { return scratch_dir("outdir", name); }
 
 std::vector<std::string> listed(const fs::path& out) {
   const auto s = nlohmann::json::parse(read_text(out / "summary.json"));
@@ -76,7 +58,7 @@ TEST_CASE("a run removes the earlier run's outputs and lists what it wrote", "[o
   }
   std::ofstream(out / "notes.txt") << "the user's";
   std::ofstream(out / "plots" / "README") << "the user's too";
-  const Result r = run({"run", scene.string(), "--no-video", "--out", "o"}, dir);
+  const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "o"}, dir);
   REQUIRE(r.code == 0);
   CHECK_FALSE(fs::exists(out / "frames"));  // emptied, then removed
   std::vector<std::string> files = listed(out);
@@ -90,7 +72,8 @@ TEST_CASE("a run removes the earlier run's outputs and lists what it wrote", "[o
 
   // A second run with fewer outputs (no plots) leaves none of the first run's plots, even
   // those named only in the first summary.
-  const Result again = run({"run", scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
+  const RunResult again =
+      run_child({"run", scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
   REQUIRE(again.code == 0);
   CHECK(listed(out) == std::vector<std::string>{"trajectory.csv", "summary.json"});
   CHECK(files_under(out) == std::vector<std::string>{"notes.txt", "plots/README", "summary.json", "trajectory.csv"});
@@ -108,7 +91,7 @@ TEST_CASE("a planted symlink is never written through", "[outdir]") {
   fs::create_symlink(dir / "victim_json", out / "summary.json");
   fs::create_symlink(dir / "victim_video", out / "video.mp4");
   fs::create_symlink(dir / "victim_plot", out / "plots" / "generated.png");
-  const Result r = run({"run", scene.string(), "--no-video", "--out", "shared"}, dir);
+  const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "shared"}, dir);
   REQUIRE(r.code == 0);
   for (const char* victim : {"victim_csv", "victim_json", "victim_video", "victim_plot"}) {
     INFO(victim);
@@ -126,18 +109,20 @@ TEST_CASE("a second run into a directory in use fails at once", "[outdir]") {
   spec.output_rate = 10.0;
   const fs::path scene = write_scene(dir, spec);
   Child first({"run", scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir, "first");
-  REQUIRE(wait_until(first, [&] { return fs::is_directory(dir / "o"); }));
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  // Its trajectory temporary appears once it holds the lock and has cleaned the directory.
+  REQUIRE(wait_until(first, [&] { return !temporaries_under(dir / "o").empty(); }));
   REQUIRE(first.running());
   const fs::path short_scene = write_scene(dir, {}, "short.toml");
-  const Result second = run({"run", short_scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
+  const RunResult second =
+      run_child({"run", short_scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
   CHECK(second.code == 1);
   CHECK_THAT(second.err, Contains("another stiction run is writing into this directory"));
   CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));  // the second wrote nothing
   first.signal(SIGINT);
   CHECK(first.wait(std::chrono::seconds(30)) == 130);
   // The lock went with the first run.
-  const Result third = run({"run", short_scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
+  const RunResult third =
+      run_child({"run", short_scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
   CHECK(third.code == 0);
 }
 
@@ -148,14 +133,14 @@ TEST_CASE("scene names cannot name a path", "[outdir]") {
     spec.name = name;
     const fs::path scene = write_scene(dir, spec);
     INFO("name = '" << name << "'");
-    const Result r = run({"run", scene.string(), "--no-video"}, dir);
+    const RunResult r = run_child({"run", scene.string(), "--no-video"}, dir);
     CHECK(r.code == 2);
     CHECK_THAT(r.err, Contains(":1:8: error: name:"));
   }
   CHECK((!fs::exists(dir / "out") || fs::is_empty(dir / "out")));
 }
 
-TEST_CASE("--out that looks like a URL is a directory name", "[outdir]") {
+TEST_CASE("an --out that looks like a URL is a directory name", "[outdir]") {
   const fs::path dir = scratch("url");
   SceneSpec spec;
   spec.bodies = 1;
@@ -164,7 +149,7 @@ TEST_CASE("--out that looks like a URL is a directory name", "[outdir]") {
   const fs::path scene = write_scene(dir, spec);
   for (const std::string out : {"run:1", "tcp://127.0.0.1:9"}) {
     INFO(out);
-    const Result r = run({"run", scene.string(), "--no-plots", "--out", out}, dir);
+    const RunResult r = run_child({"run", scene.string(), "--no-plots", "--out", out}, dir);
     CHECK(r.code == 0);
     CHECK(fs::file_size(dir / out / "video.mp4") > 0);
   }
