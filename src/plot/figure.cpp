@@ -237,21 +237,38 @@ class Painter {
     return box;
   }
 
+  // Stroked in pieces of at most kPiece segments: cairo's stroker holds the polygon of the
+  // whole path it strokes, and a dense series that swings across its panel (a quaternion
+  // over a long run) took over 100 MB in one stroke. Each piece starts where the last one
+  // ended, its dash pattern carried on (cairo restarts the pattern at every sub-path).
   void polyline(const std::vector<Point>& points, const Stroke& stroke) {
+    constexpr int kPiece = 512;
+    apply(stroke);
     bool open = false;
+    int segments = 0;
+    double along = 0.0;  // length since the sub-path began, for the dash offset
+    Point last{};
     for (const Point& p : points) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
         open = false;
         continue;
       }
-      if (open) {
-        cairo_line_to(cr_, p.x, p.y);
-      } else {
+      if (!open) {
         cairo_move_to(cr_, p.x, p.y);
         open = true;
+        along = 0.0;
+      } else {
+        cairo_line_to(cr_, p.x, p.y);
+        along += std::hypot(p.x - last.x, p.y - last.y);
+        if (++segments == kPiece) {
+          cairo_stroke(cr_);
+          segments = 0;
+          set_dash_offset(stroke, along);
+          cairo_move_to(cr_, p.x, p.y);
+        }
       }
+      last = p;
     }
-    apply(stroke);
     cairo_stroke(cr_);
   }
   void line(Point a, Point b, const Stroke& stroke) { polyline({a, b}, stroke); }
@@ -279,11 +296,15 @@ class Painter {
   void apply(const Stroke& stroke) {
     set_colour(stroke.colour);
     cairo_set_line_width(cr_, stroke.width);
+    set_dash_offset(stroke, 0.0);
+  }
+  void set_dash_offset(const Stroke& stroke, double offset) {
     // A dot is an "on" length of zero with round caps; cairo drops such pieces between
     // longer dashes, so they get a length too small to see.
     std::vector<double> dash = stroke.dash;
     for (std::size_t i = 0; i < dash.size(); i += 2) dash[i] = std::max(dash[i], 0.01);
-    cairo_set_dash(cr_, dash.empty() ? nullptr : dash.data(), static_cast<int>(dash.size()), 0.0);
+    cairo_set_dash(cr_, dash.empty() ? nullptr : dash.data(), static_cast<int>(dash.size()),
+                   offset);
   }
 
   cairo_t* cr_;
