@@ -93,14 +93,7 @@ int run_command(const RunArguments& args) {
   scene.run.stop = &sys::interrupt_flag();
   const core::RunResult result = simulate_scene(scene, progress, &rows.sink());
 
-  io::RunDescription description;
-  description.scene = scene.name;
-  description.integrator = run.integrator;
-  description.dt = run.dt;
-  description.duration = run.duration;
-  description.output_rate = run.output_rate;
-  description.state_dim = scene.network->state_dim();
-  if (run.tolerance > 0.0) description.tolerance = run.tolerance;
+  io::RunDescription description = describe_run(scene);
   std::optional<StepSuggestion> suggestion;
   if (result.instability) {
     suggestion = suggested_dt(scene);

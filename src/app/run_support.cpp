@@ -12,6 +12,18 @@
 
 namespace stiction::app {
 
+io::RunDescription describe_run(const scene::Scene& scene) {
+  io::RunDescription d;
+  d.scene = scene.name;
+  d.integrator = scene.run.integrator;
+  d.dt = scene.run.dt;
+  d.duration = scene.run.duration;
+  d.output_rate = scene.run.output_rate;
+  d.state_dim = scene.network->state_dim();
+  if (scene.run.tolerance > 0.0) d.tolerance = scene.run.tolerance;
+  return d;
+}
+
 void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   core::RunOptions& run = scene.run;
   if (overrides.tolerance) {

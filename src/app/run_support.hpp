@@ -9,9 +9,14 @@
 
 #include "app/suggest_step.hpp"
 #include "core/simulation.hpp"
+#include "io/summary.hpp"
 #include "scene/scene.hpp"
 
 namespace stiction::app {
+
+// What summary.json says of the scene's run (scene, integrator, step, duration, output rate,
+// state size, tolerance); `run` adds the column descriptions.
+io::RunDescription describe_run(const scene::Scene& scene);
 
 struct RunOverrides {
   std::optional<std::string> integrator;

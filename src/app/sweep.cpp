@@ -164,15 +164,7 @@ class PointRunner {
     if (args_.keep == "none") return;
     const fs::path dir = point_dir(point);
     fs::create_directories(dir);
-    io::RunDescription d;
-    d.scene = scene.name;
-    d.integrator = scene.run.integrator;
-    d.dt = scene.run.dt;
-    d.duration = scene.run.duration;
-    d.output_rate = scene.run.output_rate;
-    d.state_dim = scene.network->state_dim();
-    if (scene.run.tolerance > 0.0) d.tolerance = scene.run.tolerance;
-    io::write_summary(io::make_summary(d, result), dir / "summary.json");
+    io::write_summary(io::make_summary(describe_run(scene), result), dir / "summary.json");
   }
 
   const SweepArguments& args_;

@@ -162,15 +162,7 @@ class SceneVerifier {
     verdict.scene = job_.scene.name;
     scene::Scene& scene = job_.scene;
     const core::RunResult result = core::simulate(*scene.network, scene.run);
-    io::RunDescription description;
-    description.scene = scene.name;
-    description.integrator = scene.run.integrator;
-    description.dt = scene.run.dt;
-    description.duration = scene.run.duration;
-    description.output_rate = scene.run.output_rate;
-    description.state_dim = scene.network->state_dim();
-    if (scene.run.tolerance > 0.0) description.tolerance = scene.run.tolerance;
-    const nlohmann::ordered_json summary = io::make_summary(description, result);
+    const nlohmann::ordered_json summary = io::make_summary(describe_run(scene), result);
 
     json next = json::object();
     next["scene"] = scene.name;
