@@ -6,6 +6,7 @@
 #include <string>
 
 #include "scenario.hpp"
+#include "toml_number.hpp"
 
 namespace stiction::testing {
 
@@ -15,14 +16,6 @@ inline ScenarioRun run_text(const std::string& text) {
   core::RunOptions options = run.scene.run;
   run.result = core::simulate(*run.scene.network, options);
   return run;
-}
-
-inline std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  std::string s = buf;
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
 }
 
 // Rows of a run: time and a column by index.

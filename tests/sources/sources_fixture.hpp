@@ -10,6 +10,7 @@
 
 #include "core/simulation.hpp"
 #include "scene/scene.hpp"
+#include "toml_number.hpp"
 
 namespace stiction::testing {
 
@@ -51,14 +52,6 @@ inline std::string load_error(const std::string& text) {
     return e.what();
   }
   return "";
-}
-
-inline std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  std::string s = buf;
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
 }
 
 // A long component name, as users write them, from a seed.
