@@ -46,6 +46,14 @@ void walk_run(Network& network, const RunOptions& options, Visit visit) {
 // Groups of state indices that no linearization couples (see coupled_groups).
 using Groups = std::vector<std::vector<int>>;
 
+// Whether the forward and backward differences of a column agree: the state is not on a
+// switching surface at this perturbation size.
+bool one_sided_agree(const Vec& forward, const Vec& backward) {
+  const double scale =
+      1.0 + forward.lpNorm<Eigen::Infinity>() + backward.lpNorm<Eigen::Infinity>();
+  return (forward - backward).lpNorm<Eigen::Infinity>() <= 1e-4 * scale;
+}
+
 // Column i of dF/dx at x by central differences into J, from F at x (`center`); false where
 // x lies on a switching surface of some element (the one-sided differences disagree at every
 // perturbation size tried).
@@ -67,9 +75,7 @@ bool central_column(const Function& F, const Vec& x, const Vec& center, int i,
     F(minus, f_minus);
     const Vec forward = (f_plus - center) / delta;
     const Vec backward = (center - f_minus) / delta;
-    const double scale =
-        1.0 + forward.lpNorm<Eigen::Infinity>() + backward.lpNorm<Eigen::Infinity>();
-    if ((forward - backward).lpNorm<Eigen::Infinity>() <= 1e-4 * scale) {
+    if (one_sided_agree(forward, backward)) {
       J.col(i) = 0.5 * (forward + backward);
       return true;
     }
@@ -122,9 +128,7 @@ std::optional<Eigen::MatrixXd> central_jacobian(const Function& F, const Vec& x,
         forward[r] = (f_plus[row] - center[row]) / d;
         backward[r] = (center[row] - f_minus[row]) / d;
       }
-      const double scale =
-          1.0 + forward.lpNorm<Eigen::Infinity>() + backward.lpNorm<Eigen::Infinity>();
-      if ((forward - backward).lpNorm<Eigen::Infinity>() <= 1e-4 * scale) {
+      if (one_sided_agree(forward, backward)) {
         for (int r = 0; r < m; ++r) J(g[static_cast<std::size_t>(r)], i) = 0.5 * (forward[r] + backward[r]);
       } else if (!central_column(F, x, center, i, J)) {
         return std::nullopt;
