@@ -2,12 +2,18 @@
 // Blinn-Phong with a hemisphere ambient term, one directional light with a filtered shadow
 // map, and three materials: plain, checkerboard ground (box-filtered with fwidth so it does
 // not alias in the distance) and the sphere's octant pattern (shows rotation).
+// The material is a compile-time constant, MATERIAL (0 plain, 1 checker ground, 2 sphere
+// pattern; the renderer builds one program per material): llvmpipe runs both sides of a
+// branch on every fragment, so a uniform switch made every ground pixel pay for the sphere's
+// pattern and every sphere pixel for the checkerboard.
+#ifndef MATERIAL
+#define MATERIAL 0
+#endif
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_local;
 in vec4 v_light;
 
-uniform int u_material;        // 0 plain, 1 checker ground, 2 sphere pattern
 uniform vec3 u_colour;         // linear RGB
 uniform vec3 u_colour2;        // second colour of the pattern
 uniform float u_checker_size;  // metres per square (ground)
@@ -24,12 +30,10 @@ uniform vec3 u_background;
 uniform float u_fog_start;
 uniform float u_fog_end;
 uniform sampler2DShadow u_shadow_map;
-uniform int u_shadows;           // 0: nothing casts a visible shadow this frame
 uniform float u_shadow_extent;   // the map's used corner: [0, extent)^2
 uniform vec2 u_shadow_kernel;    // tap offset (the soft edge), map coordinates
 uniform float u_shadow_bias;     // depth bias, map depth units
 uniform float u_shadow_slope_bias;
-uniform int u_shadow_taps;       // 1 or 4
 
 out vec4 frag_colour;
 
@@ -48,21 +52,37 @@ float grid_lines(vec2 p, float width) {
   return line * clamp(1.0 - 4.0 * max(w.x, w.y), 0.0, 1.0);
 }
 
+// SHADOWS (0 or 1) and SHADOW_TAPS (1 or 4) are compile-time constants too: the renderer
+// draws with SHADOWS 1 only inside the screen rectangle where a shadow can fall
+// (render/shadow_region.hpp) and with SHADOWS 0, which samples nothing, everywhere else.
+#ifndef SHADOWS
+#define SHADOWS 1
+#endif
+#ifndef SHADOW_TAPS
+#define SHADOW_TAPS 4
+#endif
+
 // The map covers only where a visible shadow can fall (fitted each frame): outside it, lit.
 // Receivers beyond the map's far depth are behind every caster: their depth is clamped.
 float shadow_factor(vec3 n) {
-  if (u_shadows == 0) return 1.0;
+#if SHADOWS == 0
+  return 1.0;
+#else
   vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;
   if (p.x <= 0.0 || p.x >= u_shadow_extent || p.y <= 0.0 || p.y >= u_shadow_extent) return 1.0;
   float slope = 1.0 - max(dot(n, u_light_dir), 0.0);
   float ref = min(p.z, 1.0) - u_shadow_bias - u_shadow_slope_bias * slope;
-  if (u_shadow_taps <= 1) return texture(u_shadow_map, vec3(p.xy, ref));
+#if SHADOW_TAPS == 1
+  return texture(u_shadow_map, vec3(p.xy, ref));
+#else
   float s = 0.0;
   s += texture(u_shadow_map, vec3(p.xy + vec2(-0.75, -0.25) * u_shadow_kernel, ref));
   s += texture(u_shadow_map, vec3(p.xy + vec2(0.25, -0.75) * u_shadow_kernel, ref));
   s += texture(u_shadow_map, vec3(p.xy + vec2(0.75, 0.25) * u_shadow_kernel, ref));
   s += texture(u_shadow_map, vec3(p.xy + vec2(-0.25, 0.75) * u_shadow_kernel, ref));
   return 0.25 * s;
+#endif
+#endif
 }
 
 float smooth_sign(float x) {
@@ -84,13 +104,16 @@ void main() {
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 albedo = u_colour;
-  if (u_material == 1) {
+#if MATERIAL == 1
+  {
     vec2 g = v_local.xy * u_local_scale + u_local_offset;
     float c = filtered_checker(g / u_checker_size);
     albedo = mix(u_colour, u_colour2, c);
     float line = grid_lines(g / u_grid_spacing, 1.2);
     albedo = mix(albedo, albedo * 0.55, line);
-  } else if (u_material == 2) {
+  }
+#elif MATERIAL == 2
+  {
     // Octants alternate between the two colours; a dark band on the equator of the body's
     // x-z plane and one on a meridian make the spin axis and the rotation angle readable.
     vec3 q = normalize(v_local);
@@ -112,6 +135,7 @@ void main() {
     float band = 1.0 - smoothstep(band_w - fwidth(eq), band_w + fwidth(eq), eq);
     albedo = mix(albedo, vec3(0.04), band);
   }
+#endif
 
   vec3 l = u_light_dir;
   vec3 v = normalize(u_eye - v_world);

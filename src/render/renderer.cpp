@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render/shadow_fit.hpp"
+#include "render/shadow_region.hpp"
 
 namespace stiction::render {
 namespace {
@@ -32,7 +33,6 @@ void check_framebuffer(const char* what) {
 
 Renderer::Renderer(const RendererOptions& options)
     : options_(options),
-      scene_program_("scene.vert.glsl", "scene.frag.glsl"),
       depth_program_("depth.vert.glsl", "depth.frag.glsl"),
       trail_program_("trail.vert.glsl", "trail.frag.glsl"),
       sphere_(make_sphere(48, 24)),
@@ -118,6 +118,19 @@ Renderer::Renderer(const RendererOptions& options)
   check_gl("renderer set-up");
 }
 
+ShaderProgram& Renderer::scene_program(MaterialKind kind, bool shadowed) {
+  const auto material = static_cast<std::size_t>(kind);
+  std::unique_ptr<ShaderProgram>& slot = scene_programs_[2 * material + (shadowed ? 1 : 0)];
+  if (!slot) {
+    const std::string defines = "#define MATERIAL " + std::to_string(material) +
+                                "\n#define SHADOWS " + (shadowed ? "1" : "0") +
+                                "\n#define SHADOW_TAPS " +
+                                std::to_string(options_.shadow_taps <= 1 ? 1 : 4) + "\n";
+    slot = std::make_unique<ShaderProgram>("scene.vert.glsl", "scene.frag.glsl", defines);
+  }
+  return *slot;
+}
+
 const Mesh& Renderer::mesh(Shape shape) const {
   switch (shape) {
     case Shape::sphere:
@@ -175,46 +188,76 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const glm::mat4 view_proj = camera.projection(aspect) * camera.view();
 
-  scene_program_.use();
-  scene_program_.set("u_view_proj", view_proj);
-  scene_program_.set("u_light_view_proj", fit.light_view_proj);
-  scene_program_.set("u_light_dir", kLightDirection);
-  scene_program_.set("u_eye", camera.eye);
-  scene_program_.set("u_background", linear(bg));
+  // The frame's uniforms, set in each program the first time it draws this frame.
+  const float side = cast ? fit.texel * float(options_.shadow_map_size) : 1.0f;
   const float distance = glm::length(camera.eye - camera.target);
-  scene_program_.set("u_fog_start", distance * 1.5f);
-  scene_program_.set("u_fog_end", distance * 6.0f);
+  auto set_frame_uniforms = [&](ShaderProgram& program) {
+    program.set("u_view_proj", view_proj);
+    program.set("u_light_view_proj", fit.light_view_proj);
+    program.set("u_light_dir", kLightDirection);
+    program.set("u_eye", camera.eye);
+    program.set("u_background", linear(bg));
+    program.set("u_fog_start", distance * 1.5f);
+    program.set("u_fog_end", distance * 6.0f);
+    program.set("u_shadow_map", 0);
+    // The soft edge and the depth bias in world units, converted to the map's coordinates.
+    program.set("u_shadow_extent", cast ? float(fit.size) / float(options_.shadow_map_size) : 1.0f);
+    program.set("u_shadow_kernel", glm::vec2(cast ? fit.softness / side : 0.0f));
+    program.set("u_shadow_bias",
+                cast ? (2.0f * fit.texel + 0.5f * fit.softness) / fit.depth_range : 0.0f);
+    program.set("u_shadow_slope_bias",
+                cast ? 4.0f * (fit.texel + fit.softness) / fit.depth_range : 0.0f);
+  };
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, shadow_map_.get());
-  scene_program_.set("u_shadow_map", 0);
-  // The soft edge and the depth bias in world units, converted to the map's coordinates.
-  const float side = cast ? fit.texel * float(options_.shadow_map_size) : 1.0f;
-  scene_program_.set("u_shadows", cast ? 1 : 0);
-  scene_program_.set("u_shadow_extent",
-                     cast ? float(fit.size) / float(options_.shadow_map_size) : 1.0f);
-  scene_program_.set("u_shadow_kernel", glm::vec2(cast ? fit.softness / side : 0.0f));
-  scene_program_.set("u_shadow_bias",
-                     cast ? (2.0f * fit.texel + 0.5f * fit.softness) / fit.depth_range : 0.0f);
-  scene_program_.set("u_shadow_slope_bias",
-                     cast ? 4.0f * (fit.texel + fit.softness) / fit.depth_range : 0.0f);
-  scene_program_.set("u_shadow_taps", cast ? options_.shadow_taps : 1);
-  for (const DrawItem& item : items) {
-    const Material& m = item.material;
-    scene_program_.set("u_model", item.model);
-    scene_program_.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(item.model)));
-    scene_program_.set("u_material", static_cast<int>(m.kind));
-    scene_program_.set("u_colour", m.colour);
-    scene_program_.set("u_colour2", m.colour2);
-    scene_program_.set("u_shininess", m.shininess);
-    scene_program_.set("u_specular", m.specular);
-    scene_program_.set("u_checker_size", m.checker_size);
-    scene_program_.set("u_grid_spacing", m.grid_spacing);
-    scene_program_.set("u_local_scale", m.local_scale);
-    scene_program_.set("u_local_offset", m.local_offset);
-    scene_program_.set("u_spin_axis", m.spin_axis);
-    scene_program_.set("u_spin_blur", m.spin_blur);
-    mesh(item.shape).draw();
+
+  // Shadow sampling inside the region where a shadow can fall, none elsewhere: the items are
+  // drawn once per rectangle (the scissor keeps the rectangles' pixels apart), in their
+  // order, so ties in depth resolve as in one pass.
+  struct Pass {
+    PixelRect rect;
+    bool shadowed;
+  };
+  std::vector<Pass> passes;
+  const PixelRect region =
+      !cast ? PixelRect{}
+      : options_.shadows_everywhere
+          ? PixelRect{0, 0, options_.width, options_.height}
+          : shadow_region(items, fit, camera, options_.width, options_.height);
+  if (!region.empty()) passes.push_back({region, true});
+  for (const PixelRect& r : complement(region, options_.width, options_.height)) {
+    passes.push_back({r, false});
   }
+  std::array<bool, 6> prepared{};
+  glEnable(GL_SCISSOR_TEST);
+  for (const Pass& pass : passes) {
+    glScissor(pass.rect.x0, pass.rect.y0, pass.rect.x1 - pass.rect.x0,
+              pass.rect.y1 - pass.rect.y0);
+    for (const DrawItem& item : items) {
+      const Material& m = item.material;
+      ShaderProgram& program = scene_program(m.kind, pass.shadowed);
+      program.use();
+      const std::size_t slot = 2 * static_cast<std::size_t>(m.kind) + (pass.shadowed ? 1 : 0);
+      if (!prepared[slot]) {
+        set_frame_uniforms(program);
+        prepared[slot] = true;
+      }
+      program.set("u_model", item.model);
+      program.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(item.model)));
+      program.set("u_colour", m.colour);
+      program.set("u_colour2", m.colour2);
+      program.set("u_shininess", m.shininess);
+      program.set("u_specular", m.specular);
+      program.set("u_checker_size", m.checker_size);
+      program.set("u_grid_spacing", m.grid_spacing);
+      program.set("u_local_scale", m.local_scale);
+      program.set("u_local_offset", m.local_offset);
+      program.set("u_spin_axis", m.spin_axis);
+      program.set("u_spin_blur", m.spin_blur);
+      mesh(item.shape).draw();
+    }
+  }
+  glDisable(GL_SCISSOR_TEST);
 
   if (trail.size() >= 4) {
     glDisable(GL_CULL_FACE);

@@ -3,6 +3,7 @@
 // Needs a current GlContext (>= 3.3 core) for its whole life.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct RendererOptions {
   int msaa = 4;                // 1: no multisampling
   int shadow_map_size = 2048;  // 0: no shadows; else the most texels per side used
   int shadow_taps = 4;         // 1 or 4
+  // Sample the shadow map over the whole frame instead of only where a shadow can fall: the
+  // reference that render/shadow_region.hpp is tested against (same picture, slower).
+  bool shadows_everywhere = false;
   image::Rgba background{236, 239, 243, 255};
 };
 
@@ -29,7 +33,8 @@ class Renderer {
   explicit Renderer(const RendererOptions& options);
 
   // The shadow map is fitted to the casters and the visible ground each frame
-  // (render/shadow_fit.hpp). `trail`: a triangle strip drawn unlit over the ground (may be
+  // (render/shadow_fit.hpp) and sampled only where a shadow can fall
+  // (render/shadow_region.hpp). `trail`: a triangle strip drawn unlit over the ground (may be
   // empty).
   void draw(const std::vector<DrawItem>& items, const Camera& camera,
             const std::vector<TrailVertex>& trail = {});
@@ -43,7 +48,10 @@ class Renderer {
   const Mesh& mesh(Shape shape) const;
 
   RendererOptions options_;
-  ShaderProgram scene_program_;
+  // The lit program of a material, with or without shadow sampling (both compiled in:
+  // shaders/scene.frag.glsl), built the first time it is asked for.
+  ShaderProgram& scene_program(MaterialKind kind, bool shadowed);
+  std::array<std::unique_ptr<ShaderProgram>, 6> scene_programs_;
   ShaderProgram depth_program_;
   ShaderProgram trail_program_;
   Mesh sphere_, box_, cylinder_, plane_;

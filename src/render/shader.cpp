@@ -5,12 +5,19 @@
 namespace stiction::render {
 namespace {
 
-GlShader compile(GLenum type, std::string_view file_name) {
+GlShader compile(GLenum type, std::string_view file_name, std::string_view defines) {
   const std::string_view source = embedded_shader(file_name);
+  // "#version" must stay the first line: the defines go after it.
+  const std::size_t version_end = source.find('\n') + 1;
+  const std::string_view version = source.substr(0, version_end);
+  const std::string_view body = source.substr(version_end);
+  // "#line 2" keeps the compiler's line numbers those of the file.
+  const std::string prefix = std::string(defines) + "#line 2\n";
+  const char* texts[] = {version.data(), prefix.data(), body.data()};
+  const GLint lengths[] = {static_cast<GLint>(version.size()), static_cast<GLint>(prefix.size()),
+                           static_cast<GLint>(body.size())};
   GlShader shader(glCreateShader(type));
-  const char* text = source.data();
-  const auto length = static_cast<GLint>(source.size());
-  glShaderSource(shader.get(), 1, &text, &length);
+  glShaderSource(shader.get(), 3, texts, lengths);
   glCompileShader(shader.get());
   GLint ok = GL_FALSE;
   glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
@@ -26,9 +33,10 @@ GlShader compile(GLenum type, std::string_view file_name) {
 
 }  // namespace
 
-ShaderProgram::ShaderProgram(std::string_view vertex_file, std::string_view fragment_file) {
-  GlShader vs = compile(GL_VERTEX_SHADER, vertex_file);
-  GlShader fs = compile(GL_FRAGMENT_SHADER, fragment_file);
+ShaderProgram::ShaderProgram(std::string_view vertex_file, std::string_view fragment_file,
+                             std::string_view defines) {
+  GlShader vs = compile(GL_VERTEX_SHADER, vertex_file, defines);
+  GlShader fs = compile(GL_FRAGMENT_SHADER, fragment_file, defines);
   program_ = GlProgram(glCreateProgram());
   glAttachShader(program_.get(), vs.get());
   glAttachShader(program_.get(), fs.get());

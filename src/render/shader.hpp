@@ -18,7 +18,9 @@ std::string_view embedded_shader(std::string_view file_name);
 class ShaderProgram {
  public:
   // Compiles and links; GlError with the info log (and the file names) on failure.
-  ShaderProgram(std::string_view vertex_file, std::string_view fragment_file);
+  // `defines` ("#define NAME VALUE\n" lines) go right after each source's #version line.
+  ShaderProgram(std::string_view vertex_file, std::string_view fragment_file,
+                std::string_view defines = {});
 
   void use() const { glUseProgram(program_.get()); }
   GLint location(const std::string& name);

@@ -51,17 +51,32 @@ ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, f
   float z_near = -1e30f, z_far = 1e30f;  // view-space z: larger is nearer the light
   for (const DrawItem& item : items) {
     if (!item.casts_shadow) continue;
-    const Bounds b = item_bounds(item);
+    if (item.shape == Shape::sphere) {
+      // Its own footprint, a disc: the box of a turned sphere is up to sqrt(3) too wide.
+      const glm::vec3 c = glm::vec3(light_view * item.model[3]);
+      const float r = std::max({glm::length(glm::vec3(item.model[0])),
+                                glm::length(glm::vec3(item.model[1])),
+                                glm::length(glm::vec3(item.model[2]))});
+      casters.add(glm::vec2(c) - r);
+      casters.add(glm::vec2(c) + r);
+      z_near = std::max(z_near, c.z + r);
+      z_far = std::min(z_far, c.z - r);
+      continue;
+    }
     for (int i = 0; i < 8; ++i) {
-      const glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                             (i & 4) ? b.max.z : b.min.z);
-      const glm::vec3 p = glm::vec3(light_view * glm::vec4(corner, 1.0f));
+      const glm::vec4 corner((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f,
+                             (i & 4) ? 1.0f : -1.0f, 1.0f);
+      const glm::vec3 p = glm::vec3(light_view * (item.model * corner));
       casters.add(glm::vec2(p));
       z_near = std::max(z_near, p.z);
       z_far = std::min(z_far, p.z);
     }
   }
   if (casters.empty()) return fit;
+  fit.light_view = light_view;
+  fit.casters_min = casters.min;
+  fit.casters_max = casters.max;
+  fit.casters_near = z_near;
 
   // Visible receivers: the camera's frustum out to where the fog has hidden the ground.
   Box2 visible;

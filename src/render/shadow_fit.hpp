@@ -23,6 +23,13 @@ struct ShadowFit {
   float texel = 0.0f;               // world size of one texel
   float depth_range = 1.0f;         // metres spanned by depth 0..1
   float softness = 0.0f;            // world width of the filtered edge (tap offset)
+  // Where the casters are, in the light's view (a rigid world -> light transform; x, y
+  // across the light, z along it, larger z nearer the light): their footprint and the
+  // largest z of any caster. Only points behind that depth and over that footprint (widened
+  // by the filter's reach) can read a shadow (render/shadow_region.hpp).
+  glm::mat4 light_view{1.0f};
+  glm::vec2 casters_min{0.0f}, casters_max{0.0f};
+  float casters_near = 0.0f;
 };
 
 // `aspect`: the frame's width / height; `map_size`: texels per side of the map, the most

@@ -84,12 +84,13 @@ TEST_CASE("shadow fit: covers every caster, texels proportional to its size", "[
   const glm::vec3 light = glm::normalize(glm::vec3(-0.6f, -0.25f, 1.0f));
   const ShadowFit fit = fit_shadow({ball, ground}, camera, 16.0f / 9.0f, light, 1024);
   REQUIRE_FALSE(fit.empty);
-  // The ball's corners land inside the map; the map is a small multiple of the ball.
-  const Bounds b = item_bounds(ball);
-  for (int i = 0; i < 8; ++i) {
-    const glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                           (i & 4) ? b.max.z : b.min.z);
-    const glm::vec4 p = fit.light_view_proj * glm::vec4(corner, 1.0f);
+  // The ball's surface lands inside the map (points in 26 directions from its centre);
+  // the map is a small multiple of the ball.
+  for (int i = 0; i < 27; ++i) {
+    const glm::vec3 d(float(i % 3) - 1.0f, float(i / 3 % 3) - 1.0f, float(i / 9) - 1.0f);
+    if (d == glm::vec3(0.0f)) continue;
+    const glm::vec3 point = glm::vec3(100.0f, 3.0f, 0.2f) + 0.2f * glm::normalize(d);
+    const glm::vec4 p = fit.light_view_proj * glm::vec4(point, 1.0f);
     CHECK(std::abs(p.x) < 1.0f);
     CHECK(std::abs(p.y) < 1.0f);
     CHECK(p.z > -1.0f);
