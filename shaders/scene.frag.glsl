@@ -30,7 +30,6 @@ uniform vec3 u_background;
 uniform float u_fog_start;
 uniform float u_fog_end;
 uniform sampler2DShadow u_shadow_map;
-uniform float u_shadow_extent;   // the map's used corner: [0, extent)^2
 uniform vec2 u_shadow_kernel;    // tap offset (the soft edge), map coordinates
 uniform float u_shadow_bias;     // depth bias, map depth units
 uniform float u_shadow_slope_bias;
@@ -69,7 +68,7 @@ float shadow_factor(vec3 n) {
   return 1.0;
 #else
   vec3 p = v_light.xyz / v_light.w * 0.5 + 0.5;
-  if (p.x <= 0.0 || p.x >= u_shadow_extent || p.y <= 0.0 || p.y >= u_shadow_extent) return 1.0;
+  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0) return 1.0;
   float slope = 1.0 - max(dot(n, u_light_dir), 0.0);
   float ref = min(p.z, 1.0) - u_shadow_bias - u_shadow_slope_bias * slope;
 #if SHADOW_TAPS == 1

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -58,9 +59,17 @@ class Renderer {
   GlVertexArray trail_vao_;
   GlBuffer trail_buffer_;
   // Multisampled colour + depth, the single-sampled resolve target, the shadow map.
-  GlFramebuffer msaa_fbo_, resolve_fbo_, shadow_fbo_;
+  GlFramebuffer msaa_fbo_, resolve_fbo_;
   GlRenderbuffer msaa_colour_, msaa_depth_, resolve_colour_;
-  GlTexture shadow_map_;
+  // A shadow map per size the fit asks for (powers of two up to shadow_map_size), made on
+  // first use: the map is cleared whole, which llvmpipe does fast, where a scissored clear
+  // of a corner of one large map took it a full-screen draw (5 ms a frame at 1024^2).
+  struct ShadowTarget {
+    GlFramebuffer fbo;
+    GlTexture map;
+  };
+  ShadowTarget& shadow_target(int size);
+  std::map<int, ShadowTarget> shadow_targets_;
   std::vector<std::uint8_t> rows_;  // read-back scratch (bottom row first)
 };
 

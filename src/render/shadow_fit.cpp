@@ -119,12 +119,7 @@ ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, f
   const float pad = 0.05f * (z_near - z_far) + 4.0f * fit.texel + 1e-4f;
   const float n = -(z_near + pad), f = -(z_far - pad);
   fit.depth_range = f - n;
-  // Into the corner of the map that is used.
-  const float r = static_cast<float>(fit.size) / static_cast<float>(std::max(map_size, 1));
-  const glm::mat4 corner = glm::translate(glm::mat4(1.0f), glm::vec3(r - 1.0f, r - 1.0f, 0.0f)) *
-                           glm::scale(glm::mat4(1.0f), glm::vec3(r, r, 1.0f));
   fit.light_view_proj =
-      corner *
       glm::ortho(centre.x - half, centre.x + half, centre.y - half, centre.y + half, n, f) *
       light_view;
   return fit;

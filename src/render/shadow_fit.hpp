@@ -16,10 +16,10 @@ namespace stiction::render {
 
 struct ShadowFit {
   bool empty = true;                // no caster can shadow anything visible
-  // World -> light clip space. x and y of the fitted region map to the corner
-  // [-1, -1 + 2 size / map_size] of clip space, i.e. to the texels [0, size) of the map.
+  // World -> light clip space: x and y of the fitted region map to [-1, 1], a map of
+  // `size` x `size` texels.
   glm::mat4 light_view_proj{1.0f};
-  int size = 0;                     // texels per side used (<= map_size)
+  int size = 0;                     // texels per side of the map (<= map_size)
   float texel = 0.0f;               // world size of one texel
   float depth_range = 1.0f;         // metres spanned by depth 0..1
   float softness = 0.0f;            // world width of the filtered edge (tap offset)
@@ -32,8 +32,8 @@ struct ShadowFit {
   float casters_near = 0.0f;
 };
 
-// `aspect`: the frame's width / height; `map_size`: texels per side of the map, the most
-// that is used: the fit uses the power of two (>= 256) that makes a texel at most a quarter
+// `aspect`: the frame's width / height; `map_size`: the most texels per side of a map: the
+// fit uses the power of two (>= 256) that makes a texel at most a quarter
 // of the soft edge, so the cost follows what the picture needs.
 ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, float aspect,
                      glm::vec3 light_direction, int map_size);
