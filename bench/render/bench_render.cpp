@@ -5,11 +5,13 @@
 // BM_VideoPipeline measures, interleaved in one run (so machine load hits all alike):
 //   render_only   the 121 frames rendered and read back, nothing else;
 //   video         the same frames through render_outputs (encode overlapped, default settings);
-//   video_x264_threads  the same with libx264's own thread count (1.5 per core, as before
-//                 issue 13) instead of the cores the renderer leaves;
-// and reports video_over_render = video time / render-only time (goal <= 1.1) and
-// threads_speedup = video fps / video_x264_threads fps. The speed-up over the pipeline
-// before issue 13 (whole-run 2048^2 shadow map too) needs the old binary: docs/rendering.md.
+//   before        the same with the encoder as before issue 13 (veryfast, crf 20, libx264's
+//                 own thread count);
+// and reports video_over_render = video time / render-only time (goal <= 1.1),
+// encoder_speedup = before time / video time, and for both encoder settings the mean PSNR
+// of the decoded video against the rendered frames (every 8th) and the file size. The
+// speed-up over the whole pipeline before issue 13 needs the old binary:
+// bench/video_speedup.sh.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -18,6 +20,7 @@
 
 #include "render/render_outputs.hpp"
 #include "render_fixtures.hpp"
+#include "video_decode.hpp"
 
 using namespace stiction;
 using namespace stiction::render;
@@ -86,37 +89,56 @@ void BM_VideoPipeline(benchmark::State& state) {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
   const core::Trajectory tr = testing::sphere_roll_trajectory(2.0);
   const RenderSettings settings = read_render_settings(s);
+  // The encoder as it was before issue 13: veryfast at crf 20, libx264's own thread count.
   RenderSettings before = settings;
+  before.preset = "veryfast";
+  before.crf = 20;
   before.encoder_threads = -1;
   const auto dir = std::filesystem::temp_directory_path() / "stiction_bench_pipeline";
-  RenderRequest request;
-  request.out_dir = dir;
+  RenderRequest now_request, before_request;
+  now_request.out_dir = dir / "now";
+  before_request.out_dir = dir / "before";
   const FrameClock clock = frame_clock(0.0, 2.0, settings.fps, settings.slow_motion);
   double render_only = 0.0, video = 0.0, video_before = 0.0;
+  std::vector<image::Image> sampled;  // every 8th rendered frame, for the quality figures
   for (auto _ : state) {
     {
+      sampled.clear();
       const auto start = std::chrono::steady_clock::now();
       FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings);
       image::Image frame;
       for (int i = 0; i < clock.count; ++i) {
         renderer.render(clock.time(i), frame);
         benchmark::DoNotOptimize(frame.pixels.data());
+        if (i % 8 == 0) sampled.push_back(frame);
       }
       render_only += seconds_since(start);
     }
     auto start = std::chrono::steady_clock::now();
-    render_outputs(s, tr, settings, request);
+    render_outputs(s, tr, settings, now_request);
     video += seconds_since(start);
     start = std::chrono::steady_clock::now();
-    render_outputs(s, tr, before, request);
+    render_outputs(s, tr, before, before_request);
     video_before += seconds_since(start);
   }
   const double n = static_cast<double>(state.iterations()) * clock.count;
   state.counters["render_only_fps"] = n / render_only;
   state.counters["video_fps"] = n / video;
-  state.counters["video_x264_threads_fps"] = n / video_before;
   state.counters["video_over_render"] = video / render_only;
-  state.counters["threads_speedup"] = video_before / video;
+  state.counters["encoder_speedup"] = video_before / video;
+  // Equal quality: the mean PSNR of the decoded video against the rendered frames (yuv420p
+  // and the codec's losses), and the file size, for both encoder settings.
+  auto quality = [&](const std::filesystem::path& file, const std::string& name) {
+    const testing::DecodedVideo decoded = testing::decode_video(file);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < sampled.size(); ++k) {
+      sum += testing::psnr_rgb(sampled[k], decoded.images.at(8 * k));
+    }
+    state.counters[name + "_psnr_db"] = sum / static_cast<double>(sampled.size());
+    state.counters[name + "_kB"] = static_cast<double>(std::filesystem::file_size(file)) / 1e3;
+  };
+  quality(dir / "now" / "video.mp4", "video");
+  quality(dir / "before" / "video.mp4", "before");
   std::filesystem::remove_all(dir);
 }
 

@@ -5,9 +5,10 @@
 //   [render]
 //   size = [1280, 720]      # pixels, both even (yuv420p) and in 16..7680
 //   fps = 60                # video frames per second of video time
-//   crf = 20                # H.264 quality, 0 (lossless) .. 51 (worst); 18-23 look good
+//   crf = 21                # H.264 quality, 0 (lossless) .. 51 (worst); 18-23 look good
 //   codec = "h264"          # only "h264" (libx264)
-//   preset = "veryfast"     # libx264 speed preset
+//   preset = "superfast"    # libx264 speed preset (with crf 21: half the encoding time of
+//                           # veryfast at crf 20, better SSIM and PSNR, 1.5x the bytes)
 //   slow_motion = 1.0       # video seconds per simulated second (4 = four times slower)
 //   slow_motion_around_events = 0.0  # seconds of simulated time on each side of every
 //                           # stick/slip event played `event_slow_motion` times slower
@@ -81,9 +82,9 @@ struct RenderSettings {
   int width = 1280;
   int height = 720;
   double fps = 60.0;
-  int crf = 20;
+  int crf = 21;
   std::string codec = "h264";
-  std::string preset = "veryfast";
+  std::string preset = "superfast";
   double slow_motion = 1.0;
   double slow_motion_around_events = 0.0;  // seconds; 0: off
   double event_slow_motion = 8.0;

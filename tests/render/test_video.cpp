@@ -1,11 +1,5 @@
 #include <catch2/catch.hpp>
 
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-#include <libswscale/swscale.h>
-}
-
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -15,6 +9,7 @@ extern "C" {
 #include "render/render_outputs.hpp"
 #include "render/video_encoder.hpp"
 #include "render_fixtures.hpp"
+#include "video_decode.hpp"
 
 namespace fs = std::filesystem;
 using namespace stiction;
@@ -28,70 +23,8 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-struct Decoded {
-  std::string codec;
-  int width = 0, height = 0;
-  int frames = 0;
-  double duration = 0.0;  // seconds, from the container
-  double fps = 0.0;
-  std::vector<image::Image> images;  // RGBA
-};
-
-// Decodes every frame of an MP4 with libavformat/libavcodec (test-only code, plain cleanup).
-Decoded decode(const fs::path& path) {
-  Decoded out;
-  AVFormatContext* format = nullptr;
-  REQUIRE(avformat_open_input(&format, path.c_str(), nullptr, nullptr) == 0);
-  REQUIRE(avformat_find_stream_info(format, nullptr) >= 0);
-  const int index = av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
-  REQUIRE(index >= 0);
-  AVStream* stream = format->streams[index];
-  const AVCodec* codec = avcodec_find_decoder(stream->codecpar->codec_id);
-  REQUIRE(codec != nullptr);
-  out.codec = codec->name;
-  AVCodecContext* context = avcodec_alloc_context3(codec);
-  avcodec_parameters_to_context(context, stream->codecpar);
-  REQUIRE(avcodec_open2(context, codec, nullptr) == 0);
-  out.width = context->width;
-  out.height = context->height;
-  out.fps = av_q2d(stream->avg_frame_rate);
-  out.duration = format->duration / double(AV_TIME_BASE);
-  AVPacket* packet = av_packet_alloc();
-  AVFrame* frame = av_frame_alloc();
-  SwsContext* sws = nullptr;
-  auto receive = [&] {
-    while (avcodec_receive_frame(context, frame) == 0) {
-      if (!sws) {
-        sws = sws_getContext(frame->width, frame->height, static_cast<AVPixelFormat>(frame->format),
-                             frame->width, frame->height, AV_PIX_FMT_RGBA, SWS_BILINEAR, nullptr,
-                             nullptr, nullptr);
-        const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-        sws_setColorspaceDetails(sws, bt709, 0, bt709, 1, 0, 1 << 16, 1 << 16);
-      }
-      image::Image img(frame->width, frame->height);
-      std::uint8_t* dst[1] = {img.pixels.data()};
-      const int stride[1] = {static_cast<int>(img.stride())};
-      sws_scale(sws, frame->data, frame->linesize, 0, frame->height, dst, stride);
-      out.images.push_back(std::move(img));
-      ++out.frames;
-    }
-  };
-  while (av_read_frame(format, packet) >= 0) {
-    if (packet->stream_index == index) {
-      avcodec_send_packet(context, packet);
-      receive();
-    }
-    av_packet_unref(packet);
-  }
-  avcodec_send_packet(context, nullptr);
-  receive();
-  sws_freeContext(sws);
-  av_frame_free(&frame);
-  av_packet_free(&packet);
-  avcodec_free_context(&context);
-  avformat_close_input(&format);
-  return out;
-}
+using Decoded = testing::DecodedVideo;
+Decoded decode(const fs::path& path) { return testing::decode_video(path); }
 
 double mean_abs_difference(const image::Image& a, const image::Image& b) {
   double sum = 0.0;
