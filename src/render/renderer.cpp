@@ -88,10 +88,9 @@ Renderer::Renderer(const RendererOptions& options)
 }
 
 ShaderProgram& Renderer::scene_program(MaterialKind kind, bool shadowed) {
-  const auto material = static_cast<std::size_t>(kind);
-  std::unique_ptr<ShaderProgram>& slot = scene_programs_[2 * material + (shadowed ? 1 : 0)];
+  std::unique_ptr<ShaderProgram>& slot = scene_programs_[program_slot(kind, shadowed)];
   if (!slot) {
-    const std::string defines = "#define MATERIAL " + std::to_string(material) +
+    const std::string defines = "#define MATERIAL " + std::to_string(static_cast<int>(kind)) +
                                 "\n#define SHADOWS " + (shadowed ? "1" : "0") +
                                 "\n#define SHADOW_TAPS " +
                                 std::to_string(options_.shadow_taps <= 1 ? 1 : 4) + "\n";
@@ -217,7 +216,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
   for (const PixelRect& r : complement(region, options_.width, options_.height)) {
     passes.push_back({r, false});
   }
-  std::array<bool, 6> prepared{};
+  std::array<bool, std::tuple_size_v<decltype(scene_programs_)>> prepared{};
   glEnable(GL_SCISSOR_TEST);
   for (const Pass& pass : passes) {
     glScissor(pass.rect.x0, pass.rect.y0, pass.rect.x1 - pass.rect.x0,
@@ -226,10 +225,9 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
       const Material& m = item.material;
       ShaderProgram& program = scene_program(m.kind, pass.shadowed);
       program.use();
-      const std::size_t slot = 2 * static_cast<std::size_t>(m.kind) + (pass.shadowed ? 1 : 0);
-      if (!prepared[slot]) {
+      if (!prepared[program_slot(m.kind, pass.shadowed)]) {
         set_frame_uniforms(program);
-        prepared[slot] = true;
+        prepared[program_slot(m.kind, pass.shadowed)] = true;
       }
       program.set("u_model", item.model);
       program.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(item.model)));

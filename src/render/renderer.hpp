@@ -52,13 +52,16 @@ class Renderer {
   // The lit program of a material, with or without shadow sampling (both compiled in:
   // shaders/scene.frag.glsl), built the first time it is asked for.
   ShaderProgram& scene_program(MaterialKind kind, bool shadowed);
+  static std::size_t program_slot(MaterialKind kind, bool shadowed) {
+    return 2 * static_cast<std::size_t>(kind) + (shadowed ? 1 : 0);
+  }
   std::array<std::unique_ptr<ShaderProgram>, 6> scene_programs_;
   ShaderProgram depth_program_;
   ShaderProgram trail_program_;
   Mesh sphere_, box_, cylinder_, plane_;
   GlVertexArray trail_vao_;
   GlBuffer trail_buffer_;
-  // Multisampled colour + depth, the single-sampled resolve target, the shadow map.
+  // Multisampled colour + depth and the single-sampled resolve target.
   GlFramebuffer msaa_fbo_, resolve_fbo_;
   GlRenderbuffer msaa_colour_, msaa_depth_, resolve_colour_;
   // A shadow map per size the fit asks for (powers of two up to shadow_map_size), made on

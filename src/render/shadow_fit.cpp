@@ -26,16 +26,6 @@ float quantize_up(float v) {
 
 }  // namespace
 
-Bounds item_bounds(const DrawItem& item) {
-  Bounds b;
-  for (int i = 0; i < 8; ++i) {
-    const glm::vec4 corner((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f, (i & 4) ? 1.0f : -1.0f,
-                           1.0f);
-    b.add(glm::vec3(item.model * corner));
-  }
-  return b;
-}
-
 ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, float aspect,
                      glm::vec3 light_direction, int map_size) {
   ShadowFit fit;

@@ -38,7 +38,4 @@ struct ShadowFit {
 ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, float aspect,
                      glm::vec3 light_direction, int map_size);
 
-// World-space bounds of the unit shape of `item` under its model matrix.
-Bounds item_bounds(const DrawItem& item);
-
 }  // namespace stiction::render
