@@ -26,7 +26,12 @@ echo "== sanitizers: built in $((SECONDS - start)) s" >&2
 # every bundled scene over its full duration (over 15 minutes under ASan here), the
 # adaptive-step sphere at every tolerance (169 s), and slope_hold over 1000 s (261 s).
 default_exclude='every bundled scene over its full duration|rk4_adaptive: a sliding sphere sticks on time at every tolerance|slope_hold for 1000 s'
-export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1
+# intercept_tls_get_addr=0: LeakSanitizer (GCC 12) then leaves out the dynamic TLS blocks of
+# dlopen'ed libraries (the render plugin loads OSMesa and LLVM). Tracking them, its leak check
+# at exit crashed in ScanRangeForPointers on a bogus block near address 0 ("Tracer caught
+# signal 11") in 5 of 6 runs of `stiction run` with video under test_app, once glibc 2.36 had
+# resized the thread's DTV. Static TLS, stacks, registers and globals are still scanned.
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1:intercept_tls_get_addr=0
 export LSAN_OPTIONS="suppressions=$PWD/.ci/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 tests_start=$SECONDS
