@@ -11,9 +11,7 @@
 namespace stiction::render {
 namespace {
 
-// Towards the light: from the upper left and a little from the front, so shadows fall to the
-// right of the bodies where the default camera (from -y) sees them.
-const glm::vec3 kLightDirection = glm::normalize(glm::vec3(-0.6f, -0.25f, 1.0f));
+const glm::vec3 kLightDirection = light_direction();
 
 glm::vec3 linear(const image::Rgba& c) {
   auto f = [](std::uint8_t v) { return std::pow(v / 255.0f, 2.2f); };

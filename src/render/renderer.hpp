@@ -29,6 +29,10 @@ struct RendererOptions {
   image::Rgba background{236, 239, 243, 255};
 };
 
+// Towards the light: from the upper left and a little from the front, so shadows fall to the
+// right of the bodies where the default camera (from -y) sees them.
+inline glm::vec3 light_direction() { return glm::normalize(glm::vec3(-0.6f, -0.25f, 1.0f)); }
+
 class Renderer {
  public:
   explicit Renderer(const RendererOptions& options);

@@ -26,6 +26,16 @@ float quantize_up(float v) {
 
 }  // namespace
 
+std::array<glm::vec3, 8> shape_corners(const DrawItem& item) {
+  const float z = item.shape == Shape::plane ? 0.0f : 1.0f;
+  std::array<glm::vec3, 8> corners;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec4 local((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f, (i & 4) ? z : -z, 1.0f);
+    corners[static_cast<std::size_t>(i)] = glm::vec3(item.model * local);
+  }
+  return corners;
+}
+
 ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, float aspect,
                      glm::vec3 light_direction, int map_size) {
   ShadowFit fit;
@@ -53,10 +63,8 @@ ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, f
       z_far = std::min(z_far, c.z - r);
       continue;
     }
-    for (int i = 0; i < 8; ++i) {
-      const glm::vec4 corner((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f,
-                             (i & 4) ? 1.0f : -1.0f, 1.0f);
-      const glm::vec3 p = glm::vec3(light_view * (item.model * corner));
+    for (const glm::vec3& corner : shape_corners(item)) {
+      const glm::vec3 p = glm::vec3(light_view * glm::vec4(corner, 1.0f));
       casters.add(glm::vec2(p));
       z_near = std::max(z_near, p.z);
       z_far = std::min(z_far, p.z);

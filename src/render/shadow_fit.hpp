@@ -6,6 +6,7 @@
 // long as its texels stay well below that edge.
 #pragma once
 
+#include <array>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct ShadowFit {
 // `aspect`: the frame's width / height; `map_size`: the most texels per side of a map: the
 // fit uses the power of two (>= 256) that makes a texel at most a quarter
 // of the soft edge, so the cost follows what the picture needs.
+// The corners of an item's unit shape ([-1, 1]^3; a plane's is flat, z = 0) in world
+// coordinates: a box around it that turns with it.
+std::array<glm::vec3, 8> shape_corners(const DrawItem& item);
+
 ShadowFit fit_shadow(const std::vector<DrawItem>& items, const Camera& camera, float aspect,
                      glm::vec3 light_direction, int map_size);
 

@@ -88,15 +88,9 @@ PixelRect shadow_region(const std::vector<DrawItem>& items, const ShadowFit& fit
   static constexpr int kFaces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4},
                                        {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
   for (const DrawItem& item : items) {
-    const float z = item.shape == Shape::plane ? 0.0f : 1.0f;
-    std::array<glm::vec3, 8> corner;
+    const std::array<glm::vec3, 8> corner = shape_corners(item);
     Bounds box;
-    for (int i = 0; i < 8; ++i) {
-      const glm::vec4 local((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f, (i & 4) ? z : -z,
-                            1.0f);
-      corner[static_cast<std::size_t>(i)] = glm::vec3(item.model * local);
-      box.add(corner[static_cast<std::size_t>(i)]);
-    }
+    for (const glm::vec3& p : corner) box.add(p);
     // The item's surface inside the prism: each face clipped by the prism's half-spaces.
     for (const auto& face : kFaces) {
       Polygon polygon;

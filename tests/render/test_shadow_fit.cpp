@@ -7,6 +7,7 @@
 #include "image/compare.hpp"
 #include "image/png.hpp"
 #include "render/render_outputs.hpp"
+#include "render/renderer.hpp"
 #include "render/shadow_fit.hpp"
 #include "render_fixtures.hpp"
 
@@ -81,7 +82,7 @@ TEST_CASE("shadow fit: covers every caster, texels proportional to its size", "[
   Camera camera;
   camera.target = glm::vec3(100.0f, 3.0f, 0.2f);
   camera.eye = camera.target + glm::vec3(-0.5f, -2.0f, 1.0f);
-  const glm::vec3 light = glm::normalize(glm::vec3(-0.6f, -0.25f, 1.0f));
+  const glm::vec3 light = light_direction();
   const ShadowFit fit = fit_shadow({ball, ground}, camera, 16.0f / 9.0f, light, 1024);
   REQUIRE_FALSE(fit.empty);
   // The ball's surface lands inside the map (points in 26 directions from its centre);

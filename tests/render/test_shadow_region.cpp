@@ -143,7 +143,7 @@ TEST_CASE("shadow region: the same picture as sampling the map everywhere, on ge
     // The scenes do have shadows (else the comparison says nothing).
     if (image::compare_images(b, c, exact).fraction_off > 0.002) ++shadowed_scenes;
     const ShadowFit fit = fit_shadow(g.items, g.camera, 480.0f / 270.0f,
-                                     glm::normalize(glm::vec3(-0.6f, -0.25f, 1.0f)), 2048);
+                                     light_direction(), 2048);
     region_share += double(shadow_region(g.items, fit, g.camera, 480, 270).area()) / (480.0 * 270.0);
   }
   CHECK(shadowed_scenes >= scenes * 3 / 4);

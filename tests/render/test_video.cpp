@@ -23,9 +23,6 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
-using Decoded = testing::DecodedVideo;
-Decoded decode(const fs::path& path) { return testing::decode_video(path); }
-
 double mean_abs_difference(const image::Image& a, const image::Image& b) {
   double sum = 0.0;
   for (std::size_t i = 0; i < a.pixels.size(); ++i) {
@@ -68,7 +65,7 @@ TEST_CASE("video.mp4: H.264, frame count, size, duration, and frames match the P
     CHECK(entry.path().string().find(".tmp.") == std::string::npos);
   }
 
-  const Decoded video = decode(dir / "video.mp4");
+  const testing::DecodedVideo video = testing::decode_video(dir / "video.mp4");
   CHECK(video.codec == "h264");
   CHECK(video.width == 320);
   CHECK(video.height == 180);
@@ -116,7 +113,7 @@ TEST_CASE("a cancelled render is finalized as video.partial.mp4 and plays", "[re
   CHECK(result.frames == 10);
   CHECK_FALSE(fs::exists(dir / "video.mp4"));
   REQUIRE(fs::exists(dir / "video.partial.mp4"));
-  CHECK(decode(dir / "video.partial.mp4").frames == 10);
+  CHECK(testing::decode_video(dir / "video.partial.mp4").frames == 10);
 }
 
 TEST_CASE("an unwritable output path is an I/O error and leaves no file", "[render][video]") {
