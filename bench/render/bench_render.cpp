@@ -5,19 +5,24 @@
 // BM_VideoPipeline measures, interleaved in one run (so machine load hits all alike):
 //   render_only   the 121 frames rendered and read back, nothing else;
 //   video         the same frames through render_outputs (encode overlapped, default settings);
+//   ultrafast     the same with [render] preset = "ultrafast": the cheapest encoder, larger files;
 //   before        the same with the encoder as before issue 13 (veryfast, crf 20, libx264's
 //                 own thread count);
-// and reports video_over_render = video time / render-only time (goal <= 1.1),
-// encoder_speedup = before time / video time, and for both encoder settings the mean PSNR
-// of the decoded video against the rendered frames (every 8th) and the file size. The
-// speed-up over the whole pipeline before issue 13 needs the old binary:
-// bench/video_speedup.sh.
+// and reports for each encoder setting its time over the render-only time (video_over_render:
+// goal <= 1.1), the CPU of all threads per frame (cpu_ms; render_cpu_ms for render only: on
+// a machine whose cores the renderer keeps busy, the encoder's CPU is what end-to-end adds),
+// the mean PSNR of the decoded video against the rendered frames (every 8th) and the file
+// size; encoder_speedup = before time / video time. The speed-up over the whole pipeline
+// before issue 13 needs the old binary: bench/video_speedup.sh.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <string>
+#include <vector>
 
+#include "image/yuv420.hpp"
 #include "render/render_outputs.hpp"
 #include "render_fixtures.hpp"
 #include "video_decode.hpp"
@@ -64,6 +69,52 @@ void BM_Render720p_Shadow512(benchmark::State& s) { render_frames(s, 4, 512, 4, 
 void BM_Render720p_NoShadows(benchmark::State& s) { render_frames(s, 4, 0, 1, true); }
 void BM_Render720p_Fastest(benchmark::State& s) { render_frames(s, 1, 0, 1, false); }
 
+// RGBA -> yuv420p (BT.709, limited range) of one rendered 1280x720 frame: ours, which the
+// encoder uses, against libswscale's path that it replaced (SWS_BILINEAR, BT.709 matrix).
+image::Image rendered_frame() {
+  const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
+  const core::Trajectory tr = testing::sphere_roll_trajectory();
+  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, read_render_settings(s));
+  return renderer.render(1.0);
+}
+
+struct Yuv420Buffer {
+  int width, height;
+  std::vector<std::uint8_t> y, u, v;
+  explicit Yuv420Buffer(const image::Image& im)
+      : width(im.width), height(im.height), y(static_cast<std::size_t>(width) * height),
+        u(y.size() / 4), v(y.size() / 4) {}
+};
+
+void BM_Yuv420_Stiction(benchmark::State& state) {
+  const image::Image frame = rendered_frame();
+  Yuv420Buffer out(frame);
+  for (auto _ : state) {
+    image::rgba_to_yuv420_bt709(frame, {out.y.data(), out.width, out.u.data(), out.width / 2,
+                                        out.v.data(), out.width / 2});
+    benchmark::DoNotOptimize(out.v.data());
+  }
+}
+
+void BM_Yuv420_Swscale(benchmark::State& state) {
+  const image::Image frame = rendered_frame();
+  Yuv420Buffer out(frame);
+  SwsContext* sws = sws_getContext(frame.width, frame.height, AV_PIX_FMT_RGBA, frame.width,
+                                   frame.height, AV_PIX_FMT_YUV420P, SWS_BILINEAR, nullptr,
+                                   nullptr, nullptr);
+  const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
+  sws_setColorspaceDetails(sws, bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
+  const std::uint8_t* src[1] = {frame.pixels.data()};
+  const int src_stride[1] = {static_cast<int>(frame.stride())};
+  std::uint8_t* dst[3] = {out.y.data(), out.u.data(), out.v.data()};
+  const int dst_stride[3] = {out.width, out.width / 2, out.width / 2};
+  for (auto _ : state) {
+    sws_scale(sws, src, src_stride, 0, frame.height, dst, dst_stride);
+    benchmark::DoNotOptimize(out.v.data());
+  }
+  sws_freeContext(sws);
+}
+
 void BM_SphereRollVideo(benchmark::State& state) {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
   const core::Trajectory tr = testing::sphere_roll_trajectory(2.0);
@@ -85,25 +136,35 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+double process_cpu_seconds() {
+  timespec c{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c);
+  return static_cast<double>(c.tv_sec) + 1e-9 * static_cast<double>(c.tv_nsec);
+}
+
 void BM_VideoPipeline(benchmark::State& state) {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
   const core::Trajectory tr = testing::sphere_roll_trajectory(2.0);
   const RenderSettings settings = read_render_settings(s);
+  struct Variant {
+    std::string name;
+    RenderSettings settings;
+    double seconds = 0.0, cpu_seconds = 0.0;
+  };
+  std::vector<Variant> variants{{"video", settings}, {"ultrafast", settings}, {"before", settings}};
+  variants[1].settings.preset = "ultrafast";
   // The encoder as it was before issue 13: veryfast at crf 20, libx264's own thread count.
-  RenderSettings before = settings;
-  before.preset = "veryfast";
-  before.crf = 20;
-  before.encoder_threads = -1;
+  variants[2].settings.preset = "veryfast";
+  variants[2].settings.crf = 20;
+  variants[2].settings.encoder_threads = -1;
   const auto dir = std::filesystem::temp_directory_path() / "stiction_bench_pipeline";
-  RenderRequest now_request, before_request;
-  now_request.out_dir = dir / "now";
-  before_request.out_dir = dir / "before";
   const FrameClock clock = frame_clock(0.0, 2.0, settings.fps, settings.slow_motion);
-  double render_only = 0.0, video = 0.0, video_before = 0.0;
+  double render_only = 0.0, render_cpu = 0.0;
   std::vector<image::Image> sampled;  // every 8th rendered frame, for the quality figures
   for (auto _ : state) {
     {
       sampled.clear();
+      const double cpu = process_cpu_seconds();
       const auto start = std::chrono::steady_clock::now();
       FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings);
       image::Image frame;
@@ -113,32 +174,37 @@ void BM_VideoPipeline(benchmark::State& state) {
         if (i % 8 == 0) sampled.push_back(frame);
       }
       render_only += seconds_since(start);
+      render_cpu += process_cpu_seconds() - cpu;
     }
-    auto start = std::chrono::steady_clock::now();
-    render_outputs(s, tr, settings, now_request);
-    video += seconds_since(start);
-    start = std::chrono::steady_clock::now();
-    render_outputs(s, tr, before, before_request);
-    video_before += seconds_since(start);
+    for (Variant& v : variants) {
+      RenderRequest request;
+      request.out_dir = dir / v.name;
+      const double cpu = process_cpu_seconds();
+      const auto start = std::chrono::steady_clock::now();
+      render_outputs(s, tr, v.settings, request);
+      v.seconds += seconds_since(start);
+      v.cpu_seconds += process_cpu_seconds() - cpu;
+    }
   }
   const double n = static_cast<double>(state.iterations()) * clock.count;
   state.counters["render_only_fps"] = n / render_only;
-  state.counters["video_fps"] = n / video;
-  state.counters["video_over_render"] = video / render_only;
-  state.counters["encoder_speedup"] = video_before / video;
-  // Equal quality: the mean PSNR of the decoded video against the rendered frames (yuv420p
-  // and the codec's losses), and the file size, for both encoder settings.
-  auto quality = [&](const std::filesystem::path& file, const std::string& name) {
+  state.counters["render_cpu_ms"] = 1e3 * render_cpu / n;
+  state.counters["video_fps"] = n / variants[0].seconds;
+  state.counters["encoder_speedup"] = variants[2].seconds / variants[0].seconds;
+  for (const Variant& v : variants) {
+    state.counters[v.name + "_over_render"] = v.seconds / render_only;
+    state.counters[v.name + "_cpu_ms"] = 1e3 * v.cpu_seconds / n;
+    // Equal quality: the mean PSNR of the decoded video against the rendered frames (yuv420p
+    // and the codec's losses), and the file size.
+    const std::filesystem::path file = dir / v.name / "video.mp4";
     const testing::DecodedVideo decoded = testing::decode_video(file);
     double sum = 0.0;
     for (std::size_t k = 0; k < sampled.size(); ++k) {
       sum += testing::psnr_rgb(sampled[k], decoded.images.at(8 * k));
     }
-    state.counters[name + "_psnr_db"] = sum / static_cast<double>(sampled.size());
-    state.counters[name + "_kB"] = static_cast<double>(std::filesystem::file_size(file)) / 1e3;
-  };
-  quality(dir / "now" / "video.mp4", "video");
-  quality(dir / "before" / "video.mp4", "before");
+    state.counters[v.name + "_psnr_db"] = sum / static_cast<double>(sampled.size());
+    state.counters[v.name + "_kB"] = static_cast<double>(std::filesystem::file_size(file)) / 1e3;
+  }
   std::filesystem::remove_all(dir);
 }
 
@@ -151,6 +217,8 @@ BENCHMARK(BM_Render720p_Shadow1024)->Unit(benchmark::kMillisecond)->UseRealTime(
 BENCHMARK(BM_Render720p_Shadow512)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK(BM_Render720p_NoShadows)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 BENCHMARK(BM_Render720p_Fastest)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+BENCHMARK(BM_Yuv420_Stiction)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_Yuv420_Swscale)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(BM_SphereRollVideo)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(2);
 BENCHMARK(BM_VideoPipeline)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 

@@ -5,7 +5,6 @@ extern "C" {
 #include <libavformat/avformat.h>
 #include <libavutil/imgutils.h>
 #include <libavutil/opt.h>
-#include <libswscale/swscale.h>
 }
 
 #include <unistd.h>
@@ -15,6 +14,7 @@ extern "C" {
 #include <system_error>
 #include <thread>
 
+#include "image/yuv420.hpp"
 #include "sys/temporaries.hpp"
 
 namespace stiction::render {
@@ -34,9 +34,6 @@ struct FrameDeleter {
 };
 struct PacketDeleter {
   void operator()(AVPacket* p) const { av_packet_free(&p); }
-};
-struct SwsDeleter {
-  void operator()(SwsContext* s) const { sws_freeContext(s); }
 };
 // Closes the file (if open) and frees the muxer.
 struct FormatDeleter {
@@ -65,7 +62,6 @@ struct VideoEncoder::State {
   std::unique_ptr<AVCodecContext, CodecContextDeleter> codec;
   std::unique_ptr<AVFrame, FrameDeleter> frame;
   std::unique_ptr<AVPacket, PacketDeleter> packet;
-  std::unique_ptr<SwsContext, SwsDeleter> sws;
   AVStream* stream = nullptr;  // owned by format
   long frames = 0;
   bool finished = false;
@@ -129,6 +125,7 @@ void VideoEncoder::open(const std::string& url, const VideoOptions& options) {
   c->color_trc = AVCOL_TRC_BT709;
   c->colorspace = AVCOL_SPC_BT709;
   c->color_range = AVCOL_RANGE_MPEG;
+  c->chroma_sample_location = AVCHROMA_LOC_LEFT;  // as image::rgba_to_yuv420_bt709 sites it
   if (s.format->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   av_opt_set(c->priv_data, "preset", options.preset.c_str(), 0);
   av_opt_set(c->priv_data, "crf", std::to_string(options.crf).c_str(), 0);
@@ -169,15 +166,9 @@ void VideoEncoder::open(const std::string& url, const VideoOptions& options) {
   s.frame->color_trc = AVCOL_TRC_BT709;
   s.frame->colorspace = AVCOL_SPC_BT709;
   s.frame->color_range = AVCOL_RANGE_MPEG;
+  s.frame->chroma_location = AVCHROMA_LOC_LEFT;
   rc = av_frame_get_buffer(s.frame.get(), 0);
   if (rc < 0) throw VideoError("cannot allocate a frame: " + av_message(rc));
-
-  s.sws.reset(sws_getContext(options.width, options.height, AV_PIX_FMT_RGBA, options.width,
-                             options.height, AV_PIX_FMT_YUV420P, SWS_BILINEAR, nullptr, nullptr,
-                             nullptr));
-  if (!s.sws) throw VideoError("cannot create the RGBA -> yuv420p converter");
-  const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-  sws_setColorspaceDetails(s.sws.get(), bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16);
 }
 
 VideoEncoder::~VideoEncoder() {
@@ -214,9 +205,9 @@ void VideoEncoder::encode(const image::Image& image) {
   }
   int rc = av_frame_make_writable(s.frame.get());
   if (rc < 0) throw VideoError("cannot reuse the frame: " + av_message(rc));
-  const std::uint8_t* src[1] = {image.pixels.data()};
-  const int stride[1] = {static_cast<int>(image.stride())};
-  sws_scale(s.sws.get(), src, stride, 0, image.height, s.frame->data, s.frame->linesize);
+  AVFrame& f = *s.frame;
+  image::rgba_to_yuv420_bt709(
+      image, {f.data[0], f.linesize[0], f.data[1], f.linesize[1], f.data[2], f.linesize[2]});
   s.frame->pts = s.frames++;
   rc = avcodec_send_frame(s.codec.get(), s.frame.get());
   if (rc < 0) throw VideoError("H.264 encoding failed: " + av_message(rc));
