@@ -1,6 +1,7 @@
 #include "render/render_outputs.hpp"
 
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
@@ -25,6 +26,12 @@ namespace stiction::render {
 namespace {
 
 namespace fs = std::filesystem;
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 // Encodes and writes frames on its own thread. push() blocks while `capacity` frames wait,
 // so memory stays bounded and the renderer is paced by the encoder when it is slower.
@@ -62,6 +69,8 @@ class FrameWorker {
     std::lock_guard lock(mutex_);
     if (error_) std::rethrow_exception(error_);
   }
+  // The worker thread's CPU time; valid after stop().
+  double cpu_seconds() const { return cpu_seconds_; }
 
  private:
   static constexpr std::size_t kCapacity = 3;
@@ -75,7 +84,10 @@ class FrameWorker {
       {
         std::unique_lock lock(mutex_);
         ready_.wait(lock, [&] { return !queue_.empty() || done_; });
-        if (queue_.empty()) return;
+        if (queue_.empty()) {
+          cpu_seconds_ = thread_cpu_seconds();
+          return;
+        }
         job = std::move(queue_.front());
         queue_.pop_front();
         space_.notify_one();
@@ -107,6 +119,7 @@ class FrameWorker {
   std::vector<image::Image> spare_;
   std::exception_ptr error_;
   bool done_ = false;
+  double cpu_seconds_ = 0.0;
   std::thread thread_;  // last: starts after everything above is built
 };
 
@@ -234,6 +247,7 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
     }
     worker.stop();
     worker.rethrow();
+    result.worker_cpu_seconds = worker.cpu_seconds();
   }
   if (encoder) {
     result.video = encoder->finish(result.interrupted ? request.out_dir / "video.partial.mp4"

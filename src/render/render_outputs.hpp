@@ -54,6 +54,10 @@ struct RenderResult {
   bool interrupted = false;
   std::filesystem::path video;  // empty if no video was written
   double wall_seconds = 0.0;
+  // CPU time of the thread that converts, encodes and writes the frames (libx264 runs on it
+  // when it has one thread, the default beside the renderer; threads it starts itself are
+  // not counted).
+  double worker_cpu_seconds = 0.0;
 };
 
 // Frame times of a run: count and time of frame i.

@@ -129,6 +129,11 @@ void VideoEncoder::open(const std::string& url, const VideoOptions& options) {
   if (s.format->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   av_opt_set(c->priv_data, "preset", options.preset.c_str(), 0);
   av_opt_set(c->priv_data, "crf", std::to_string(options.crf).c_str(), 0);
+  // ultrafast turns the in-loop deblocking filter off, which leaves block edges on the smooth
+  // surfaces we render (SSIM 0.989 against 0.992 with it). Back on at strength 1:1 (x264's
+  // tune "animation", whose pictures are like ours), it costs about half a millisecond per
+  // 720p frame, and gives a smaller file than 0:0 at better SSIM.
+  if (options.preset == "ultrafast") av_opt_set(c->priv_data, "deblock", "1:1", 0);
   // -1: libavcodec/x264 choose (1.5 threads per core: oversubscribed beside the renderer).
   c->thread_count =
       options.threads > 0 ? options.threads : (options.threads < 0 ? 0 : encoder_threads());

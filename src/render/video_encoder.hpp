@@ -26,8 +26,8 @@ struct VideoOptions {
   int width = 1280;   // even
   int height = 720;   // even
   double fps = 60.0;
-  int crf = 20;
-  std::string preset = "veryfast";
+  int crf = 21;
+  std::string preset = "superfast";  // "ultrafast" keeps deblocking on (see open())
   // libx264 threads; 0: encoder_threads() (the cores the renderer leaves over, at least 1);
   // -1: libx264's own default.
   int threads = 0;

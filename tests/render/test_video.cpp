@@ -3,6 +3,9 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include "image/compare.hpp"
 #include "image/png.hpp"
@@ -56,6 +59,8 @@ TEST_CASE("video.mp4: H.264, frame count, size, duration, and frames match the P
   CHECK(result.frames == 31);  // 1 s at 30 fps, both ends included
   CHECK(progress_calls == 31);
   CHECK_FALSE(result.interrupted);
+  // The worker thread's CPU: converting and encoding 31 frames is not free.
+  CHECK(result.worker_cpu_seconds > 0.0);
   REQUIRE(fs::exists(dir / "video.mp4"));
   CHECK(fs::exists(dir / "frames" / "000000.png"));
   CHECK(fs::exists(dir / "frames" / "000030.png"));
@@ -84,6 +89,27 @@ TEST_CASE("video.mp4: H.264, frame count, size, duration, and frames match the P
   CHECK(r.matches);
   // ... and not the PNG of another time.
   CHECK(mean_abs_difference(image::read_png(dir / "frames" / "000024.png"), video.images[12]) > mad);
+}
+
+TEST_CASE("preset ultrafast keeps x264's deblocking filter on, at 1:1", "[render][video]") {
+  // libx264 writes its settings into the stream (an SEI message): "deblock=ON:ALPHA:BETA".
+  auto encoder_settings = [](const std::string& preset) {
+    const fs::path dir = scratch("deblock_" + preset);
+    fs::create_directories(dir);
+    VideoOptions options;
+    options.width = 64;
+    options.height = 64;
+    options.preset = preset;
+    VideoEncoder encoder(dir / "video.mp4", options);
+    for (int i = 0; i < 3; ++i) encoder.encode(image::Image(64, 64, {10, 200, 30, 255}));
+    encoder.finish();
+    std::ifstream in(dir / "video.mp4", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t at = bytes.find("deblock=");
+    return at == std::string::npos ? std::string() : bytes.substr(at, 13);
+  };
+  CHECK(encoder_settings("ultrafast") == "deblock=1:1:1");
+  CHECK(encoder_settings("superfast") == "deblock=1:0:0");
 }
 
 TEST_CASE("slow motion stretches video time", "[render][video]") {
