@@ -1,10 +1,10 @@
 #include "render/render_outputs.hpp"
 
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <ctime>
 #include <deque>
 #include <exception>
 #include <mutex>
