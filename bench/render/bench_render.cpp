@@ -35,6 +35,13 @@ using namespace stiction::render;
 
 namespace {
 
+// CPU time of all the process's threads.
+double process_cpu_seconds() {
+  timespec c{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c);
+  return static_cast<double>(c.tv_sec) + 1e-9 * static_cast<double>(c.tv_nsec);
+}
+
 void render_frames(benchmark::State& state, int msaa, int shadow_map_size, int taps, bool overlay) {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
   const core::Trajectory tr = testing::sphere_roll_trajectory();
@@ -47,19 +54,16 @@ void render_frames(benchmark::State& state, int msaa, int shadow_map_size, int t
   image::Image frame;
   renderer.render(0.0, frame);  // shader JIT happens on the first frame
   double t = 0.0;
-  timespec c0{}, c1{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
+  const double cpu = process_cpu_seconds();
   for (auto _ : state) {
     renderer.render(t, frame);
     benchmark::DoNotOptimize(frame.pixels.data());
     t += 1.0 / 60.0;
     if (t > 2.0) t = 0.0;
   }
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
   // CPU of all threads (llvmpipe's included) per frame: steadier than wall time on a
   // shared machine.
-  state.counters["cpu_ms"] =
-      ((c1.tv_sec - c0.tv_sec) * 1e3 + (c1.tv_nsec - c0.tv_nsec) * 1e-6) / state.iterations();
+  state.counters["cpu_ms"] = 1e3 * (process_cpu_seconds() - cpu) / state.iterations();
   state.counters["fps"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
@@ -137,12 +141,6 @@ void BM_SphereRollVideo(benchmark::State& state) {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double process_cpu_seconds() {
-  timespec c{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c);
-  return static_cast<double>(c.tv_sec) + 1e-9 * static_cast<double>(c.tv_nsec);
 }
 
 void BM_VideoPipeline(benchmark::State& state) {

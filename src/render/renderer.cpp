@@ -223,9 +223,10 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
       const Material& m = item.material;
       ShaderProgram& program = scene_program(m.kind, pass.shadowed);
       program.use();
-      if (!prepared[program_slot(m.kind, pass.shadowed)]) {
+      bool& frame_uniforms_set = prepared[program_slot(m.kind, pass.shadowed)];
+      if (!frame_uniforms_set) {
         set_frame_uniforms(program);
-        prepared[program_slot(m.kind, pass.shadowed)] = true;
+        frame_uniforms_set = true;
       }
       program.set("u_model", item.model);
       program.set("u_normal_matrix", glm::inverseTranspose(glm::mat3(item.model)));
