@@ -6,10 +6,10 @@
 #include <limits>
 #include <stdexcept>
 
-#include "core/run_limits.hpp"
 #include "core/contact.hpp"
-#include "core/feedback_monitor.hpp"
 #include "core/flush_subnormals.hpp"
+#include "core/instability_monitor.hpp"
+#include "core/run_limits.hpp"
 
 namespace stiction::core {
 namespace {
@@ -22,88 +22,7 @@ std::string owner_of_non_finite(Network& network, const Vec& x) {
   return "(unknown)";
 }
 
-// The admittance whose energy grew the most over the last step.
-std::string fastest_growing(Network& network, const Vec& before, const Vec& after) {
-  std::string name = "network";
-  double worst = -1.0;
-  for (std::size_t j = 0; j < network.admittances().size(); ++j) {
-    const Slot s = network.admittance_slot(static_cast<int>(j));
-    const auto& a = *network.admittances()[j];
-    const double growth = a.energy(after.segment(s.state_offset, s.state_size)) -
-                          a.energy(before.segment(s.state_offset, s.state_size));
-    if (growth > worst) {
-      worst = growth;
-      name = a.name();
-    }
-  }
-  return name;
-}
-
 constexpr long kMonitorEvery = 8;  // steps between two checks of the monitor
-
-// The run's monitor beyond finiteness: the network energy against its start plus what the
-// sources put in (energy_margin), and every state with a bound its model keeps
-// (BoundedState) against twice that bound, for instabilities whose error
-// dissipates and so does not show in the energy.
-class InstabilityMonitor {
- public:
-  InstabilityMonitor(Network& network, const RunOptions& options, const Vec& x0)
-      : network_(network), options_(options), initial_energy_(network.energy(x0)),
-        has_sources_(network.has_sources()),
-        power_checked_(has_sources_ ? std::abs(network.source_power(0.0, x0)) : 0.0),
-        feedback_(network, options, x0, initial_energy_) {
-    for (std::size_t i = 0; i < network.impedances().size(); ++i) {
-      const Impedance& imp = *network.impedances()[i];
-      const Slot s = network.impedance_slot(static_cast<int>(i));
-      const auto* bound = network.capabilities(static_cast<int>(i)).bound;  // BoundedState
-      if (bound == nullptr || !std::isfinite(bound->state_bound()) || s.state_size == 0) continue;
-      // Twice the bound (or the initial value, if larger) is past any rounding.
-      const double start = x0.segment(s.state_offset, s.state_size).lpNorm<Eigen::Infinity>();
-      bounded_.push_back({imp.name(), s, 2.0 * std::max(bound->state_bound(), start)});
-    }
-  }
-
-  std::optional<Instability> check(double t, const Vec& x_prev, const Vec& x) {
-    if (has_sources_) {
-      const double power = std::abs(network_.source_power(t, x));
-      work_in_ += 0.5 * (power_checked_ + power) * (t - t_checked_);
-      power_checked_ = power;
-      t_checked_ = t;
-    }
-    const double energy = network_.energy(x);
-    // With feedback sources, their work is neither credited nor charged: FeedbackMonitor.
-    if (!feedback_.active() && std::isfinite(initial_energy_) && std::isfinite(energy) &&
-        energy - initial_energy_ > energy_margin(options_, initial_energy_, work_in_)) {
-      return Instability{t, fastest_growing(network_, x_prev, x),
-                         "energy grew beyond what the sources put in"};
-    }
-    if (auto reason = feedback_.check(t, x_prev, x, energy, work_in_)) {
-      return Instability{t, fastest_growing(network_, x_prev, x), std::move(*reason)};
-    }
-    for (const auto& b : bounded_) {
-      if (x.segment(b.slot.state_offset, b.slot.state_size).lpNorm<Eigen::Infinity>() > b.limit) {
-        return Instability{t, b.component, "state past twice the bound its model keeps"};
-      }
-    }
-    return std::nullopt;
-  }
-
- private:
-  struct BoundedState {
-    std::string component;
-    Slot slot;
-    double limit;
-  };
-  Network& network_;
-  const RunOptions& options_;
-  double initial_energy_;
-  bool has_sources_;
-  double work_in_ = 0.0;  // |work| done by sources so far
-  double power_checked_;
-  double t_checked_ = 0.0;
-  std::vector<BoundedState> bounded_;
-  FeedbackMonitor feedback_;  // feedback sources' work: core/feedback_monitor.hpp
-};
 
 }  // namespace
 
@@ -272,10 +191,9 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     // step (interpolated) and a variable step.
     const double t_next = fixed_step ? ((k + 1 >= total_steps) ? end : (k + 1) * T) : end;
     const double next_sample = static_cast<double>(sample) * sample_period;
-    const bool keep_prev =
-        !fixed_step || (k + 1) % kMonitorEvery == 0 || t_next >= end ||
-        (sample < total_samples && next_sample <= t_next + 1e-9 * T &&
-         (next_sample - t) / (t_next - t) <= 1.0 - 1e-9);
+    const bool keep_prev = !fixed_step || (k + 1) % kMonitorEvery == 0 || t_next >= end ||
+                           (sample < total_samples && next_sample <= t_next + 1e-9 * T &&
+                            (next_sample - t) / (t_next - t) <= 1.0 - 1e-9);
     if (keep_prev) x_prev = x;
     if (slips_pending) {
       network.capture_slip_inputs_next();
@@ -296,7 +214,8 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     result.evaluations = stepper->evaluations();
 
     if (!x.allFinite()) {
-      result.instability = Instability{t_now, owner_of_non_finite(network, x), "state is not finite"};
+      result.instability =
+          Instability{t_now, owner_of_non_finite(network, x), "state is not finite"};
       break;
     }
     // Every few steps: a numerical instability grows geometrically, so a short delay in
@@ -332,7 +251,8 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
         emit(ts, row_now);
       } else {
         if (!have_prev) {
-          if (!keep_prev) throw std::logic_error("simulate: a sample inside a step without its start");
+          if (!keep_prev)
+            throw std::logic_error("simulate: a sample inside a step without its start");
           network.write_signals(t, x_prev, tau, row_prev);
           for (int c : wrapped) row_now[c] = unwrap_toward(row_now[c], row_prev[c]);
           have_prev = true;
