@@ -9,6 +9,8 @@
 #include "app/commands.hpp"
 #include "app/network_graph.hpp"
 #include "app/pilot.hpp"
+#include "app/step_check.hpp"
+#include "app/suggest_step.hpp"
 #include "app/verify_settings.hpp"
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
@@ -76,6 +78,7 @@ struct StiffElement {
 struct IntegratorLimit {
   std::string integrator;
   core::StepLimit limit;
+  StepSuggestion recommended;  // below the chatter limit, confirmed by trial runs
 };
 
 // Everything check finds; printed as text or as JSON.
@@ -132,6 +135,8 @@ void print_limit(const IntegratorLimit& l, const core::RunOptions& run) {
         "an instability)\n",
         "", l.limit.chatter_free_step);
   }
+  std::printf("  %-17s recommended: --dt %.3g (%s)\n", "", l.recommended.dt,
+              l.recommended.how.c_str());
 }
 
 void print_text(const scene::Scene& scene, const CheckReport& report) {
@@ -177,9 +182,9 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
   }
   if (report.stiff.empty()) std::printf("  no stiff elements\n");
 
-  std::printf("\npredicted step limits of the whole network (step map linearized at up to 10 "
+  std::printf("\npredicted step limits of the whole network (step map linearized at up to %d "
               "states of each regime of a pilot run at the scene's settings (at most %zu in all)",
-              core::kMaxSampledStates);
+              kStatesPerRegime, core::kMaxSampledStates);
   if (report.pilot.shortened) {
     std::printf(" over its first %g s of %g s, the part that fits its step budget (docs/limits.md)",
                 report.pilot.options.duration, run.duration);
@@ -234,6 +239,9 @@ nlohmann::json report_json(const scene::Scene& scene, const CheckReport& report)
                               : nlohmann::json();
     if (l.integrator == run.integrator)
       e["scene_dt_ok"] = l.limit.unbounded || run.dt < l.limit.max_step;
+    e["recommended_step"] = l.recommended.dt;
+    e["recommended_confirmed"] = l.recommended.verified;
+    e["recommendation"] = l.recommended.how;
     limits[l.integrator] = e;
   }
   j["step_limits"] = limits;
@@ -285,10 +293,14 @@ int check_scene(const std::string& scene_name, const std::string& graph_path, bo
   // The real limit depends on all elements at once, on the friction laws' stage sizes and on
   // the states the scene passes through: linearize the actual step map along a run.
   report.pilot = bounded_pilot(network, run);
-  const auto states = core::sample_states(network, report.pilot.options, 10);
+  const auto states = core::sample_states(network, report.pilot.options, kStatesPerRegime);
   if (sys::interrupted()) throw sys::Interrupted{};
+  constexpr double kLowestStep = 1e-9;
   for (const std::string name : {"euler", "symplectic_euler", "heun", "rk4"}) {
-    report.limits.push_back({name, core::predict_step_limit(network, name, states)});
+    const core::StepLimit limit = core::predict_step_limit(network, name, states, kLowestStep);
+    const StepCheck as_check = step_check_from(limit, name, run.dt, kLowestStep);
+    report.limits.push_back({name, limit, recommend_step(scene, as_check)});
+    if (sys::interrupted()) throw sys::Interrupted{};
   }
 
   if (json) {

@@ -32,6 +32,7 @@ struct RunArguments {
   bool quiet = false;
   bool no_video = false, no_plots = false, frames = false;
   std::optional<plot::Format> plot_format;  // --plot-format: overrides every plot's format
+  bool force_step = false;  // --force-step: run a step the guard predicts unstable
 };
 
 // `stiction compare SCENE SCENE...`: runs each scene (no video) and writes OUT/compare.png.
@@ -46,6 +47,7 @@ struct CompareArguments {
   std::optional<double> duration;
   std::optional<plot::Format> plot_format;
   bool quiet = false;
+  bool force_step = false;  // --force-step
 };
 
 // `stiction study SCENE`: speed against accuracy of the integrators (src/app/study.hpp).
@@ -72,6 +74,7 @@ struct VerifyArguments {
   std::string out;                     // empty: out/verify/
   int jobs = 0;                        // 0: one per core
   bool quiet = false;
+  bool force_step = false;             // --force-step
 };
 
 // `stiction sweep SCENE --vary KEY=LIST...` (src/app/sweep.hpp, docs/sweeps.md).
@@ -92,6 +95,7 @@ struct SweepArguments {
   std::optional<double> duration;
   std::optional<double> tolerance;
   bool quiet = false;
+  bool force_step = false;  // --force-step: simulate points the guard predicts unstable
 };
 
 int run_command(const RunArguments& args);

@@ -14,6 +14,7 @@
 
 #include "app/commands.hpp"
 #include "app/run_support.hpp"
+#include "app/step_guard.hpp"
 #include "core/column_info.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/plot_spec.hpp"
@@ -124,6 +125,21 @@ int compare_command(const CompareArguments& args) {
     plot::comparison_spec(probe, args.signals);
   }
 
+  // The step guard for every run before the first simulation: a refused step ends the
+  // comparison with exit 3 and nothing written.
+  std::vector<StepCheck> checks;
+  for (scene::Scene& s : scenes) {
+    const StepGuard guard = guard_step(s, s.run.dt, args.force_step);
+    if (guard.refusal) {
+      print_refusal(s.name, guard);
+      return kExitUnstable;
+    }
+    if (guard.warning && !args.quiet) {
+      std::fprintf(stderr, "warning: %s: %s\n", s.name.c_str(), guard.warning->c_str());
+    }
+    checks.push_back(guard.check);
+  }
+
   const fs::path out = args.out.empty() ? fs::path("out") / "compare" : fs::path(args.out);
   std::error_code ec;
   fs::create_directories(out, ec);
@@ -139,7 +155,7 @@ int compare_command(const CompareArguments& args) {
     const core::RunResult& r = results.back();
     if (r.interrupted) throw sys::Interrupted{};  // a comparison of partial runs would mislead
     if (r.instability) {
-      print_instability(s.name, s.run, *r.instability, suggested_dt(s));
+      print_instability(s.name, s.run, *r.instability, suggested_dt(s, checks[i]));
       return kExitUnstable;
     }
     if (!args.quiet) {

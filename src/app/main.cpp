@@ -64,6 +64,8 @@ int dispatch(int argc, char** argv) {
   run->add_flag("--no-plots", run_args.no_plots, "do not draw plots");
   run->add_flag("--frames", run_args.frames, "also write frames/NNNNNN.png");
   run->add_flag("--quiet", run_args.quiet, "print nothing but errors");
+  run->add_flag("--force-step", run_args.force_step,
+                "simulate even when the step is above the predicted instability limit");
   std::string plot_format;
   CLI::Option* plot_format_opt =
       run->add_option("--plot-format", plot_format,
@@ -119,6 +121,8 @@ int dispatch(int argc, char** argv) {
                       "KEY=VALUE: set a dotted key of every scene to a TOML value (repeatable)")
       ->allow_extra_args(false);
   compare->add_flag("--quiet", compare_args.quiet, "print nothing but errors");
+  compare->add_flag("--force-step", compare_args.force_step,
+                    "simulate even when a step is above its predicted instability limit");
   compare->add_option("--signals", compare_args.signals,
                       "comma-separated signals or groups to compare, e.g. sphere.v.x,ground.slip")
       ->delimiter(',');
@@ -153,6 +157,8 @@ int dispatch(int argc, char** argv) {
   verify->add_option("-j,--jobs", verify_args.jobs, "scenes verified at once (default: one per core)")
       ->check(CLI::Range(1, 256));
   verify->add_flag("--quiet", verify_args.quiet, "print nothing but errors and the verdict");
+  verify->add_flag("--force-step", verify_args.force_step,
+                   "simulate even when a step is above its predicted instability limit");
 
   app::SweepArguments sweep_args;
   double sweep_dt = 0.0, sweep_duration = 0.0;
@@ -189,6 +195,8 @@ int dispatch(int argc, char** argv) {
   bool sweep_no_video = false;  // a sweep never renders; accepted so `run` lines carry over
   sweep->add_flag("--no-video", sweep_no_video, "accepted for symmetry with run (a sweep never renders)");
   sweep->add_flag("--quiet", sweep_args.quiet, "print nothing but errors");
+  sweep->add_flag("--force-step", sweep_args.force_step,
+                  "simulate points whose step is above the predicted instability limit");
 
   try {
     cli.parse(argc, argv);

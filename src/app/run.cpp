@@ -16,6 +16,7 @@
 #include "app/progress.hpp"
 #include "app/render_loader.hpp"
 #include "app/run_support.hpp"
+#include "app/step_guard.hpp"
 #include "app/streamed_rows.hpp"
 #include "app/verify_settings.hpp"
 #include "core/column_info.hpp"
@@ -66,6 +67,7 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
 
 int run_command(const RunArguments& args) {
   scene::Scene scene = scene::load_scene(args.scene, args.overrides);
+  const double authored_dt = scene.run.dt;  // the scene file's step, before --dt
   apply_overrides(scene, {args.integrator, args.dt, args.duration, args.tolerance});
   const core::RunOptions& run = scene.run;
 
@@ -82,6 +84,17 @@ int run_command(const RunArguments& args) {
 
   // Interrupted while loading: nothing was written, nothing to keep.
   if (sys::interrupted()) return interrupted_exit(args.quiet, "load", {});
+
+  // The step guard: a step predicted unstable is refused before anything is simulated or
+  // written (app/step_guard.hpp).
+  StepGuard guard = guard_step(scene, authored_dt, args.force_step);
+  if (guard.refusal) {
+    print_refusal(scene.name, guard);
+    return kExitUnstable;
+  }
+  if (guard.warning && !args.quiet) {
+    std::fprintf(stderr, "warning: %s: %s\n", scene.name.c_str(), guard.warning->c_str());
+  }
   OutputDirectory out(args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out));
 
   // Streaming: rows go to trajectory.csv as they are produced; plots and the video get
@@ -96,12 +109,13 @@ int run_command(const RunArguments& args) {
   io::RunDescription description = describe_run(scene);
   std::optional<StepSuggestion> suggestion;
   if (result.instability) {
-    suggestion = suggested_dt(scene);
+    suggestion = suggested_dt(scene, guard.check);
     description.suggested_dt = suggestion->dt;
   }
   description.columns = infos;
 
   auto summary = io::make_summary(description, result);
+  summary["step_check"] = step_check_json(guard.check);
   rows.commit_csv();  // the rows up to the last complete one, also when interrupted
   out.wrote(out / "trajectory.csv");
   const double time_reached =

@@ -77,7 +77,9 @@ std::map<std::string, double> event_times(const core::RunResult& result) {
   return events;
 }
 
-StepSuggestion suggested_dt(scene::Scene& scene) { return suggest_step(scene); }
+StepSuggestion suggested_dt(scene::Scene& scene, const StepCheck& check) {
+  return suggest_step(scene, check);
+}
 
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
                        const core::Instability& inst, const StepSuggestion& suggestion) {

@@ -41,8 +41,9 @@ core::RunResult simulate_scene(scene::Scene& scene, bool progress, core::RowSink
 // "<impedance>.slip_time" -> first slip time, for every element that slipped.
 std::map<std::string, double> event_times(const core::RunResult& result);
 
-// The step to suggest after an instability, checked by a trial run (app/suggest_step.hpp).
-StepSuggestion suggested_dt(scene::Scene& scene);
+// The step to suggest after an instability, checked by trial runs (app/suggest_step.hpp),
+// from the run's step check.
+StepSuggestion suggested_dt(scene::Scene& scene, const StepCheck& check);
 
 // The error line for an unstable run (stderr), naming the time, the component and a step
 // with how it was obtained (for rk4_adaptive a tolerance instead).

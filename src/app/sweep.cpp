@@ -16,6 +16,7 @@
 
 #include "app/commands.hpp"
 #include "app/run_support.hpp"
+#include "app/step_guard.hpp"
 #include "core/simulation.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_writer.hpp"
@@ -77,6 +78,10 @@ class DiscardRows final : public core::RowSink {
   void write(const double*, std::size_t, std::size_t) override {}
 };
 
+// Wall-clock seconds the trial runs behind one point's suggested step may take: a sweep has
+// many points, so less than `run` allows.
+constexpr double kSuggestionBudget = 5.0;
+
 class PointRunner {
  public:
   PointRunner(const SweepArguments& args, const SweepPlan& plan, const Probe& probe,
@@ -90,10 +95,21 @@ class PointRunner {
     const std::size_t base = 1 + point.values.size();  // status, steps, wall_s, suggested_dt, note
     try {
       scene::Scene scene = scene::load_scene(args_.scene, point_overrides(args_, plan_, point));
+      const double authored_dt = scene.run.dt;
       apply_overrides(scene, {args_.integrator, args_.dt, args_.duration, args_.tolerance});
       if (scene.network->signal_columns() != probe_.signals) {
         row[base] = "error";
         row[base + 4] = "the values of this point change the scene's signals";
+        return row;
+      }
+      // The step guard, per point (the values may move the limits): a point predicted
+      // unstable is not simulated; its row says so and suggests a step.
+      const StepGuard guard = guard_step(scene, authored_dt, args_.force_step, kSuggestionBudget);
+      if (guard.refusal) {
+        row[base] = "refused";
+        row[base + 3] = number_text(guard.refusal->dt);
+        row[base + 4] = "not simulated: " + step_check_text(guard.check) + "; try --dt " +
+                        number_text(guard.refusal->dt) + " (--force-step runs it anyway)";
         return row;
       }
       // Rows stream to the point's trajectory.csv (--keep all) or nowhere: the table needs
@@ -115,7 +131,7 @@ class PointRunner {
       std::snprintf(wall, sizeof wall, "%.4g", result.wall_seconds);
       row[base + 2] = wall;
       if (result.instability) {
-        const double dt = suggested_dt(scene).dt;
+        const double dt = suggest_step(scene, guard.check, kSuggestionBudget).dt;
         row[base] = "unstable";
         row[base + 3] = number_text(dt);
         row[base + 4] = "instability at t = " + number_text(result.instability->time) + " s in '" +
@@ -123,6 +139,7 @@ class PointRunner {
                         "); try --dt " + number_text(dt);
       } else {
         row[base] = "ok";
+        if (guard.warning) row[base + 4] = "step check: " + *guard.warning;
       }
       std::size_t c = base + 5;
       for (const core::SlipHistory& h : result.slip_events) {
@@ -141,7 +158,7 @@ class PointRunner {
         const int col = *tr.find(record);
         row[c++] = tr.row_count() > 0 ? number_text(tr.at(tr.row_count() - 1, col)) : "";
       }
-      keep(point, scene, result);
+      keep(point, scene, result, guard.check);
     } catch (const scene::InputError& e) {
       row[base] = "error";
       row[base + 4] = e.what();
@@ -159,12 +176,14 @@ class PointRunner {
     return out_ / "points" / leaf;
   }
 
-  void keep(const SweepPoint& point, const scene::Scene& scene,
-            const core::RunResult& result) const {
+  void keep(const SweepPoint& point, const scene::Scene& scene, const core::RunResult& result,
+            const StepCheck& check) const {
     if (args_.keep == "none") return;
     const fs::path dir = point_dir(point);
     fs::create_directories(dir);
-    io::write_summary(io::make_summary(describe_run(scene), result), dir / "summary.json");
+    auto summary = io::make_summary(describe_run(scene), result);
+    summary["step_check"] = step_check_json(check);
+    io::write_summary(summary, dir / "summary.json");
   }
 
   const SweepArguments& args_;

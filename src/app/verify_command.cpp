@@ -15,6 +15,7 @@
 #include "app/commands.hpp"
 #include "app/progress.hpp"
 #include "app/run_support.hpp"
+#include "app/step_guard.hpp"
 #include "app/verify_report.hpp"
 #include "app/verify_scene.hpp"
 #include "io/atomic_file.hpp"
@@ -122,6 +123,18 @@ int verify_command(const VerifyArguments& args) {
     if (!names.insert(jobs.back().scene.name).second) {
       throw scene::InputError("error: " + name + ": a second scene named '" +
                               jobs.back().scene.name + "' (golden sets are kept per scene name)");
+    }
+  }
+  // The step guard for every scene before the first simulation: a golden set made at a step
+  // predicted unstable would record an accident (exit 3, nothing written).
+  for (VerifyJob& job : jobs) {
+    const StepGuard guard = guard_step(job.scene, job.scene.run.dt, args.force_step);
+    if (guard.refusal) {
+      print_refusal(job.scene.name, guard);
+      return kExitUnstable;
+    }
+    if (guard.warning && !args.quiet) {
+      std::fprintf(stderr, "warning: %s: %s\n", job.scene.name.c_str(), guard.warning->c_str());
     }
   }
   const fs::path out = args.out.empty() ? fs::path("out") / "verify" : fs::path(args.out);

@@ -402,9 +402,12 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
   // it: stability can come back above a window of instability (a stuck friction spring
   // under RK4), and the first window is the one that matters.
   auto first_limit = [&](bool chatter_counts, double& time) -> std::optional<double> {
-    const double ratio = std::pow(10.0, 0.1);
     double lo = 0.0;
-    for (double h = h_min;; h = std::min(h * ratio, h_max)) {  // the last point is h_max
+    // The grid is 10^(k/10) whatever h_min is (h_min rounded down onto it), so that a check
+    // from 1e-9 and a guard from dt/32 visit the same steps and agree on the limits.
+    const int first = static_cast<int>(std::floor(10.0 * std::log10(h_min) + 1e-9));
+    for (int k = first;; ++k) {
+      const double h = std::min(std::pow(10.0, k / 10.0), h_max);  // the last point is h_max
       if (stable(h, chatter_counts)) {
         if (h >= h_max) break;
         lo = h;

@@ -287,10 +287,23 @@ TEST_CASE("cli: rows come at the output rate whatever dt") {
   }
 }
 
+TEST_CASE("cli: a step above the predicted limit is refused before anything is simulated") {
+  const fs::path dir = scratch("refused");
+  const Outcome o = run_cli({"run", "sphere_roll", "--out", "o", "--dt", "2e-3"}, dir);
+  INFO(o.out);
+  CHECK(o.code == 3);
+  CHECK_THAT(o.out, Contains("above rk4's predicted instability limit"));
+  CHECK_THAT(o.out, Contains("a step that works: --dt "));
+  CHECK_THAT(o.out, Contains("--force-step"));
+  CHECK_FALSE(fs::exists(dir / "o"));
+}
+
 TEST_CASE("cli: an unstable run exits 3, keeps its rows and says what to do") {
   const fs::path dir = scratch("unstable");
   // The contact's normal mode limits RK4 to ~4.6e-4 s; 2e-3 s diverges within a few steps.
-  const Outcome o = run_cli({"run", "sphere_roll", "--out", "o", "--dt", "2e-3"}, dir);
+  // The guard refuses that step; --force-step runs it, and the run's monitor stops it.
+  const Outcome o =
+      run_cli({"run", "sphere_roll", "--out", "o", "--dt", "2e-3", "--force-step"}, dir);
   INFO(o.out);
   CHECK(o.code == 3);
   CHECK_THAT(o.out, Contains("instability at t = "));

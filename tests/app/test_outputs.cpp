@@ -165,7 +165,7 @@ TEST_CASE("an unstable run writes no plots and no video", "[app][outputs]") {
   const fs::path dir = scratch("unstable");
   // RK4 with a step far beyond the contact's limit (about 1.7e-4 s for sphere_roll).
   const Outcome o = run_cli({"run", "sphere_roll", "--dt", "2e-3", "--duration", "0.5", "--set",
-                              "render.size=[320,180]", "--out", "out"},
+                              "render.size=[320,180]", "--out", "out", "--force-step"},
                              dir);
   INFO(o.out);
   REQUIRE(o.code == 3);

@@ -1,0 +1,35 @@
+#include "app/step_guard.hpp"
+
+#include <cstdio>
+
+namespace stiction::app {
+
+StepGuard guard_step(scene::Scene& scene, double authored_dt, bool force,
+                     double suggestion_budget) {
+  StepGuard guard;
+  guard.check = check_step(scene, authored_dt);
+  const std::string verdict = guard.check.verdict();
+  if (verdict == "unstable") {
+    if (force) {
+      guard.check.forced = true;
+      guard.warning = step_check_text(guard.check) + "; run anyway (--force-step)";
+    } else {
+      guard.refusal = suggest_step(scene, guard.check, suggestion_budget);
+    }
+  } else if (verdict == "chatter") {
+    char below[120];
+    std::snprintf(below, sizeof below, "; steps below %.3g s avoid it", guard.check.safe_step());
+    guard.warning = step_check_text(guard.check) + below;
+  }
+  return guard;
+}
+
+void print_refusal(const std::string& scene_name, const StepGuard& guard) {
+  std::fprintf(stderr,
+               "error: %s: %s; nothing was simulated.\n  a step that works: --dt %g (%s)\n"
+               "  --force-step runs it anyway\n",
+               scene_name.c_str(), step_check_text(guard.check).c_str(), guard.refusal->dt,
+               guard.refusal->how.c_str());
+}
+
+}  // namespace stiction::app

@@ -1,0 +1,33 @@
+// The step guard as every command that simulates applies it (run, compare, verify, each
+// point of a sweep): the step check of app/step_check.hpp, then
+//   unstable and not forced -> a refusal with a confirmed step to suggest (exit 3, nothing
+//                              simulated, nothing written);
+//   chatter                 -> a warning (stderr unless quiet, and summary.json);
+//   ok, not_checked         -> nothing to say.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "app/step_check.hpp"
+#include "app/suggest_step.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::app {
+
+struct StepGuard {
+  StepCheck check;
+  std::optional<StepSuggestion> refusal;  // set: do not simulate, exit 3
+  std::optional<std::string> warning;     // set: the run goes on with this warning
+};
+
+// `authored_dt`: the scene file's own step, before --dt. `force`: --force-step.
+// `suggestion_budget`: wall-clock seconds the trials of a refusal's suggestion may take.
+StepGuard guard_step(scene::Scene& scene, double authored_dt, bool force,
+                     double suggestion_budget = 30.0);
+
+// "error: NAME: dt = ... is above ...; a step that works: --dt X (how); --force-step runs it
+// anyway" on stderr.
+void print_refusal(const std::string& scene_name, const StepGuard& guard);
+
+}  // namespace stiction::app
