@@ -280,24 +280,45 @@ testing::Outcome run_forced(std::vector<std::string> args, const std::filesystem
 }  // namespace
 
 // Issue 26: the bowling ball at dt = 0.003 s (above the chatter limit 1.03e-3 s that `check`
-// predicts) never sticks and lifts off a dozen times; exit 0 and status ok, but the run
-// must say it is inaccurate.
+// predicts) never sticks and lifts off again and again. Over its first 2 s (its energy
+// monitor stops the full 3 s run as unstable at 2.06 s on this build) the run ends with exit
+// 0 and status ok, and must say it is inaccurate. First the estimate itself, with the energy
+// monitor relaxed so that the run finishes whatever the monitor's rule, then `run`.
 TEST_CASE("accuracy: the bowling ball at dt = 0.003 s is flagged inaccurate", "[accuracy]") {
+  scene::Scene scene = scene::load_scene(kBowling);
+  scene.run.dt = 0.003;
+  scene.run.energy_growth_limit = 1e6;
+  const core::RunResult result = core::simulate(*scene.network, scene.run);
+  REQUIRE_FALSE(result.instability);
+  app::AccuracySettings on;
+  on.mode = app::AccuracyMode::on;
+  const app::AccuracyEstimate e = app::estimate_accuracy(scene, result, {}, on);
+  CHECK(e.method == "richardson");
+  CHECK(e.order == 4);
+  CHECK(e.companion_dt == Approx(0.0015));
+  CHECK(e.verdict == "inaccurate");
+  CHECK_FALSE(e.reasons.empty());
+
   const auto dir = testing::scratch_dir("stiction_accuracy_", "bowling");
-  const auto plain = run_forced({"run", kBowling, "--dt", "0.003", "--no-video", "--no-plots",
-                                 "--out", (dir / "out").string()},
-                                dir);
-  INFO(plain.out);
-  REQUIRE(plain.code == 0);
+  const auto o = run_forced({"run", kBowling, "--dt", "0.003", "--duration", "2", "--no-video",
+                             "--no-plots", "--out", (dir / "out").string()},
+                            dir);
+  INFO(o.out);
   const nlohmann::json s = read_summary(dir / "out");
-  CHECK(s["status"] == "ok");
-  const nlohmann::json& a = s["accuracy"];
-  CHECK(a["method"] == "richardson");
-  CHECK(a["order"] == 4);
-  CHECK(a["companion"]["dt"].get<double>() == Approx(0.0015));
-  CHECK(a["verdict"] == "inaccurate");
-  CHECK_FALSE(a["reasons"].empty());
-  CHECK(plain.out.find("warning: bowling: the run is inaccurate") != std::string::npos);
+  if (o.code == 3) {
+    // A stricter energy monitor (issue 26 item 2) may stop it first: no estimate then.
+    CHECK(s["status"] == "unstable");
+    CHECK(s["accuracy"]["method"] == "off");
+  } else {
+    REQUIRE(o.code == 0);
+    CHECK(s["status"] == "ok");
+    const nlohmann::json& a = s["accuracy"];
+    CHECK(a["method"] == "richardson");
+    CHECK(a["companion"]["dt"].get<double>() == Approx(0.0015));
+    CHECK(a["verdict"] == "inaccurate");
+    CHECK_FALSE(a["reasons"].empty());
+    CHECK(o.out.find("warning: bowling: the run is inaccurate") != std::string::npos);
+  }
   std::filesystem::remove_all(dir);
 }
 
@@ -347,10 +368,13 @@ TEST_CASE("accuracy: --accuracy off, --quiet, and on by default for a short run"
   o = testing::run_stiction(
       {"run", "sphere_roll", "--accuracy", "maybe", "--out", (dir / "c").string()}, dir);
   CHECK(o.code == 2);
-  o = run_forced({"run", kBowling, "--dt", "0.003", "--quiet", "--no-video", "--no-plots", "--out",
-                  (dir / "d").string()},
-                 dir);
+  // sphere_roll at its own step is inaccurate too: its lightly damped contact keeps
+  // bouncing, and the number of micro-bounces depends on the step (docs/accuracy.md).
+  o = testing::run_stiction(
+      {"run", "sphere_roll", "--quiet", "--no-video", "--no-plots", "--out", (dir / "d").string()},
+      dir);
   CHECK(o.code == 0);
   CHECK(o.out.empty());
+  CHECK(read_summary(dir / "d")["accuracy"]["verdict"] == "inaccurate");
   std::filesystem::remove_all(dir);
 }
