@@ -122,11 +122,37 @@ AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& r
   }
   estimate.companion_integrator = companion.integrator;
   estimate.companion_dt = companion.dt;
-  (void)limits;  // the companion is finer than the run: the limits do not restrict it
+  // The companion is finer than the run, so the predicted limits never restrict it; they
+  // are reported beside the estimate (a run above its chatter limit is where events differ).
+  estimate.limits = limits;
 
   ScaleSink sink;
   const double cpu_start = thread_cpu_seconds();
-  const core::RunResult fine = core::simulate(*scene.network, companion, {}, &sink);
+  // By default the companion never costs more than the budget, whatever the prediction said
+  // (an adaptive companion may take far more steps than expected): past it, it is abandoned and the
+  // estimate is off.
+  struct OverBudget {
+    double reached = 0.0;
+  };
+  core::ProgressCallback guard;
+  if (settings.mode == AccuracyMode::automatic) {
+    const double duration = companion.duration;
+    guard = [&, duration](double fraction) {
+      if (thread_cpu_seconds() - cpu_start > settings.budget_seconds)
+        throw OverBudget{fraction * duration};
+    };
+  }
+  core::RunResult fine;
+  try {
+    fine = core::simulate(*scene.network, companion, guard, &sink);
+  } catch (const OverBudget& over) {
+    AccuracyEstimate abandoned =
+        off(format("the companion run passed the %g s budget of the default at t = %.3g s of %g s; "
+                   "--accuracy on forces it",
+                   settings.budget_seconds, over.reached, companion.duration));
+    abandoned.cpu_seconds = thread_cpu_seconds() - cpu_start;
+    return abandoned;
+  }
   estimate.cpu_seconds = thread_cpu_seconds() - cpu_start;
   if (fine.interrupted) {
     AccuracyEstimate stopped = off("interrupted");
@@ -245,6 +271,13 @@ nlohmann::ordered_json accuracy_json(const AccuracyEstimate& e) {
       {"dt", e.companion_dt},
       {"tolerance", e.companion_tolerance ? json(*e.companion_tolerance) : json(nullptr)}};
   j["why"] = e.reason;
+  if (e.limits.chatter_limit || e.limits.instability_limit) {
+    const auto or_null = [](const std::optional<double>& v) {
+      return v ? json(*v) : json(nullptr);
+    };
+    j["step_limits"] = {{"chatter", or_null(e.limits.chatter_limit)},
+                        {"instability", or_null(e.limits.instability_limit)}};
+  }
   j["tolerances"] = {{"event_time", e.event_tolerance}, {"final_relative", e.final_tolerance}};
   json events = json::object();
   for (const ElementEvents& element : e.events) {

@@ -19,7 +19,8 @@
 namespace stiction::app {
 
 // The step limits `check` predicts for the run's integrator, when known (the caller wires
-// them; the companion never takes a coarser step than the run, so they only inform).
+// them; the companion never takes a coarser step than the run, so they only inform: JSON
+// `step_limits`).
 struct PredictedStepLimits {
   std::optional<double> chatter_limit;
   std::optional<double> instability_limit;
@@ -73,6 +74,7 @@ struct AccuracyEstimate {
   bool interrupted = false;      // the companion was stopped by a signal
   double event_tolerance = 0.0;  // seconds
   double final_tolerance = 0.0;  // relative to the scale
+  PredictedStepLimits limits;    // as passed in; in the JSON (`step_limits`) when known
 };
 
 // The companion's expected CPU cost relative to the run: 2 for half the step; for

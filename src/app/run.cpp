@@ -120,6 +120,7 @@ int run_command(const RunArguments& args) {
   if (!result.instability && !result.interrupted) {
     AccuracySettings settings;
     if (args.accuracy) settings.mode = *args.accuracy ? AccuracyMode::on : AccuracyMode::off;
+    // The step guard's predicted limits go here once `run` computes them (issue 26 item 1).
     accuracy = estimate_accuracy(scene, result, PredictedStepLimits{}, settings);
     summary["accuracy"] = accuracy_json(accuracy);
     if (accuracy.interrupted) {
@@ -127,8 +128,9 @@ int run_command(const RunArguments& args) {
       return interrupted_exit(args.quiet, "accuracy", out.files(), time_reached);
     }
   } else {
-    summary["accuracy"] = {{"method", "off"},
-                           {"reason", result.instability ? "the run was unstable" : "the run was interrupted"}};
+    summary["accuracy"] = {
+        {"method", "off"},
+        {"reason", result.instability ? "the run was unstable" : "the run was interrupted"}};
   }
   write_summary(result.interrupted ? "simulate" : nullptr);
   if (result.interrupted) return interrupted_exit(args.quiet, "simulate", out.files(), time_reached);

@@ -378,3 +378,65 @@ TEST_CASE("accuracy: --accuracy off, --quiet, and on by default for a short run"
   CHECK(read_summary(dir / "d")["accuracy"]["verdict"] == "inaccurate");
   std::filesystem::remove_all(dir);
 }
+
+// The default's rule: off when the companion is expected to cost more than the budget (2x
+// the run's time for half the step), and abandoned when it passes the budget anyway.
+TEST_CASE("accuracy: the default stays within its budget", "[accuracy]") {
+  scene::Scene scene = scene::load_scene(kBowling);
+  scene.run.duration = 0.5;
+  core::RunResult result = core::simulate(*scene.network, scene.run);
+  REQUIRE_FALSE(result.instability);
+  app::AccuracySettings automatic;
+  CHECK(app::estimate_accuracy(scene, result, {}, automatic).method == "richardson");
+  automatic.budget_seconds = 1.9 * result.wall_seconds;
+  const app::AccuracyEstimate skipped = app::estimate_accuracy(scene, result, {}, automatic);
+  CHECK(skipped.method == "off");
+  CHECK(skipped.cpu_seconds == 0.0);
+  CHECK(skipped.reason.find("budget") != std::string::npos);
+  // A run that claims to have cost nothing passes the prediction; the companion is then
+  // stopped at its first progress report, past a budget of 1 ns.
+  result.wall_seconds = 0.0;
+  automatic.budget_seconds = 1e-9;
+  const app::AccuracyEstimate abandoned = app::estimate_accuracy(scene, result, {}, automatic);
+  CHECK(abandoned.method == "off");
+  CHECK(abandoned.reason.find("passed the 1e-09 s budget") != std::string::npos);
+  CHECK(abandoned.cpu_seconds > 0.0);
+  app::AccuracySettings forced;
+  forced.mode = app::AccuracyMode::on;
+  forced.budget_seconds = 1e-9;
+  CHECK(app::estimate_accuracy(scene, result, {}, forced).method == "richardson");
+}
+
+// rk4_adaptive: the companion at a tolerance 100 times tighter; the JSON of the estimate
+// carries the predicted limits when the caller has them.
+TEST_CASE("accuracy: rk4_adaptive against a tighter tolerance", "[accuracy]") {
+  scene::Scene scene = scene::load_scene(kBowling);
+  scene.run.integrator = "rk4_adaptive";
+  scene.run.tolerance = 1e-8;
+  scene.run.duration = 2.0;
+  const core::RunResult result = core::simulate(*scene.network, scene.run);
+  REQUIRE_FALSE(result.instability);
+  app::AccuracySettings on;
+  on.mode = app::AccuracyMode::on;
+  const app::AccuracyEstimate e = app::estimate_accuracy(scene, result, {1.03e-3, 2.49e-3}, on);
+  CHECK(e.method == "tighter_tolerance");
+  REQUIRE(e.companion_tolerance);
+  CHECK(*e.companion_tolerance == Approx(1e-10));
+  CHECK(e.verdict == "accurate");
+  REQUIRE(e.events.size() == 1);
+  REQUIRE(e.events[0].events.size() == 1);
+  const app::EventAccuracy& stick = e.events[0].events[0];
+  CHECK(stick.kind == "stick");
+  REQUIRE(stick.error);
+  // The closed form's stick, 10.18 / (3.5 mu g): the estimate bounds the run's distance to
+  // it within the factor 3 (or both are below 1e-9 s).
+  const double truth = std::abs(stick.time - 10.18 / (3.5 * 0.2 * 9.8));
+  INFO("stick " << stick.time << ", true error " << truth << ", estimate " << *stick.error);
+  CHECK(*stick.error < 1e-3);
+  const nlohmann::ordered_json j = app::accuracy_json(e);
+  CHECK(j["companion"]["tolerance"].get<double>() == Approx(1e-10));
+  CHECK(j["step_limits"]["chatter"].get<double>() == Approx(1.03e-3));
+  CHECK(j["events"]["lane"][0]["kind"] == "stick");
+  CHECK(j["final"]["ball.v.x"]["judged"] == true);
+  CHECK(j["final"]["lane.f.x"]["judged"] == false);
+}
