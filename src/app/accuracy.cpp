@@ -168,9 +168,13 @@ AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& r
     return estimate;
   }
 
+  const bool adaptive = run.integrator == "rk4_adaptive";
+  const std::string run_setting =
+      adaptive ? format("tolerance %g", run.tolerance) : format("dt = %g s", run.dt);
+  const std::string companion_setting =
+      adaptive ? format("tolerance %g", companion.tolerance) : format("dt = %g s", companion.dt);
   bool events_differ = false;
-  for (std::size_t m = 0; m < result.slip_events.size(); ++m) {
-    const core::SlipHistory& h = result.slip_events[m];
+  for (const core::SlipHistory& h : result.slip_events) {
     ElementEvents element{h.component, {}};
     const core::SlipHistory* other = nullptr;
     for (const core::SlipHistory& f : fine.slip_events) {
@@ -196,8 +200,8 @@ AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& r
       if (na != nb) {
         events_differ = true;
         estimate.reasons.push_back(h.component + ": events differ: " + std::to_string(na) + " " +
-                                   kind + format(" at dt = %g s, ", run.dt) + std::to_string(nb) +
-                                   format(" in the companion (dt = %g s)", companion.dt));
+                                   kind + " at " + run_setting + ", " + std::to_string(nb) +
+                                   " in the companion (" + companion_setting + ")");
       }
     }
     for (const EventAccuracy& a : element.events) {
@@ -236,8 +240,7 @@ AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& r
       f.judged = std::any_of(bodies.begin(), bodies.end(), [&](const std::string& b) {
         return column.compare(0, b.size(), b) == 0;
       });
-      // Rounding: an error below 1e-12 of the scale is no finding.
-      if (f.judged && f.error > settings.final_tolerance * f.scale && f.error > 1e-12 * f.scale) {
+      if (f.judged && f.error > settings.final_tolerance * f.scale) {
         finals_off = true;
         estimate.reasons.push_back(column + format(" = %.7g has an estimated error of %.2g, above "
                                                    "%g of its scale %.3g",
