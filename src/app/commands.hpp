@@ -33,6 +33,9 @@ struct RunArguments {
   bool no_video = false, no_plots = false, frames = false;
   std::optional<plot::Format> plot_format;  // --plot-format: overrides every plot's format
   bool force_step = false;  // --force-step: run a step the guard predicts unstable
+  // --accuracy on|off: force the companion run of the error estimate (docs/accuracy.md);
+  // empty: on when it costs little.
+  std::optional<bool> accuracy;
 };
 
 // `stiction compare SCENE SCENE...`: runs each scene (no video) and writes OUT/compare.png.

@@ -71,6 +71,12 @@ int dispatch(int argc, char** argv) {
       run->add_option("--plot-format", plot_format,
                       "png, svg or pdf: the format of every plot (default: each plot's own, PNG)")
           ->check(CLI::IsMember({"png", "svg", "pdf"}));
+  std::string accuracy;
+  CLI::Option* accuracy_opt =
+      run->add_option("--accuracy", accuracy,
+                      "on or off: estimate the run's error with a companion run (default: on "
+                      "when it costs little, docs/accuracy.md)")
+          ->check(CLI::IsMember({"on", "off"}));
 
   std::string check_scene;
   CLI::App* check = cli.add_subcommand("check", "validate a scene, print its state layout and dt advice");
@@ -212,6 +218,7 @@ int dispatch(int argc, char** argv) {
     if (duration_opt->count() > 0) run_args.duration = duration;
     if (tolerance_opt->count() > 0) run_args.tolerance = tolerance;
     if (plot_format_opt->count() > 0) run_args.plot_format = plot::parse_format(plot_format);
+    if (accuracy_opt->count() > 0) run_args.accuracy = accuracy == "on";
     return app::run_command(run_args);
   }
   if (*compare) {

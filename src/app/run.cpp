@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/accuracy.hpp"
 #include "app/commands.hpp"
 #include "app/event_lines.hpp"
 #include "app/interrupted_run.hpp"
@@ -128,6 +129,27 @@ int run_command(const RunArguments& args) {
     summary["files"] = out.files();
     io::write_summary(summary, out / "summary.json");
   };
+  // The run's error estimate (docs/accuracy.md): a companion run, for finished runs only.
+  AccuracyEstimate accuracy;
+  if (!result.instability && !result.interrupted) {
+    AccuracySettings settings;
+    if (args.accuracy) settings.mode = *args.accuracy ? AccuracyMode::on : AccuracyMode::off;
+    PredictedStepLimits limits;
+    if (guard.check.applies) {
+      limits.chatter_limit = guard.check.chatter_limit;
+      if (!guard.check.unbounded) limits.instability_limit = guard.check.instability_limit;
+    }
+    accuracy = estimate_accuracy(scene, result, limits, settings);
+    summary["accuracy"] = accuracy_json(accuracy);
+    if (accuracy.interrupted) {
+      write_summary("accuracy");
+      return interrupted_exit(args.quiet, "accuracy", out.files(), time_reached);
+    }
+  } else {
+    summary["accuracy"] = {
+        {"method", "off"},
+        {"reason", result.instability ? "the run was unstable" : "the run was interrupted"}};
+  }
   write_summary(result.interrupted ? "simulate" : nullptr);
   if (result.interrupted) return interrupted_exit(args.quiet, "simulate", out.files(), time_reached);
 
@@ -145,10 +167,12 @@ int run_command(const RunArguments& args) {
     std::printf("%s: %s, dt = %g s, %ld steps, %d rows in %.3f s\n", scene.name.c_str(),
                 run.integrator.c_str(), run.dt, result.steps, static_cast<int>(result.rows),
                 result.wall_seconds);
-    for (const std::string& line : event_lines(summary["events"])) std::printf("  %s\n", line.c_str());
+    for (const std::string& line : event_lines(summary["events"], summary["accuracy"]))
+      std::printf("  %s\n", line.c_str());
     std::printf("  wrote %s and %s\n", (out / "trajectory.csv").c_str(), (out / "summary.json").c_str());
     std::fflush(stdout);
   }
+  if (!args.quiet && accuracy.verdict == "inaccurate") print_inaccurate(scene.name, run, accuracy);
 
   if (!args.no_plots) {
     try {
