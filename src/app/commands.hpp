@@ -59,6 +59,7 @@ struct StudyArguments {
   int repeats = 3;
   std::vector<std::string> overrides;
   bool quiet = false;
+  double target_error = 1e-3;  // relative accuracy a run must meet (event times, final values)
 };
 
 // `stiction verify SCENE... --golden DIR`: frames, figures and key numbers of each scene
