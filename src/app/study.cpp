@@ -1,5 +1,7 @@
 #include "app/study.hpp"
 
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,8 +10,6 @@
 #include <map>
 #include <stdexcept>
 #include <utility>
-
-#include <time.h>
 
 #include "app/pilot.hpp"
 #include "app/study_grid.hpp"
@@ -61,10 +61,10 @@ struct Measured {
 
 // One run measured against the target (StudyRow's accuracy fields).
 struct Accuracy {
-  double event_time_error = kNaN;   // NaN: no events
+  double event_time_error = kNaN;  // NaN: no events
   double final_value_error = kNaN;
-  double worst = 0.0;               // the larger of the two (infinity: an event missed)
-  std::string worst_name;           // "<element> <kind> time" or "<signal> final"
+  double worst = 0.0;      // the larger of the two (infinity: an event missed)
+  std::string worst_name;  // "<element> <kind> time" or "<signal> final"
 };
 
 // A whole run at one step, kept so that the two bisections never run the same step twice.
@@ -153,15 +153,17 @@ class Study {
       for (auto& limit : result_.limits) {
         bisect(limit.integrator, limit);
         bisect_accuracy(limit.integrator, limit);
-        say("largest step " + limit.integrator + ": stable " + format_g(limit.bisected, 4) + " s (" +
-            std::to_string(limit.runs) + " runs), within the target " + format_g(limit.accurate, 4) +
-            " s (" + std::to_string(limit.accuracy_runs) + " more runs); predicted unstable above " +
-            format_g(limit.predicted, 4) + " s");
+        say("largest step " + limit.integrator + ": stable " + format_g(limit.bisected, 4) +
+            " s (" + std::to_string(limit.runs) + " runs), within the target " +
+            format_g(limit.accurate, 4) + " s (" + std::to_string(limit.accuracy_runs) +
+            " more runs); predicted unstable above " + format_g(limit.predicted, 4) + " s");
       }
     } else {
       result_.limits.clear();  // predicted only for the grid: the table is the bisections'
     }
-    result_.recommendation = recommend(result_);
+    result_.candidates = recommendation_candidates(result_);
+    for (auto& candidate : result_.candidates) retime(candidate);
+    result_.recommendation = cheapest(result_.candidates);
     result_.total_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return std::move(result_);
@@ -223,7 +225,8 @@ class Study {
     }
     a.final_value_error = 0.0;
     // Runs that end at another time (or another row) than the reference are not comparable.
-    const bool same_end = std::abs(run.final_time - reference_.final_time) <= 1e-9 * result_.duration;
+    const bool same_end =
+        std::abs(run.final_time - reference_.final_time) <= 1e-9 * result_.duration;
     for (std::size_t s = 0; s < run.key.size(); ++s) {
       double e = std::numeric_limits<double>::infinity();
       if (same_end && !run.key[s].empty() && !reference_.key[s].empty()) {
@@ -239,17 +242,20 @@ class Study {
   // Largest error of each key signal over the rows both runs have. With a fixed step dt
   // (> 0), only the rows that fall on a step of the run are compared when there are any:
   // the others are interpolated linearly between two steps, an O(dt^2) error of the output,
-  // not of the integrator (it would cap rk4's observed order at 2).
+  // not of the integrator (it would cap rk4's observed order at 2). A step that is no
+  // fraction of the output interval (the default grid's steps around the predicted limits)
+  // lands on few rows or none after t = 0: with fewer than 10 such rows, every row is compared.
   std::vector<double> signal_errors(const Measured& run, double dt) const {
     std::vector<bool> use;
     const std::size_t all = run.key.empty() ? 0 : std::min(run.key[0].size(), reference_.key[0].size());
-    bool any = false;
+    std::size_t on_steps = 0;
     for (std::size_t r = 0; r < all; ++r) {
       const double steps = static_cast<double>(r) / result_.output_rate / dt;
       use.push_back(dt <= 0.0 || std::abs(steps - std::round(steps)) < 1e-6);
-      any = any || use.back();
+      if (r > 0 && use.back()) ++on_steps;
     }
-    if (!any) use.assign(all, true);
+    if (on_steps < std::min<std::size_t>(10, all > 0 ? all - 1 : 0) || on_steps == 0)
+      use.assign(all, true);
     std::vector<double> errors;
     for (std::size_t s = 0; s < run.key.size(); ++s) {
       const auto& a = run.key[s];
@@ -325,7 +331,8 @@ class Study {
     // The reference's own error: rk4 at twice its step against it.
     core::RunResult check = core::simulate(*scene_.network, options_for("rk4", 2.0 * h, 0.0));
     if (check.instability) {
-      result_.reference_noise = result_.reference_event_noise = result_.reference_accuracy_noise = kNaN;
+      result_.reference_noise = result_.reference_event_noise = result_.reference_accuracy_noise =
+          kNaN;
     } else {
       const Measured m = measure(check);
       result_.reference_noise = key_error(signal_errors(m, 2.0 * h)).first;
@@ -354,6 +361,28 @@ class Study {
            ", rk4 at twice its step): runs near the target are judged by the reference's error "
            "as much as their own; pass a smaller --reference-dt");
     }
+  }
+
+  // Times a candidate again like a grid row (median of the repeats within the repeat budget),
+  // so that a bisection's single run and a grid row's median compare alike.
+  void retime(Recommendation& candidate) {
+    const core::RunOptions run =
+        options_for(candidate.integrator, candidate.dt, candidate.tolerance);
+    std::vector<double> cpus;
+    double spent = 0.0;
+    while (static_cast<int>(cpus.size()) < std::max(options_.repeats, 1) &&
+           (cpus.empty() || spent < options_.repeat_budget_seconds)) {
+      double cpu = 0.0;
+      spent += simulate_timed(run, cpu).wall_seconds;
+      cpus.push_back(cpu);
+    }
+    candidate.cpu_per_second = median(cpus) / result_.duration;
+    candidate.repeats = static_cast<int>(cpus.size());
+    say("candidate " + candidate.integrator + " " +
+        (candidate.tolerance > 0.0 ? "tol " + format_g(candidate.tolerance)
+                                   : "dt " + format_g(candidate.dt)) +
+        ": " + format_g(candidate.cpu_per_second) + " CPU s per simulated second (" +
+        std::to_string(candidate.repeats) + " runs)");
   }
 
   // A whole run: the result and the CPU time it took.
@@ -435,7 +464,8 @@ class Study {
               row.instability->component + "'";
     } else {
       line += format_g(row.wall_seconds) + " s, key error " + format_g(row.key_error) +
-              (row.meets_target ? ", within the target" : ", outside the target (" + row.accuracy_failure + ")");
+              (row.meets_target ? ", within the target"
+                                : ", outside the target (" + row.accuracy_failure + ")");
       for (std::size_t i = 0; i < events_.size(); ++i) {
         line += ", " + result_.event_names[i] + " " +
                 (std::isnan(row.event_times[i]) ? std::string("missed")
@@ -464,7 +494,8 @@ class Study {
     predicted.max_step = limit.predicted;
     predicted.unbounded = limit.predicted_unbounded;
     predicted.chatter_free_step = limit.chatter_free;
-    const StepGrid grid = default_step_grid(scene_.run.dt, predicted, finest, result_.duration / 4.0);
+    const StepGrid grid =
+        default_step_grid(scene_.run.dt, predicted, finest, result_.duration / 4.0);
     limit.grid_past_limit = grid.past_limit;
     if (!grid.note.empty()) note(integrator + ": " + grid.note);
     // The time of a run grows as 1 / dt: the last stable run predicts the next one's.
@@ -472,9 +503,9 @@ class Study {
     for (double dt : grid.steps) {
       const double expected = last_wall * last_dt / dt;
       if (last_wall > 0.0 && expected > options_.max_run_seconds) {
-        note(integrator + ": steps of " + format_g(dt) + " s and below not run (the next would take about " +
-             format_g(expected, 2) + " s, over the " + format_g(options_.max_run_seconds, 2) +
-             " s per run budget)");
+        note(integrator + ": steps of " + format_g(dt) +
+             " s and below not run (the next would take about " + format_g(expected, 2) +
+             " s, over the " + format_g(options_.max_run_seconds, 2) + " s per run budget)");
         break;
       }
       const StudyRow row = run_point(integrator, dt, 0.0);
@@ -547,12 +578,14 @@ class Study {
     const Pilot pilot = bounded_pilot(*scene_.network, scene_.run);
     say("predicted limits: sampling " + std::to_string(options_.stability_samples) +
         " states per regime (" + scene_.run.integrator + ", dt = " + format_g(scene_.run.dt) +
-        (pilot.shortened ? ", first " + format_g(pilot.options.duration) + " s" : std::string()) + ")");
+        (pilot.shortened ? ", first " + format_g(pilot.options.duration) + " s" : std::string()) +
+        ")");
     if (pilot.shortened) {
       note("predicted limits from the first " + format_g(pilot.options.duration) + " s of " +
            format_g(scene_.run.duration) + " s (the pilot run's step budget, as `stiction check`)");
     }
-    const auto states = core::sample_states(*scene_.network, pilot.options, options_.stability_samples);
+    const auto states =
+        core::sample_states(*scene_.network, pilot.options, options_.stability_samples);
     if (sys::interrupted()) throw sys::Interrupted{};
     for (const auto& integrator : integrators_) {
       if (!is_fixed_step(integrator)) continue;
@@ -583,7 +616,8 @@ class Study {
     };
     std::vector<Known> known;
     for (const auto& row : result_.rows) {
-      if (row.integrator == integrator) known.push_back({row.dt, row.meets_target, row.accuracy_failure});
+      if (row.integrator == integrator)
+        known.push_back({row.dt, row.meets_target, row.accuracy_failure});
     }
     for (const auto& [key, p] : probes_) {
       if (key.first == integrator) known.push_back({key.second, p.meets_target, p.failure});
@@ -708,7 +742,7 @@ class Study {
   std::vector<int> key_columns_;
   Measured reference_;
   std::vector<std::pair<std::string, std::string>> events_;  // (element, kind) measured
-  std::map<std::pair<std::string, double>, Probe> probes_;    // bisection runs by (integrator, h)
+  std::map<std::pair<std::string, double>, Probe> probes_;   // bisection runs by (integrator, h)
   StudyResult result_;
 };
 

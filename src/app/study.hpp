@@ -114,7 +114,8 @@ struct StabilityLimit {
   double accurate = 0.0;
   double inaccurate_above = 0.0;
   std::string accuracy_failure;
-  int accuracy_runs = 0;  // runs of the accuracy bisection (runs shared with the stability one not counted)
+  int accuracy_runs =
+      0;  // runs of the accuracy bisection (runs shared with the stability one not counted)
   std::string accuracy_note;
   // The run at `accurate` (its cost and its errors), for the recommendation.
   long accurate_evaluations = 0;
@@ -126,19 +127,22 @@ struct StabilityLimit {
   int grid_past_limit = 0;
 };
 
-// The cheapest run within the target: fewest network evaluations per simulated second
-// (exact and the same on every machine; CPU time breaks ties), among the grid rows within
-// the target whose step (tolerance) is at most their integrator's largest accurate one, and
-// the runs at the bisected largest accurate steps.
+// A run within the target, as a recommendation. The candidates of an integrator are its grid
+// rows within the target whose step (tolerance) is at most its largest accurate one (every
+// finer run within the target too) and the run at its bisected largest accurate step; its
+// candidate is the one with the fewest network evaluations. The recommendation is the
+// integrators' candidate with the least CPU time per simulated second, timed again (median of
+// the repeats) so that all candidates are timed alike.
 struct Recommendation {
-  std::string integrator;  // empty: no run met the target
-  double dt = 0.0;         // the step; rk4_adaptive: its first step
-  double tolerance = 0.0;  // rk4_adaptive only
+  std::string integrator;               // empty: no run met the target
+  double dt = 0.0;                      // the step; rk4_adaptive: its first step
+  double tolerance = 0.0;               // rk4_adaptive only
   double evaluations_per_second = 0.0;  // network evaluations per simulated second
   double cpu_per_second = 0.0;          // CPU seconds per simulated second
   double event_time_error = 0.0;
   double final_value_error = 0.0;
   bool bisected = false;  // the run is the bisection's, not a grid row
+  int repeats = 0;        // timing runs behind cpu_per_second (the median)
 };
 
 struct StudyResult {
@@ -173,7 +177,8 @@ struct StudyResult {
   // 2 x reference_dt against the reference: a target near this measures the reference (NaN:
   // that run went unstable).
   double reference_accuracy_noise = 0.0;
-  Recommendation recommendation;
+  std::vector<Recommendation> candidates;  // one per integrator with a run within the target
+  Recommendation recommendation;           // the cheapest candidate (none: empty integrator)
 };
 
 // Progress lines (one per run) for stderr; may be empty.
@@ -188,9 +193,11 @@ std::vector<std::string> key_signal_columns(const std::vector<std::string>& colu
 // The usable rows of `integrator` and the slope through them (see OrderEstimate).
 OrderEstimate observed_order(const StudyResult& result, const std::string& integrator);
 
-// The cheapest run within the target (see Recommendation), from the rows and the limits
-// (study_recommendation.cpp).
-Recommendation recommend(const StudyResult& result);
+// Each integrator's candidate (see Recommendation), from the rows and the limits, with the
+// CPU time of the run that gave it (study_recommendation.cpp).
+std::vector<Recommendation> recommendation_candidates(const StudyResult& result);
+// The candidate with the least CPU time per simulated second (ties: fewer evaluations).
+Recommendation cheapest(const std::vector<Recommendation>& candidates);
 // rk4_adaptive's largest tolerance within the target with every tighter one within it too
 // (0: none).
 double largest_accurate_tolerance(const StudyResult& result, const std::string& integrator);

@@ -43,7 +43,8 @@ StepGrid default_step_grid(double scene_dt, const core::StepLimit& predicted, do
                     : "no stable step predicted: the grid is the scene's dt x 8, 4, 2, ...";
     return grid;
   }
-  const double chatter = predicted.chatter_free_step > 0.0 ? std::min(predicted.chatter_free_step, limit) : limit;
+  const double chatter =
+      predicted.chatter_free_step > 0.0 ? std::min(predicted.chatter_free_step, limit) : limit;
 
   std::vector<double> cliff{1.6 * limit, 1.25 * limit, 0.95 * limit};
   grid.past_limit = 2;
@@ -65,14 +66,16 @@ StepGrid default_step_grid(double scene_dt, const core::StepLimit& predicted, do
   const double inside = 0.95 * chatter / 1.1;
   for (double dt : ladder(scene_dt, inside, finest)) steps.push_back(dt);
 
-  const auto too_long = std::remove_if(steps.begin(), steps.end(), [&](double dt) { return dt > longest; });
+  const auto too_long =
+      std::remove_if(steps.begin(), steps.end(), [&](double dt) { return dt > longest; });
   if (too_long != steps.end()) {
     const int dropped = static_cast<int>(steps.end() - too_long);
     grid.past_limit = std::max(0, grid.past_limit - dropped);
     grid.note = std::to_string(dropped) + " step(s) above " + format_g(longest) +
                 " s (a quarter of the duration) left out" +
-                (grid.past_limit == 0 ? ": the grid does not pass the predicted limit " + format_g(limit) + " s"
-                                      : std::string());
+                (grid.past_limit == 0
+                     ? ": the grid does not pass the predicted limit " + format_g(limit) + " s"
+                     : std::string());
     steps.erase(too_long, steps.end());
   }
   grid.steps = std::move(steps);
