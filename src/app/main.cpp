@@ -91,7 +91,7 @@ int dispatch(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember(core::integrator_names()));
   study->add_option("--dts", study_args.dts,
-                    "comma-separated step sizes in s (default: scene dt x 8, 4, 2, 1, 1/2, ... pruned)")
+                    "comma-separated step sizes in s (default: from past the predicted limit down)")
       ->delimiter(',')
       ->check(app::finite_positive());
   study->add_option("--tolerances", study_args.tolerances,
