@@ -58,12 +58,13 @@ struct StudyArguments {
   std::string scene;
   std::string out;                      // empty: out/<scene name>/study/
   std::vector<std::string> integrators; // empty: all
-  std::vector<double> dts;              // empty: the scene dt times 8, 4, 2, 1, 1/2, ...
+  std::vector<double> dts;              // empty: around the predicted limits (study_grid.hpp)
   std::vector<double> tolerances;       // empty: 1e-4 .. 1e-10 for rk4_adaptive
   std::optional<double> reference_dt;   // empty: scene dt / 16
   int repeats = 3;
   std::vector<std::string> overrides;
   bool quiet = false;
+  double target_error = 1e-3;  // relative accuracy a run must meet (event times, final values)
 };
 
 // `stiction verify SCENE... --golden DIR`: frames, figures and key numbers of each scene

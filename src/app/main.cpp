@@ -99,7 +99,7 @@ int dispatch(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember(core::integrator_names()));
   study->add_option("--dts", study_args.dts,
-                    "comma-separated step sizes in s (default: scene dt x 8, 4, 2, 1, 1/2, ... pruned)")
+                    "comma-separated step sizes in s (default: from past the predicted limit down)")
       ->delimiter(',')
       ->check(app::finite_positive());
   study->add_option("--tolerances", study_args.tolerances,
@@ -116,6 +116,10 @@ int dispatch(int argc, char** argv) {
                     "KEY=VALUE: set a dotted key of the scene to a TOML value (repeatable)")
       ->allow_extra_args(false);
   study->add_flag("--quiet", study_args.quiet, "print nothing but errors");
+  study->add_option("--target-error", study_args.target_error,
+                    "relative accuracy a run must meet: event times (/ duration) and final values "
+                    "(/ signal scale), in (0, 1) (default 1e-3)")
+      ->check(app::finite_positive());
 
   app::CompareArguments compare_args;
   CLI::App* compare = cli.add_subcommand(

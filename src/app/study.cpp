@@ -1,5 +1,7 @@
 #include "app/study.hpp"
 
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/pilot.hpp"
+#include "app/study_grid.hpp"
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
 #include "scene/scene.hpp"
@@ -40,10 +44,38 @@ double median(std::vector<double> values) {
 
 bool is_fixed_step(const std::string& integrator) { return integrator != "rk4_adaptive"; }
 
+// CPU time of this thread: core::simulate runs in the calling thread, so this is the
+// simulation's own CPU time, whatever else the process does (the heartbeat thread).
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 // What the study needs from one reference-like run: the key columns and the event times.
 struct Measured {
   std::vector<std::vector<double>> key;  // per key signal, per row
   std::vector<double> event_times;       // per measured event, NaN: none
+  double final_time = 0.0;               // time of the last row
+};
+
+// One run measured against the target (StudyRow's accuracy fields).
+struct Accuracy {
+  double event_time_error = kNaN;  // NaN: no events
+  double final_value_error = kNaN;
+  double worst = 0.0;      // the larger of the two (infinity: an event missed)
+  std::string worst_name;  // "<element> <kind> time" or "<signal> final"
+};
+
+// A whole run at one step, kept so that the two bisections never run the same step twice.
+struct Probe {
+  bool stable = false;
+  bool meets_target = false;
+  std::string failure;
+  long evaluations = 0;
+  double cpu_seconds = 0.0;
+  double event_time_error = kNaN;
+  double final_value_error = kNaN;
 };
 
 // The event kinds measured per element: its first stick and its first slip.
@@ -93,11 +125,20 @@ class Study {
     for (double tol : options.tolerances) {
       if (!(tol > 0.0)) throw scene::InputError("--tolerances: every tolerance must be > 0");
     }
+    // A relative error of 1 or more is met by any answer of the right order of magnitude
+    // (and by a value of 0 for a signal of any scale): no target at all.
+    if (!(options.target_error > 0.0 && options.target_error < 1.0)) {
+      throw scene::InputError("--target-error: must be > 0 and < 1 (a relative error), got " +
+                              format_g(options.target_error));
+    }
+    result_.target_error = options.target_error;
   }
 
   StudyResult run() {
     const auto start = std::chrono::steady_clock::now();
     run_reference();
+    const bool any_fixed = std::any_of(integrators_.begin(), integrators_.end(), is_fixed_step);
+    if (any_fixed && (options_.dts.empty() || options_.bisect)) predict_limits();
     for (const auto& integrator : integrators_) {
       if (is_fixed_step(integrator)) {
         run_fixed_grid(integrator);
@@ -108,7 +149,21 @@ class Study {
     for (const auto& integrator : integrators_) {
       if (is_fixed_step(integrator)) result_.orders.push_back(observed_order(result_, integrator));
     }
-    if (options_.bisect) stability_limits();
+    if (options_.bisect) {
+      for (auto& limit : result_.limits) {
+        bisect(limit.integrator, limit);
+        bisect_accuracy(limit.integrator, limit);
+        say("largest step " + limit.integrator + ": stable " + format_g(limit.bisected, 4) +
+            " s (" + std::to_string(limit.runs) + " runs), within the target " +
+            format_g(limit.accurate, 4) + " s (" + std::to_string(limit.accuracy_runs) +
+            " more runs); predicted unstable above " + format_g(limit.predicted, 4) + " s");
+      }
+    } else {
+      result_.limits.clear();  // predicted only for the grid: the table is the bisections'
+    }
+    result_.candidates = recommendation_candidates(result_);
+    for (auto& candidate : result_.candidates) retime(candidate);
+    result_.recommendation = cheapest(result_.candidates);
     result_.total_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return std::move(result_);
@@ -140,24 +195,67 @@ class Study {
     Measured m;
     const core::Trajectory& tr = run.trajectory;
     for (int c : key_columns_) m.key.push_back(tr.column(c));
+    const std::vector<double> times = tr.column(0);
+    m.final_time = times.empty() ? kNaN : times.back();
     for (const auto& [element, kind] : events_) m.event_times.push_back(first_event(run, element, kind));
     return m;
+  }
+
+  // Event times relative to the scene's duration (an event near t = 0, such as a slide that
+  // starts at once, has no meaningful error relative to its own time); final values relative
+  // to the signal's scale (a final speed of 0 has none relative to itself).
+  Accuracy accuracy(const Measured& run) const {
+    Accuracy a;
+    auto consider = [&a](double error, const std::string& name) {
+      const double e = std::isnan(error) ? std::numeric_limits<double>::infinity() : error;
+      if (e > a.worst || a.worst_name.empty()) {
+        a.worst = e;
+        a.worst_name = name;
+      }
+    };
+    if (!events_.empty()) {
+      a.event_time_error = 0.0;
+      for (std::size_t i = 0; i < events_.size(); ++i) {
+        // A missed event (NaN) is an infinite error: the run does not say when it happens.
+        double e = std::abs(run.event_times[i] - reference_.event_times[i]) / result_.duration;
+        if (std::isnan(e)) e = std::numeric_limits<double>::infinity();
+        a.event_time_error = std::max(a.event_time_error, e);
+        consider(e, result_.event_names[i] + " time");
+      }
+    }
+    a.final_value_error = 0.0;
+    // Runs that end at another time (or another row) than the reference are not comparable.
+    const bool same_end =
+        std::abs(run.final_time - reference_.final_time) <= 1e-9 * result_.duration;
+    for (std::size_t s = 0; s < run.key.size(); ++s) {
+      double e = std::numeric_limits<double>::infinity();
+      if (same_end && !run.key[s].empty() && !reference_.key[s].empty()) {
+        e = std::abs(run.key[s].back() - reference_.key[s].back()) / result_.key_scales[s];
+      }
+      if (!std::isfinite(e)) e = std::numeric_limits<double>::infinity();
+      a.final_value_error = std::max(a.final_value_error, e);
+      consider(e, result_.key_signals[s] + " final");
+    }
+    return a;
   }
 
   // Largest error of each key signal over the rows both runs have. With a fixed step dt
   // (> 0), only the rows that fall on a step of the run are compared when there are any:
   // the others are interpolated linearly between two steps, an O(dt^2) error of the output,
-  // not of the integrator (it would cap rk4's observed order at 2).
+  // not of the integrator (it would cap rk4's observed order at 2). A step that is no
+  // fraction of the output interval (the default grid's steps around the predicted limits)
+  // lands on few rows or none after t = 0: with fewer than 10 such rows, every row is compared.
   std::vector<double> signal_errors(const Measured& run, double dt) const {
     std::vector<bool> use;
     const std::size_t all = run.key.empty() ? 0 : std::min(run.key[0].size(), reference_.key[0].size());
-    bool any = false;
+    std::size_t on_steps = 0;
     for (std::size_t r = 0; r < all; ++r) {
       const double steps = static_cast<double>(r) / result_.output_rate / dt;
       use.push_back(dt <= 0.0 || std::abs(steps - std::round(steps)) < 1e-6);
-      any = any || use.back();
+      if (r > 0 && use.back()) ++on_steps;
     }
-    if (!any) use.assign(all, true);
+    if (on_steps < std::min<std::size_t>(10, all > 0 ? all - 1 : 0) || on_steps == 0)
+      use.assign(all, true);
     std::vector<double> errors;
     for (std::size_t s = 0; s < run.key.size(); ++s) {
       const auto& a = run.key[s];
@@ -233,10 +331,12 @@ class Study {
     // The reference's own error: rk4 at twice its step against it.
     core::RunResult check = core::simulate(*scene_.network, options_for("rk4", 2.0 * h, 0.0));
     if (check.instability) {
-      result_.reference_noise = result_.reference_event_noise = kNaN;
+      result_.reference_noise = result_.reference_event_noise = result_.reference_accuracy_noise =
+          kNaN;
     } else {
       const Measured m = measure(check);
       result_.reference_noise = key_error(signal_errors(m, 2.0 * h)).first;
+      result_.reference_accuracy_noise = accuracy(m).worst;
       result_.reference_event_noise = events_.empty() ? kNaN : 0.0;
       for (std::size_t i = 0; i < m.event_times.size(); ++i) {
         const double rel = std::abs(m.event_times[i] - reference_.event_times[i]) /
@@ -253,19 +353,58 @@ class Study {
                   : ", " + format_g(result_.reference_event_noise) + " (event times, relative)";
     }
     say(line);
+    // A target within 10x of the reference's own error would measure the reference.
+    if (!(options_.target_error >= kNoiseFactor * result_.reference_accuracy_noise)) {
+      note("--target-error " + format_g(options_.target_error) +
+           " is not 10x above the reference's own accuracy error (" +
+           format_g(result_.reference_accuracy_noise) +
+           ", rk4 at twice its step): runs near the target are judged by the reference's error "
+           "as much as their own; pass a smaller --reference-dt");
+    }
+  }
+
+  // Times a candidate again like a grid row (median of the repeats within the repeat budget),
+  // so that a bisection's single run and a grid row's median compare alike.
+  void retime(Recommendation& candidate) {
+    const core::RunOptions run =
+        options_for(candidate.integrator, candidate.dt, candidate.tolerance);
+    std::vector<double> cpus;
+    double spent = 0.0;
+    while (static_cast<int>(cpus.size()) < std::max(options_.repeats, 1) &&
+           (cpus.empty() || spent < options_.repeat_budget_seconds)) {
+      double cpu = 0.0;
+      spent += simulate_timed(run, cpu).wall_seconds;
+      cpus.push_back(cpu);
+    }
+    candidate.cpu_per_second = median(cpus) / result_.duration;
+    candidate.repeats = static_cast<int>(cpus.size());
+    say("candidate " + candidate.integrator + " " +
+        (candidate.tolerance > 0.0 ? "tol " + format_g(candidate.tolerance)
+                                   : "dt " + format_g(candidate.dt)) +
+        ": " + format_g(candidate.cpu_per_second) + " CPU s per simulated second (" +
+        std::to_string(candidate.repeats) + " runs)");
+  }
+
+  // A whole run: the result and the CPU time it took.
+  core::RunResult simulate_timed(const core::RunOptions& run, double& cpu_seconds) {
+    const double cpu0 = thread_cpu_seconds();
+    core::RunResult result = core::simulate(*scene_.network, run);
+    cpu_seconds = thread_cpu_seconds() - cpu0;
+    return result;
   }
 
   // One grid point: a first run, then repeats for the timing if they are cheap.
   StudyRow run_point(const std::string& integrator, double dt, double tolerance) {
     const core::RunOptions run = options_for(integrator, dt, tolerance);
-    core::RunResult first = core::simulate(*scene_.network, run);
+    double first_cpu = 0.0;
+    core::RunResult first = simulate_timed(run, first_cpu);
     StudyRow row;
     row.integrator = integrator;
     row.dt = dt;
     row.tolerance = tolerance;
     row.steps = first.steps;
     row.evaluations = first.evaluations;
-    std::vector<double> walls{first.wall_seconds};
+    std::vector<double> walls{first.wall_seconds}, cpus{first_cpu};
     if (first.instability) {
       row.status = "unstable";
       row.instability = first.instability;
@@ -275,11 +414,14 @@ class Study {
           std::floor(options_.repeat_budget_seconds / std::max(first.wall_seconds, 1e-9)) - 1.0,
           0.0, static_cast<double>(std::max(options_.repeats, 1) - 1)));
       for (int i = 0; i < extra; ++i) {
-        walls.push_back(core::simulate(*scene_.network, run).wall_seconds);
+        double cpu = 0.0;
+        walls.push_back(simulate_timed(run, cpu).wall_seconds);
+        cpus.push_back(cpu);
       }
     }
     row.repeats = static_cast<int>(walls.size());
     row.wall_seconds = median(walls);
+    row.cpu_seconds = median(cpus);
 
     const Measured m = measure(first);
     const std::size_t events = events_.size();
@@ -290,6 +432,9 @@ class Study {
       row.event_errors.assign(events, kNaN);
       row.event_relative_errors.assign(events, kNaN);
       row.max_event_relative_error = kNaN;
+      row.event_time_error = row.final_value_error = kNaN;
+      row.meets_target = false;
+      row.accuracy_failure = "unstable";
     } else {
       row.signal_errors = signal_errors(m, is_fixed_step(integrator) ? dt : 0.0);
       std::tie(row.key_error, row.worst_signal) = key_error(row.signal_errors);
@@ -305,6 +450,11 @@ class Study {
           row.max_event_relative_error = row.event_relative_errors.back();
         }
       }
+      const Accuracy a = accuracy(m);
+      row.event_time_error = a.event_time_error;
+      row.final_value_error = a.final_value_error;
+      row.meets_target = a.worst <= options_.target_error;
+      if (!row.meets_target) row.accuracy_failure = a.worst_name;
     }
 
     std::string line = integrator + (tolerance > 0.0 ? " tol " + format_g(tolerance)
@@ -313,7 +463,9 @@ class Study {
       line += "unstable at t = " + format_g(row.instability->time) + " s in '" +
               row.instability->component + "'";
     } else {
-      line += format_g(row.wall_seconds) + " s, key error " + format_g(row.key_error);
+      line += format_g(row.wall_seconds) + " s, key error " + format_g(row.key_error) +
+              (row.meets_target ? ", within the target"
+                                : ", outside the target (" + row.accuracy_failure + ")");
       for (std::size_t i = 0; i < events_.size(); ++i) {
         line += ", " + result_.event_names[i] + " " +
                 (std::isnan(row.event_times[i]) ? std::string("missed")
@@ -333,22 +485,34 @@ class Study {
       for (double dt : dts) run_point(integrator, dt, 0.0);
       return;
     }
-    // Default grid: scene dt x 8, 4, 2, 1, 1/2, ... coarse to fine, pruned.
-    const double base = scene_.run.dt;
+    // Default grid: from past the predicted instability limit to well inside it, coarse to
+    // fine, pruned by the time budget.
     // rk4 finer than 4x the reference step would measure the reference, not itself.
     const double finest = integrator == "rk4" ? 4.0 * result_.reference_dt : result_.reference_dt;
-    double last_wall = 0.0;
-    for (int k = 3; k >= -10; --k) {
-      const double dt = base * std::ldexp(1.0, k);
-      if (dt < finest * (1.0 - 1e-9)) break;
-      if (last_wall > 0.0 && 2.0 * last_wall > options_.max_run_seconds) {
-        note(integrator + ": steps below " + format_g(2.0 * dt) + " s not run (the next would take about " +
-             format_g(2.0 * last_wall, 2) + " s, over the " + format_g(options_.max_run_seconds, 2) +
-             " s per run budget)");
+    StabilityLimit& limit = limit_of(integrator);
+    core::StepLimit predicted;
+    predicted.max_step = limit.predicted;
+    predicted.unbounded = limit.predicted_unbounded;
+    predicted.chatter_free_step = limit.chatter_free;
+    const StepGrid grid =
+        default_step_grid(scene_.run.dt, predicted, finest, result_.duration / 4.0);
+    limit.grid_past_limit = grid.past_limit;
+    if (!grid.note.empty()) note(integrator + ": " + grid.note);
+    // The time of a run grows as 1 / dt: the last stable run predicts the next one's.
+    double last_wall = 0.0, last_dt = 0.0;
+    for (double dt : grid.steps) {
+      const double expected = last_wall * last_dt / dt;
+      if (last_wall > 0.0 && expected > options_.max_run_seconds) {
+        note(integrator + ": steps of " + format_g(dt) +
+             " s and below not run (the next would take about " + format_g(expected, 2) +
+             " s, over the " + format_g(options_.max_run_seconds, 2) + " s per run budget)");
         break;
       }
       const StudyRow row = run_point(integrator, dt, 0.0);
-      if (row.status == "ok") last_wall = row.wall_seconds;
+      if (row.status == "ok") {
+        last_wall = row.wall_seconds;
+        last_dt = dt;
+      }
     }
   }
 
@@ -373,18 +537,56 @@ class Study {
     say(text);
   }
 
-  // Whole run of the scene at step h: true if its monitor saw no instability.
-  bool stable_run(const std::string& integrator, double h, StabilityLimit& limit) {
-    ++limit.runs;
-    return !core::simulate(*scene_.network, options_for(integrator, h, 0.0)).instability;
+  // A whole run of the scene at step h, measured once: the stability bisection and the
+  // accuracy bisection share it. `runs` counts the runs actually made.
+  const Probe& probe(const std::string& integrator, double h, int& runs) {
+    const auto key = std::make_pair(integrator, h);
+    const auto found = probes_.find(key);
+    if (found != probes_.end()) return found->second;
+    ++runs;
+    Probe p;
+    const core::RunResult run = simulate_timed(options_for(integrator, h, 0.0), p.cpu_seconds);
+    p.evaluations = run.evaluations;
+    p.stable = !run.instability;
+    if (p.stable) {
+      const Accuracy a = accuracy(measure(run));
+      p.event_time_error = a.event_time_error;
+      p.final_value_error = a.final_value_error;
+      p.meets_target = a.worst <= options_.target_error;
+      if (!p.meets_target) p.failure = a.worst_name;
+    } else {
+      p.failure = "unstable";
+    }
+    return probes_.emplace(key, p).first->second;
   }
 
-  void stability_limits() {
-    say("stability: sampling " + std::to_string(options_.stability_samples) +
-        " states per regime (" +
-        scene_.run.integrator + ", dt = " + format_g(scene_.run.dt) + ")");
+  // Whole run of the scene at step h: true if its monitor saw no instability.
+  bool stable_run(const std::string& integrator, double h, StabilityLimit& limit) {
+    return probe(integrator, h, limit.runs).stable;
+  }
+
+  StabilityLimit& limit_of(const std::string& integrator) {
+    for (auto& limit : result_.limits) {
+      if (limit.integrator == integrator) return limit;
+    }
+    throw std::logic_error("study: no predicted limit for " + integrator);
+  }
+
+  // What `stiction check` predicts, with its functions and its pilot run (bounded in steps),
+  // so that the study's predicted limits are check's.
+  void predict_limits() {
+    const Pilot pilot = bounded_pilot(*scene_.network, scene_.run);
+    say("predicted limits: sampling " + std::to_string(options_.stability_samples) +
+        " states per regime (" + scene_.run.integrator + ", dt = " + format_g(scene_.run.dt) +
+        (pilot.shortened ? ", first " + format_g(pilot.options.duration) + " s" : std::string()) +
+        ")");
+    if (pilot.shortened) {
+      note("predicted limits from the first " + format_g(pilot.options.duration) + " s of " +
+           format_g(scene_.run.duration) + " s (the pilot run's step budget, as `stiction check`)");
+    }
     const auto states =
-        core::sample_states(*scene_.network, scene_.run, options_.stability_samples);
+        core::sample_states(*scene_.network, pilot.options, options_.stability_samples);
+    if (sys::interrupted()) throw sys::Interrupted{};
     for (const auto& integrator : integrators_) {
       if (!is_fixed_step(integrator)) continue;
       StabilityLimit limit;
@@ -394,11 +596,83 @@ class Study {
       limit.predicted_unbounded = predicted.unbounded;
       limit.predicted_time = predicted.limiting_time;
       limit.chatter_free = predicted.chatter_free_step;
-      bisect(integrator, limit);
-      say("stability " + integrator + ": predicted " + format_g(limit.predicted, 4) +
-          " s, bisected " + format_g(limit.bisected, 4) + " s (" + std::to_string(limit.runs) +
-          " runs)");
+      say("predicted " + integrator + ": unstable above " + format_g(limit.predicted, 4) +
+          " s, stuck friction chatters above " + format_g(limit.chatter_free, 4) + " s");
       result_.limits.push_back(limit);
+    }
+  }
+
+  // Largest step within the target. Known runs (the grid's rows and the stability
+  // bisection's probes) give the bracket: `hi` the smallest step outside the target, `lo`
+  // the largest step within it below `hi`; bisected in log h as the stability limit is. The
+  // accuracy need not be monotone in the step (a stick inside an impact moves with the
+  // impact's timing): the answer is a step within the target with every known step below it
+  // within the target too, and a known step within 1% above it outside.
+  void bisect_accuracy(const std::string& integrator, StabilityLimit& limit) {
+    struct Known {
+      double h;
+      bool meets;
+      std::string failure;
+    };
+    std::vector<Known> known;
+    for (const auto& row : result_.rows) {
+      if (row.integrator == integrator)
+        known.push_back({row.dt, row.meets_target, row.accuracy_failure});
+    }
+    for (const auto& [key, p] : probes_) {
+      if (key.first == integrator) known.push_back({key.second, p.meets_target, p.failure});
+    }
+    double lo = 0.0, hi = std::numeric_limits<double>::infinity();
+    std::string failure;
+    for (const auto& k : known) {
+      if (!k.meets && k.h < hi) {
+        hi = k.h;
+        failure = k.failure;
+      }
+    }
+    for (const auto& k : known) {
+      if (k.meets && k.h < hi) lo = std::max(lo, k.h);
+    }
+    if (lo == 0.0) {
+      limit.inaccurate_above = hi;
+      limit.accuracy_failure = failure;
+      limit.accuracy_note = "no step tried meets the target";
+      return;
+    }
+    if (!std::isfinite(hi)) {
+      limit.accuracy_note = "within the target at every step tried, up to " + format_g(lo) + " s";
+    } else {
+      while (hi / lo > 1.0 + options_.bisection_precision) {
+        const double mid = std::sqrt(lo * hi);
+        const Probe& p = probe(integrator, mid, limit.accuracy_runs);
+        if (p.meets_target) {
+          lo = mid;
+        } else {
+          hi = mid;
+          failure = p.failure;
+        }
+      }
+      limit.inaccurate_above = hi;
+      limit.accuracy_failure = failure;
+    }
+    limit.accurate = lo;
+    // The run at `lo`: a grid row or a probe.
+    const auto found = probes_.find(std::make_pair(integrator, lo));
+    const StudyRow* row = nullptr;
+    for (const auto& r : result_.rows) {
+      if (r.integrator == integrator && r.dt == lo) row = &r;
+    }
+    if (row != nullptr) {
+      limit.accurate_evaluations = row->evaluations;
+      limit.accurate_cpu_seconds = row->cpu_seconds;
+      limit.accurate_event_time_error = row->event_time_error;
+      limit.accurate_final_value_error = row->final_value_error;
+    } else if (found != probes_.end()) {
+      limit.accurate_bisected = true;
+      limit.accurate_evaluations = found->second.evaluations;
+      limit.accurate_cpu_seconds = found->second.cpu_seconds;
+      limit.accurate_event_time_error = found->second.event_time_error;
+      limit.accurate_final_value_error = found->second.final_value_error;
     }
   }
 
@@ -468,6 +742,7 @@ class Study {
   std::vector<int> key_columns_;
   Measured reference_;
   std::vector<std::pair<std::string, std::string>> events_;  // (element, kind) measured
+  std::map<std::pair<std::string, double>, Probe> probes_;   // bisection runs by (integrator, h)
   StudyResult result_;
 };
 

@@ -6,9 +6,15 @@
 // bodies, `*.theta.*` of arms and joints) over the common output rows against a reference
 // run (rk4 at a much smaller step), and the errors of the events of each contact or joint
 // (its first stick and its first slip, whichever the reference has) against the
-// reference's. A run that goes unstable is a row with status `unstable`, never an error. Then, for each fixed-step integrator, the largest stable step
-// is found by bisection over whole runs of the scene and set beside the one predicted by
-// core::predict_step_limit from the linearized step map.
+// reference's. A run that goes unstable is a row with status `unstable`, never an error. A
+// run meets the accuracy target when every event time and every final value of a key signal
+// is within `target_error` of the reference's (event times relative to the duration, values
+// relative to the signal's scale). The default grid of a fixed-step integrator runs from well
+// inside to past the instability limit `stiction check` predicts (study_grid.hpp). Then, for
+// each fixed-step integrator, the largest step is found twice by bisection over whole runs of
+// the scene, by stability (the run ends without instability) and by accuracy (it meets the
+// target), set beside core::predict_step_limit's prediction, and the cheapest run that meets
+// the target is recommended.
 //
 // The measuring (this header) is apart from the reporting (study_report.cpp: study.csv,
 // study.md, work_precision.png) and from the command line (study_command.cpp).
@@ -30,7 +36,7 @@ struct StudyOptions {
   std::string scene;                    // bundled name or path
   std::vector<std::string> overrides;   // --set KEY=VALUE
   std::vector<std::string> integrators; // empty: every integrator
-  std::vector<double> dts;              // empty: scene dt times 8, 4, 2, 1, 1/2, ... (pruned)
+  std::vector<double> dts;              // empty: around the predicted limits (study_grid.hpp)
   std::vector<double> tolerances;       // empty: 1e-4 .. 1e-10 (rk4_adaptive)
   std::optional<double> reference_dt;   // empty: scene dt / 16
   int repeats = 3;                      // timing repeats (fewer for long runs)
@@ -43,6 +49,8 @@ struct StudyOptions {
   bool bisect = true;                   // stability limits (fixed-step integrators)
   int stability_samples = 10;           // states per regime for core::predict_step_limit (as check)
   double bisection_precision = 0.01;    // relative width of the final bracket
+  // Relative accuracy a run must meet (event times and final values), in (0, 1).
+  double target_error = 1e-3;
 };
 
 // One run of the grid.
@@ -67,6 +75,17 @@ struct StudyRow {
   std::vector<double> event_errors;
   std::vector<double> event_relative_errors;
   double max_event_relative_error = 0.0;  // NaN when an event is missing or there are none
+  // CPU time of the simulation (process CPU clock), median over `repeats` like wall_seconds.
+  double cpu_seconds = 0.0;
+  // Accuracy against the target: the largest |t - t_ref| / duration over the events
+  // (infinity when the run misses one, NaN without events or when unstable) and the largest
+  // |x(end) - x_ref(end)| / scale over the key signals (NaN when unstable).
+  double event_time_error = 0.0;
+  double final_value_error = 0.0;
+  bool meets_target = false;
+  // What breaks the target when it is not met: "unstable", "<element> <kind> time" or
+  // "<signal> final"; empty when met.
+  std::string accuracy_failure;
 };
 
 // Observed order of one fixed-step integrator: least-squares slope of log(key error)
@@ -88,6 +107,42 @@ struct StabilityLimit {
   double unstable_above = 0.0;  // smallest step found unstable (the bracket's top)
   int runs = 0;                 // runs spent by the bisection
   std::string note;             // e.g. "stable at every step tried"
+  // Largest step by accuracy (StudyRow::meets_target): the largest step found within the
+  // target with every grid step below it within the target too, bisected where the grid
+  // brackets it; 0: none. `inaccurate_above` is the bracket's top (0: none found) and
+  // `accuracy_failure` what breaks the target there.
+  double accurate = 0.0;
+  double inaccurate_above = 0.0;
+  std::string accuracy_failure;
+  int accuracy_runs =
+      0;  // runs of the accuracy bisection (runs shared with the stability one not counted)
+  std::string accuracy_note;
+  // The run at `accurate` (its cost and its errors), for the recommendation.
+  long accurate_evaluations = 0;
+  double accurate_cpu_seconds = 0.0;
+  double accurate_event_time_error = 0.0;
+  double accurate_final_value_error = 0.0;
+  bool accurate_bisected = false;  // `accurate` is a bisection run, not a grid row
+  // Steps of the default grid above the predicted limit (0: the grid does not pass it).
+  int grid_past_limit = 0;
+};
+
+// A run within the target, as a recommendation. The candidates of an integrator are its grid
+// rows within the target whose step (tolerance) is at most its largest accurate one (every
+// finer run within the target too) and the run at its bisected largest accurate step; its
+// candidate is the one with the fewest network evaluations. The recommendation is the
+// integrators' candidate with the least CPU time per simulated second, timed again (median of
+// the repeats) so that all candidates are timed alike.
+struct Recommendation {
+  std::string integrator;               // empty: no run met the target
+  double dt = 0.0;                      // the step; rk4_adaptive: its first step
+  double tolerance = 0.0;               // rk4_adaptive only
+  double evaluations_per_second = 0.0;  // network evaluations per simulated second
+  double cpu_per_second = 0.0;          // CPU seconds per simulated second
+  double event_time_error = 0.0;
+  double final_value_error = 0.0;
+  bool bisected = false;  // the run is the bisection's, not a grid row
+  int repeats = 0;        // timing runs behind cpu_per_second (the median)
 };
 
 struct StudyResult {
@@ -117,6 +172,13 @@ struct StudyResult {
   std::vector<StabilityLimit> limits;
   std::vector<std::string> notes;  // pruning and other remarks, printed in study.md
   double total_seconds = 0.0;
+  double target_error = 1e-3;
+  // The accuracy measure (the worse of the event-time and final-value errors) of rk4 at
+  // 2 x reference_dt against the reference: a target near this measures the reference (NaN:
+  // that run went unstable).
+  double reference_accuracy_noise = 0.0;
+  std::vector<Recommendation> candidates;  // one per integrator with a run within the target
+  Recommendation recommendation;           // the cheapest candidate (none: empty integrator)
 };
 
 // Progress lines (one per run) for stderr; may be empty.
@@ -130,6 +192,15 @@ std::vector<std::string> key_signal_columns(const std::vector<std::string>& colu
 
 // The usable rows of `integrator` and the slope through them (see OrderEstimate).
 OrderEstimate observed_order(const StudyResult& result, const std::string& integrator);
+
+// Each integrator's candidate (see Recommendation), from the rows and the limits, with the
+// CPU time of the run that gave it (study_recommendation.cpp).
+std::vector<Recommendation> recommendation_candidates(const StudyResult& result);
+// The candidate with the least CPU time per simulated second (ties: fewer evaluations).
+Recommendation cheapest(const std::vector<Recommendation>& candidates);
+// rk4_adaptive's largest tolerance within the target with every tighter one within it too
+// (0: none).
+double largest_accurate_tolerance(const StudyResult& result, const std::string& integrator);
 
 // Reports (study_report.cpp).
 std::string study_csv(const StudyResult& result);

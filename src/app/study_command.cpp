@@ -22,6 +22,7 @@ int study_command(const StudyArguments& args) {
   options.tolerances = args.tolerances;
   options.reference_dt = args.reference_dt;
   options.repeats = args.repeats;
+  options.target_error = args.target_error;
 
   // One line per run, on a terminal and in a log alike (each is a finished item, no bar),
   // between a start and an end line.

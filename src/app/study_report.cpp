@@ -46,6 +46,16 @@ double max_event_error(const StudyRow& row) {
   return worst;
 }
 
+// An infinite error (a missed event) is "inf", not an empty field: empty means "not measured".
+std::string error_field(double value) {
+  return std::isinf(value) ? std::string("inf") : num(value, 6);
+}
+
+// For Markdown cells: "missed" for an infinite event error.
+std::string error_cell(double value) {
+  return std::isinf(value) ? std::string("missed") : cell(value);
+}
+
 std::string step_cell(const StudyRow& row) {
   return row.tolerance > 0.0 ? "tol " + num(row.tolerance, 3) : num(row.dt, 4);
 }
@@ -57,6 +67,92 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
     out += item;
   }
   return out;
+}
+
+const Recommendation* candidate_of(const StudyResult& r, const std::string& integrator) {
+  for (const auto& c : r.candidates) {
+    if (c.integrator == integrator) return &c;
+  }
+  return nullptr;
+}
+
+// The two largest steps of each integrator side by side.
+std::string largest_steps_markdown(const StudyResult& r) {
+  std::string md;
+  if (!r.limits.empty()) {
+    md +=
+        "\n## Largest step: by stability and by accuracy\n\n"
+        "Predicted (as `stiction check`): stuck friction chatters above the first figure, the "
+        "run blows up above the second. Largest stable: the bisected stability limit above. "
+        "Largest within the target: the largest step whose run meets the target with every "
+        "step tried below it meeting it too, bisected to 1% between the grid's steps; the next "
+        "column says what breaks the target just above it. Cost: of the cheapest run within "
+        "the target (the run at that step), network evaluations and CPU seconds (median of "
+        "the timing runs) per simulated second.\n\n";
+    md +=
+        "| integrator | chatters above [s] | unstable above [s] | largest stable [s] | largest "
+        "within target [s] | above it | evaluations / s | CPU s / s | runs | grid steps past "
+        "the limit |\n|---|---:|---:|---:|---:|---|---:|---:|---:|---:|\n";
+    for (const auto& l : r.limits) {
+      const std::string predicted =
+          l.predicted_unbounded ? ">= " + num(l.predicted, 4) : cell(l.predicted, 4);
+      std::string above = l.accuracy_failure.empty()
+                              ? std::string("–")
+                              : l.accuracy_failure + " at " + num(l.inaccurate_above, 4) + " s";
+      if (!l.accuracy_note.empty()) above += " (" + l.accuracy_note + ")";
+      const bool accurate = l.accurate > 0.0;
+      const Recommendation* c = candidate_of(r, l.integrator);
+      md += "| " + l.integrator + " | " + cell(l.chatter_free, 4) + " | " + predicted + " | " +
+            cell(l.bisected > 0.0 ? l.bisected : NAN, 4) + " | " +
+            cell(accurate ? l.accurate : NAN, 4) + " | " + above + " | " +
+            cell(c != nullptr ? c->evaluations_per_second : NAN, 4) + " | " +
+            cell(c != nullptr ? c->cpu_per_second : NAN, 3) + " | " +
+            std::to_string(l.runs + l.accuracy_runs) + " | " + std::to_string(l.grid_past_limit) +
+            " |\n";
+    }
+  }
+  for (const auto& row : r.rows) {
+    if (row.tolerance > 0.0) {
+      const double tol = largest_accurate_tolerance(r, row.integrator);
+      const Recommendation* c = candidate_of(r, row.integrator);
+      md += "\n" + row.integrator + ": largest tolerance within the target " +
+            (tol > 0.0 ? num(tol, 3) : std::string("none (no tolerance tried meets it)"));
+      if (c != nullptr) {
+        md += " (with every tighter one); its cheapest run within the target, tolerance " +
+              num(c->tolerance, 3) + ": " + num(c->evaluations_per_second, 4) +
+              " evaluations and " + num(c->cpu_per_second, 3) + " CPU s per simulated second";
+      }
+      md += ".\n";
+      break;
+    }
+  }
+  return md;
+}
+
+// The closing line: the cheapest run within the target.
+std::string recommendation_line(const StudyResult& r) {
+  const Recommendation& rec = r.recommendation;
+  std::string md = "\n**Recommendation** (target " + num(r.target_error, 3) + "): ";
+  if (rec.integrator.empty()) {
+    md +=
+        "no run meets the target; try a smaller `--dts` or `--tolerances`, or a larger "
+        "`--target-error`.\n";
+    return md;
+  }
+  md += "`" + rec.integrator + "` at " +
+        (rec.tolerance > 0.0 ? "tolerance " + num(rec.tolerance, 3)
+                             : "dt = " + num(rec.dt, 4) + " s") +
+        ", " + num(rec.cpu_per_second, 3) + " CPU s (median of " + std::to_string(rec.repeats) +
+        ") and " + num(rec.evaluations_per_second, 4) + " network evaluations per simulated second";
+  std::vector<std::string> errors;
+  if (std::isfinite(rec.event_time_error))
+    errors.push_back("event times " + num(rec.event_time_error, 2));
+  if (std::isfinite(rec.final_value_error))
+    errors.push_back("final values " + num(rec.final_value_error, 2));
+  if (!errors.empty()) md += " (errors: " + join(errors, ", ") + ")";
+  md += rec.bisected ? "; a step the accuracy bisection ran, not a grid row" : "";
+  md += ". The least CPU time among each integrator's cheapest run within the target.\n";
+  return md;
 }
 
 }  // namespace
@@ -73,6 +169,9 @@ std::string study_csv(const StudyResult& r) {
     out += ',' + csv_field(kind + "_error_" + element);
     out += ',' + csv_field(kind + "_relative_error_" + element);
   }
+  // Added after the per-signal and per-event columns: readers that take the columns above by
+  // position keep working.
+  out += ",cpu_seconds,event_time_error,final_value_error,meets_target,accuracy_failure";
   out += '\n';
   for (const auto& row : r.rows) {
     out += csv_field(row.integrator);
@@ -89,6 +188,10 @@ std::string study_csv(const StudyResult& r) {
       out += ',' + num(row.event_errors[i], 6);
       out += ',' + num(row.event_relative_errors[i], 6);
     }
+    out += ',' + num(row.cpu_seconds, 6);
+    out += ',' + error_field(row.event_time_error) + ',' + error_field(row.final_value_error);
+    out += ',' + std::string(row.meets_target ? "1" : "0");
+    out += ',' + csv_field(row.accuracy_failure);
     out += '\n';
   }
   return out;
@@ -121,10 +224,21 @@ std::string study_markdown(const StudyResult& r) {
     md += "Event error: none measured, the reference has no stick and no slip event. ";
   }
   md += "Wall time: the simulation alone, median of the repeats (rep).\n\n";
+  md += "Accuracy target " + num(r.target_error, 3) +
+        " (`--target-error`): a run meets it when every " +
+        (r.event_names.empty()
+             ? std::string()
+             : "event time (error divided by the duration, " + num(r.duration) + " s) and every ") +
+        "final value of a key signal (error divided by the signal's scale) is within it of the "
+        "reference's. The reference's own such error (rk4 at twice its step) is " +
+        cell(r.reference_accuracy_noise, 3) + ".\n\n";
 
-  md += "| integrator | dt [s] | status | steps | evaluations | wall [ms] | rep | key error | worst signal "
-        "| event error [s] | event error (rel) |\n";
-  md += "|---|---:|---|---:|---:|---:|---:|---:|---|---:|---:|\n";
+  md +=
+      "| integrator | dt [s] | status | steps | evaluations | wall [ms] | rep | key error | worst "
+      "signal "
+      "| event error [s] | event error (rel) | event time error (/ duration) | final value error | "
+      "within target |\n";
+  md += "|---|---:|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---|\n";
   for (const auto& row : r.rows) {
     std::string status = row.status;
     if (row.instability) {
@@ -134,7 +248,9 @@ std::string study_markdown(const StudyResult& r) {
           std::to_string(row.steps) + " | " + std::to_string(row.evaluations) + " | " +
           cell(1e3 * row.wall_seconds, 3) + " | " + std::to_string(row.repeats) + " | " +
           cell(row.key_error) + " | " + (row.worst_signal.empty() ? "–" : row.worst_signal) +
-          " | " + cell(max_event_error(row)) + " | " + cell(row.max_event_relative_error) + " |\n";
+          " | " + cell(max_event_error(row)) + " | " + cell(row.max_event_relative_error) + " | " +
+          error_cell(row.event_time_error) + " | " + error_cell(row.final_value_error) + " | " +
+          (row.meets_target ? std::string("yes") : "no (" + row.accuracy_failure + ")") + " |\n";
   }
 
   if (!r.event_names.empty()) {
@@ -194,14 +310,17 @@ std::string study_markdown(const StudyResult& r) {
       md += "| " + l.integrator + " | " + predicted + " | " + cell(l.predicted_time, 4) + " | " +
             cell(l.chatter_free, 4) + " | " + cell(l.bisected > 0.0 ? l.bisected : NAN, 4) + " | " +
             cell(l.unstable_above > 0.0 ? l.unstable_above : NAN, 4) + " | " + cell(ratio, 3) +
-            " | " + std::to_string(l.runs) + " | " + l.note + " |\n";
+            " | " + std::to_string(l.runs) + " | " + (l.note.empty() ? std::string("–") : l.note) +
+            " |\n";
     }
   }
+  md += largest_steps_markdown(r);
   if (!r.notes.empty()) {
     md += "\n## Notes\n\n";
     for (const auto& n : r.notes) md += "- " + n + "\n";
   }
   md += "\nWhole study: " + num(r.total_seconds, 3) + " s.\n";
+  md += recommendation_line(r);
   return md;
 }
 
