@@ -20,6 +20,8 @@
 // study.md, work_precision.png) and from the command line (study_command.cpp).
 #pragma once
 
+#include "app/step_check.hpp"
+
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -47,7 +49,7 @@ struct StudyOptions {
   // Timing repeats are cut so that one grid point takes at most about this long.
   double repeat_budget_seconds = 2.0;
   bool bisect = true;                   // stability limits (fixed-step integrators)
-  int stability_samples = 10;           // states per regime for core::predict_step_limit (as check)
+  int stability_samples = kStatesPerRegime;  // per regime, for core::predict_step_limit (as check)
   double bisection_precision = 0.01;    // relative width of the final bracket
   // Relative accuracy a run must meet (event times and final values), in (0, 1).
   double target_error = 1e-3;
