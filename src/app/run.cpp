@@ -102,6 +102,13 @@ int run_command(const RunArguments& args) {
   description.columns = infos;
 
   auto summary = io::make_summary(description, result);
+  // Plausibility warnings of the scene (scene/plausibility.hpp): in the summary, [] if none.
+  summary["warnings"] = nlohmann::ordered_json::array();
+  for (const scene::Warning& w : scene.warnings) {
+    summary["warnings"].push_back(
+        {{"file", w.file}, {"line", w.line}, {"column", w.column}, {"key", w.key}, {"text", w.text}});
+    if (!args.quiet) std::fprintf(stderr, "%s\n", scene::format_warning(w).c_str());
+  }
   rows.commit_csv();  // the rows up to the last complete one, also when interrupted
   out.wrote(out / "trajectory.csv");
   const double time_reached =

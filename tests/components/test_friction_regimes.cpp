@@ -167,8 +167,8 @@ Case contact(Rng& rng, bool belt) {
   Case c{"kikuuwe_contact", "floor", "", v0 / (mu * g), dt};
   c.text = "gravity = " + vec(-g * n) + "\n" + simulation(dt, stop + 0.3) +
            "[bodies.puck]\ntype = \"point_mass\"\nmass = " + number(m) +
-           "\nposition = " + vec(offset * n) +
-           "\nvelocity = " + vec(belt ? Eigen::Vector3d::Zero() : v0 * t) +
+           "\nposition = " + vec(offset * n) + "\nvelocity = " +
+           vec(belt ? Eigen::Vector3d(Eigen::Vector3d::Zero()) : Eigen::Vector3d(v0 * t)) +
            "\n[impedances.floor]\ntype = \"kikuuwe_contact\"\nbody = \"puck\"\nnormal = " + vec(n) +
            "\noffset = " + number(offset) + "\nstiffness = " + number(K) +
            "\ndamping = " + number(B) + "\nmu = " + number(mu) + "\nsettle = true\n" +
