@@ -144,6 +144,7 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
   const core::RunOptions& run = scene.run;
   std::printf("%s: ok (%s)\n", scene.name.c_str(), scene.path.c_str());
   if (!scene.description.empty()) std::printf("  %s\n", scene.description.c_str());
+  for (const scene::Warning& w : scene.warnings) std::printf("%s\n", scene::format_warning(w).c_str());
   std::printf("simulation: %s, dt = %g s, duration = %g s, %g rows/s\n", run.integrator.c_str(),
               run.dt, run.duration, run.output_rate);
   std::printf("render: %dx%d at %g fps; plots: %zu; verify: %s\n", report.render.width,
@@ -199,6 +200,11 @@ nlohmann::json report_json(const scene::Scene& scene, const CheckReport& report)
   nlohmann::json j;
   j["ok"] = true;
   j["errors"] = nlohmann::json::array();
+  j["warnings"] = nlohmann::json::array();
+  for (const scene::Warning& w : scene.warnings) {
+    j["warnings"].push_back(
+        {{"file", w.file}, {"line", w.line}, {"column", w.column}, {"key", w.key}, {"text", w.text}});
+  }
   j["scene"] = scene.name;
   j["path"] = scene.path.string();
   j["simulation"] = {{"integrator", run.integrator},

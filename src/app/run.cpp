@@ -88,13 +88,18 @@ int run_command(const RunArguments& args) {
 
   // The step guard: a step predicted unstable is refused before anything is simulated or
   // written (app/step_guard.hpp).
+  std::vector<scene::Warning> warnings = scene.warnings;
+  if (!args.quiet) {
+    for (const scene::Warning& w : warnings) std::fprintf(stderr, "%s\n", scene::format_warning(w).c_str());
+  }
   StepGuard guard = guard_step(scene, authored_dt, args.force_step);
   if (guard.refusal) {
     print_refusal(scene.name, guard);
     return kExitUnstable;
   }
-  if (guard.warning && !args.quiet) {
-    std::fprintf(stderr, "warning: %s: %s\n", scene.name.c_str(), guard.warning->c_str());
+  if (guard.warning) {
+    warnings.push_back(step_warning(scene, args.dt.has_value(), *guard.warning));
+    if (!args.quiet) std::fprintf(stderr, "%s\n", scene::format_warning(warnings.back()).c_str());
   }
   OutputDirectory out(args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out));
 
@@ -117,6 +122,13 @@ int run_command(const RunArguments& args) {
 
   auto summary = io::make_summary(description, result);
   summary["step_check"] = step_check_json(guard.check);
+  // Plausibility warnings of the scene (scene/plausibility.hpp) and the step guard's, in the
+  // summary ([] if none); printed before the simulation.
+  summary["warnings"] = nlohmann::ordered_json::array();
+  for (const scene::Warning& w : warnings) {
+    summary["warnings"].push_back(
+        {{"file", w.file}, {"line", w.line}, {"column", w.column}, {"key", w.key}, {"text", w.text}});
+  }
   rows.commit_csv();  // the rows up to the last complete one, also when interrupted
   out.wrote(out / "trajectory.csv");
   const double time_reached =

@@ -24,6 +24,24 @@ StepGuard guard_step(scene::Scene& scene, double authored_dt, bool force,
   return guard;
 }
 
+scene::Warning step_warning(const scene::Scene& scene, bool dt_from_command_line,
+                            const std::string& text) {
+  scene::Warning w;
+  w.file = scene.path.string();
+  w.key = "simulation.dt";
+  if (dt_from_command_line) {
+    w.file = "(command line)";
+    w.key = "--dt";
+  } else if (const toml::node* dt = scene.document.at_path("simulation.dt").node()) {
+    const toml::source_region& where = dt->source();
+    if (where.path) w.file = *where.path;
+    w.line = static_cast<long>(where.begin.line);
+    w.column = static_cast<long>(where.begin.column);
+  }
+  w.text = w.key + ": " + text;
+  return w;
+}
+
 void print_refusal(const std::string& scene_name, const StepGuard& guard) {
   std::fprintf(stderr,
                "error: %s: %s; nothing was simulated.\n  a step that works: --dt %g (%s)\n"

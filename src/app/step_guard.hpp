@@ -11,6 +11,7 @@
 
 #include "app/step_check.hpp"
 #include "app/suggest_step.hpp"
+#include "scene/plausibility.hpp"
 #include "scene/scene.hpp"
 
 namespace stiction::app {
@@ -25,6 +26,11 @@ struct StepGuard {
 // `suggestion_budget`: wall-clock seconds the trials of a refusal's suggestion may take.
 StepGuard guard_step(scene::Scene& scene, double authored_dt, bool force,
                      double suggestion_budget = 30.0);
+
+// The guard's warning located as the scene's warnings are: at [simulation] dt of the scene
+// file, or on the command line (file "(command line)", key "--dt") when --dt set the step.
+scene::Warning step_warning(const scene::Scene& scene, bool dt_from_command_line,
+                            const std::string& text);
 
 // "error: NAME: dt = ... is above ...; a step that works: --dt X (how); --force-step runs it
 // anyway" on stderr.

@@ -178,6 +178,7 @@ Scene build_scene(toml::table document, const fs::path& path) {
   scene.run.stick_thresholds = builder.stick_thresholds();  // per contact or joint
   scene.network->finalize();
   builder.locate_observed();  // sources reading other elements' signals
+  scene.warnings = plausibility_warnings(scene);  // after the build: checks read the network
   return scene;
 }
 

@@ -16,6 +16,7 @@
 
 #include "core/network.hpp"
 #include "core/simulation.hpp"
+#include "scene/plausibility.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace stiction::scene {
@@ -27,6 +28,8 @@ struct Scene {
   std::unique_ptr<core::Network> network;          // finalized; owns every component
   core::RunOptions run;                            // [simulation]
   toml::table document;                            // whole parsed document after overrides
+  // Plausibility warnings (scene/plausibility.hpp): valid values that look like a mistake.
+  std::vector<Warning> warnings;
 
   Scene() = default;
   Scene(Scene&&) noexcept = default;

@@ -71,15 +71,22 @@ Vec3 mean_axis(const Vec3& a_c, const Vec3& a_p) {
 
 }  // namespace
 
-void PenaltyJoint::evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
-                            core::VecRef u, core::VecRef y_dot) const {
-  const auto& p = params_;
+namespace {
+
+// The parts of u that are not friction, and the friction's input about the axis.
+struct JointLaw {
+  Vec3 separation;  // force: Ks d + Bs d_dot
+  Vec3 bending;     // torque perpendicular to n
+  Vec3 n;           // mean axis
+  double omega;     // relative rate about n
+};
+
+JointLaw joint_law(const PenaltyJointParams& p, core::ConstVecRef x_hat) {
   const Frame c = frame_at(x_hat, 0);
   const Frame b = frame_at(x_hat, 13);
-
+  JointLaw law;
   // Separation of the articulation points.
-  u.head<3>() = p.separation_stiffness * (c.p - b.p) + p.separation_damping * (c.v - b.v);
-
+  law.separation = p.separation_stiffness * (c.p - b.p) + p.separation_damping * (c.v - b.v);
   // Bending of the axes: rotation vector taking a_p to a_c.
   const Vec3 a_c = c.q * p.axis_child;
   const Vec3 a_p = b.q * p.axis_parent;
@@ -87,23 +94,45 @@ void PenaltyJoint::evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVe
   const double s = cross.norm();
   const double angle = std::atan2(s, a_p.dot(a_c));
   const Vec3 bend = s > 1e-12 ? Vec3(cross * (angle / s)) : cross;
-  const Vec3 n = mean_axis(a_c, a_p);
+  law.n = mean_axis(a_c, a_p);
   const Vec3 w_rel = c.w - b.w;
-  const double omega = n.dot(w_rel);
-  const Vec3 w_perp = w_rel - omega * n;
+  law.omega = law.n.dot(w_rel);
+  const Vec3 w_perp = w_rel - law.omega * law.n;
+  law.bending = p.bending_stiffness * bend + p.bending_damping * w_perp;
+  return law;
+}
+
+}  // namespace
+
+void PenaltyJoint::evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
+                            core::VecRef u, core::VecRef y_dot) const {
+  const auto& p = params_;
+  const JointLaw law = joint_law(p, x_hat);
+  u.head<3>() = law.separation;
 
   // Friction (19) about n.
   const double K = p.friction_stiffness;
   const double BtK = p.friction_damping + tau * K;
   Eigen::Matrix<double, 1, 1> f;
-  f[0] = BtK * omega + K * y[0];
+  f[0] = BtK * law.omega + K * y[0];
   const bool sliding = std::abs(f[0]) > p.friction_limit;
   saturate(p.friction_limit, f);
   // Stuck: eps is omega itself, not (f - K e) / BtK, which would differ by rounding and let
   // the anchor creep.
-  y_dot[0] = sliding ? (f[0] - K * y[0]) / BtK : omega;
+  y_dot[0] = sliding ? (f[0] - K * y[0]) / BtK : law.omega;
 
-  u.tail<3>() = p.bending_stiffness * bend + p.bending_damping * w_perp + f[0] * n;
+  u.tail<3>() = law.bending + f[0] * law.n;
+}
+
+void PenaltyJoint::evaluate_friction_held(double /*t*/, core::ConstVecRef x_hat,
+                                          core::ConstVecRef /*y*/, double /*tau*/,
+                                          core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref,
+                                          core::VecRef u, core::VecRef y_dot) const {
+  const JointLaw law = joint_law(params_, x_hat);
+  const double held = law.n.dot(Vec3(u_ref.tail<3>()));
+  u.head<3>() = law.separation;
+  u.tail<3>() = law.bending + held * law.n;
+  y_dot[0] = y_dot_ref[0];
 }
 
 int PenaltyJoint::regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const {
@@ -146,13 +175,22 @@ core::Vec3 PenaltyJoint::slip_velocity(core::ConstVecRef x_hat) const {
 }
 
 std::vector<core::SignalInfo> PenaltyJoint::signals() const {
-  return {{.name = "theta", .unwrap = true, .unit = "rad", .frame = "joint",
+  return {{.name = "theta",
+           .unwrap = true,
+           .unit = "rad",
+           .frame = "joint",
            .description = "relative rotation of the child about the joint axis"},
-          {.name = "omega", .unit = "rad/s", .frame = "joint",
+          {.name = "omega",
+           .unit = "rad/s",
+           .frame = "joint",
            .description = "relative angular velocity about the joint axis"},
-          {.name = "tau", .unit = "N·m", .frame = "joint",
+          {.name = "tau",
+           .unit = "N·m",
+           .frame = "joint",
            .description = "friction torque about the joint axis on the child"},
-          {.name = "e", .unit = "rad", .frame = "joint",
+          {.name = "e",
+           .unit = "rad",
+           .frame = "joint",
            .description = "elastic displacement of the joint friction element"}};
 }
 

@@ -45,13 +45,16 @@ struct PenaltyJointParams {
   double initial_e = 0.0;
 };
 
-// Stick/slip events and regimes (1 stuck, 2 sliding) of its friction about the axis, the
-// energy of its three springs, and its separation stiffness for stability advice. Its
-// friction is not a ClampedFriction: its stability is analysed with the friction live.
+// Stick/slip events of its friction about the axis, the energy of its three springs, and its
+// separation stiffness for stability advice. Its friction is Kikuuwe's law, so it is a
+// ClampedFriction like kikuuwe_friction: the event detector asks it for its regime (1 stuck,
+// 2 sliding) and times a stick exactly even while the joint rings elastically inside its
+// friction band; the stability analysis holds its friction torque to tell a stuck spring's
+// bounded chatter from a runaway.
 class PenaltyJoint final : public core::Impedance,
                            public core::EnergyStore,
                            public core::SlipElement,
-                           public core::PiecewiseLaw,
+                           public core::ClampedFriction,
                            public core::StiffnessHint {
  public:
   PenaltyJoint(std::string name, const PenaltyJointParams& params);
@@ -70,6 +73,17 @@ class PenaltyJoint final : public core::Impedance,
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   // 1 while the friction about the axis is stuck, 2 while it slides.
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
+  // Separation and bending live; the friction torque about the axis and e's rate held at the
+  // reference evaluation's. The reference's axis n_ref is not passed in, so the held torque
+  // is n.u_ref (n the live axis): exact for n = n_ref, and off by (n - n_ref).t_bend_ref, a
+  // geometric term of the bending torque, not of the friction spring.
+  void evaluate_friction_held(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
+                              core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref, core::VecRef u,
+                              core::VecRef y_dot) const override;
+  // Twice the friction spring's energy at the limit: F^2 / Kf.
+  double friction_cap_energy(core::ConstVecRef /*x_hat*/) const override {
+    return params_.friction_limit * params_.friction_limit / params_.friction_stiffness;
+  }
   // The relative rate about the axis (in the x entry, as for joints).
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
   const PenaltyJointParams& params() const { return params_; }
