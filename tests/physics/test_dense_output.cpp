@@ -119,9 +119,11 @@ TEST_CASE("dense output: a mass on a spring follows the closed form between step
             worst, scaled(t.at(row, column(t, std::string("m.v.") + axes[a])) - v, v, tolerance));
       }
     }
-    // The last row is a step's end: its error is the integration's own (the steps' local
-    // errors accumulated over the run, which grows with the number of periods). Rows between
-    // steps must add little to it.
+    // The last row is a step's end: its error is the integration's own, the steps' local
+    // errors (each held at the tolerance) accumulated over up to 7.5 periods, and it
+    // oscillates with the phase, so the rows' worst is compared with a bound on that global
+    // error rather than with the last row's. Linear rows between these steps (up to h = 0.5 ms
+    // at 47 rad/s) would be off by h^2 omega^2 |x| / 8, thousands of times the tolerance.
     const int last = t.row_count() - 1;
     const double end_time = t.at(last, 0);
     double at_end = 0.0;
@@ -139,7 +141,7 @@ TEST_CASE("dense output: a mass on a spring follows the closed form between step
         "spring %d (omega %.1f rad/s): %ld steps, worst row error %.3g x the tolerance, at the "
         "last step's end %.3g\n",
         trial, omega, r.steps, worst, at_end);
-    CHECK(worst <= 1.5 * at_end + 1.0);
+    CHECK(at_end <= 50.0);
     CHECK(worst <= 50.0);
   }
 }
