@@ -1,9 +1,7 @@
 #include "core/simulation.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <vector>
