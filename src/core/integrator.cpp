@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/hermite.hpp"
+
 namespace stiction::core {
 
 const Tableau& euler_tableau() {
@@ -21,7 +23,7 @@ const Tableau& rk4_tableau() {
   // Classic RK4 with the paper's stage sizes {T1..T4} = {T/2, T/2, T, T} (eq. 21).
   static const Tableau t{"rk4",
                          4,
-                         {0, 0, 0, 0,  //
+                         {0, 0, 0, 0,    //
                           0.5, 0, 0, 0,  //
                           0, 0.5, 0, 0,  //
                           0, 0, 1, 0},
@@ -49,14 +51,14 @@ const Tableau& tableau_by_name(const std::string& name) {
 }
 
 std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,
-                                      double tolerance) {
+                                      double tolerance, double max_step) {
   if (const Tableau* t = find_tableau(name)) {
     return std::make_unique<RungeKuttaStepper>(*t, state_dim, dt);
   }
   if (name == "symplectic_euler") return std::make_unique<SymplecticEulerStepper>(state_dim, dt);
   if (name == "rk4_adaptive") {
     if (!(tolerance > 0.0)) throw std::invalid_argument("rk4_adaptive needs a tolerance > 0");
-    return std::make_unique<AdaptiveRk4Stepper>(state_dim, dt, tolerance);
+    return std::make_unique<AdaptiveRk4Stepper>(state_dim, dt, tolerance, max_step);
   }
   std::string known;
   for (const auto& n : integrator_names()) known += (known.empty() ? "" : ", ") + n;
@@ -148,14 +150,26 @@ void SymplecticEulerStepper::step(Network& network, double t, double T, Vec& x) 
   network.project(x);
 }
 
-AdaptiveRk4Stepper::AdaptiveRk4Stepper(int state_dim, double initial_dt, double tolerance)
-    : rk4_(rk4_tableau(), state_dim), h_(initial_dt), tolerance_(tolerance),
-      full_(state_dim), half_(state_dim), mid_(state_dim), probe_(state_dim),
-      floor_(Vec::Ones(state_dim)) {}
+AdaptiveRk4Stepper::AdaptiveRk4Stepper(int state_dim, double initial_dt, double tolerance,
+                                       double max_step)
+    : rk4_(rk4_tableau(), state_dim),
+      h_(std::min(initial_dt, max_step)),
+      tolerance_(tolerance),
+      full_(state_dim),
+      half_(state_dim),
+      mid_(state_dim),
+      probe_(state_dim),
+      floor_(Vec::Ones(state_dim)),
+      f_start_(Vec::Zero(state_dim)),
+      max_step_(max_step),
+      prev_x0_(state_dim),
+      prev_f0_(state_dim),
+      prev_mid_(state_dim) {}
 
 double AdaptiveRk4Stepper::error_of(Network& network, double t, double h, const Vec& x) {
   full_ = x;
   rk4_.step(network, t, h, full_);
+  f_start_ = rk4_.stage_derivative(0);
   half_ = x;
   rk4_.step(network, t, h / 2, half_);
   mid_ = half_;
@@ -231,12 +245,51 @@ double AdaptiveRk4Stepper::switch_point(Network& network, double t, double h, co
   return lo > 0.0 ? lo : hi;  // land just before the switch, or cross it if it is at t
 }
 
+void AdaptiveRk4Stepper::measure_previous_interpolant(Network& network, const Vec& x) {
+  if (!prev_smooth_) return;
+  if (body_slots_.empty()) {
+    for (int j = 0; j < static_cast<int>(network.admittances().size()); ++j) {
+      const Slot s = network.admittance_slot(j);
+      for (int i = 0; i < s.state_size; ++i) body_slots_.push_back(s.state_offset + i);
+    }
+  }
+  hermite_state(prev_x0_, prev_f0_, x, f_start_, prev_h_, 0.5, probe_);
+  double error = 0.0;
+  for (int i : body_slots_) {
+    const double scale = tolerance_ * (floor_[i] + std::abs(prev_mid_[i]));
+    error = std::max(error, std::abs(probe_[i] - prev_mid_[i]) / scale);
+  }
+  if (!std::isfinite(error)) return;
+  // The interpolant's error grows as h^4.
+  dense_cap_ = prev_h_ * std::max(0.9 * std::pow(std::max(error, 1e-10), -0.25), 0.2);
+}
+
+void AdaptiveRk4Stepper::remember_step(const Vec& x, double h, bool smooth) {
+  prev_x0_ = x;
+  prev_f0_ = f_start_;
+  prev_mid_ = mid_;
+  prev_h_ = h;
+  prev_smooth_ = smooth;
+}
+
 double AdaptiveRk4Stepper::advance(Network& network, double t, double limit, Vec& x) {
   set_error_floors(network, x);
+  bool first_trial = true;
   for (;;) {
     const double h = std::min(h_, limit);
     const double error = error_of(network, t, h, x);
     const double factor = std::clamp(0.9 * std::pow(std::max(error, 1e-10), -0.2), 0.2, 4.0);
+    if (first_trial) {
+      // The trial's first evaluation is f at the previous step's end: that step's rows can
+      // be measured now. A step well past what keeps them is taken again, shorter (the cap
+      // also limits the growth below, so this is rare in a smooth phase).
+      first_trial = false;
+      measure_previous_interpolant(network, x);
+      if (h > 1.25 * dense_cap_) {
+        h_ = dense_cap_;
+        continue;
+      }
+    }
     if (error > 1.0) {
       h_ = h * factor;
       if (h_ < 1e-14 * std::max(1.0, std::abs(t))) {
@@ -258,6 +311,7 @@ double AdaptiveRk4Stepper::advance(Network& network, double t, double limit, Vec
         if (land < h) {
           const double taken = land;
           error_of(network, t, taken, x);  // the step to the switch, with its two halves
+          remember_step(x, taken, false);  // its end derivative jumps at the switch
           x = half_;
           crossing_ = true;
           h_ = std::max(2.0 * kSwitchPrecision * h, 1e-13 * std::max(1.0, std::abs(t)));
@@ -265,10 +319,12 @@ double AdaptiveRk4Stepper::advance(Network& network, double t, double limit, Vec
         }
       }
     }
+    remember_step(x, h, !crossing_);
     crossing_ = false;
     x = half_;
     // A step cut short by the limit says little about the next one: keep h_ then.
     if (h >= h_) h_ = h * factor;
+    h_ = std::min({h_, dense_cap_, max_step_});
     return h;
   }
 }

@@ -16,9 +16,13 @@
 //   kept. The step grows or shrinks to keep the error at the tolerance. A step whose end
 //   has an element in another regime than its start (Impedance::regime: stuck, sliding,
 //   open) is not accepted as it is: the switch is located by bisection of the step, the
-//   step ends just before it and a short one crosses it (docs/study.md).
+//   step ends just before it and a short one crosses it (docs/study.md). Its rows are a
+//   cubic Hermite of the state (core/row_sampler.hpp), whose error the stepper also keeps at
+//   the tolerance (measured at each step's middle, against the state the step passed
+//   through there), and its step is bounded by a few output rows (core/simulation.hpp).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,6 +61,9 @@ class Stepper {
   // Whether advance() evaluates the network first at (t, x) itself, so that what that
   // evaluation computes is the state's own (the run loop reads slips from it).
   virtual bool evaluates_start_first() const { return false; }
+  // The state derivative at the start of the step advance() just took, where a variable-step
+  // method keeps it for its dense output (core/row_sampler.hpp), or nullptr.
+  virtual const Vec* start_derivative() const { return nullptr; }
 
  protected:
   long evaluations_ = 0;
@@ -72,6 +79,8 @@ class RungeKuttaStepper final : public Stepper {
   bool evaluates_start_first() const override { return true; }  // explicit: stage 1 is at x
   // One step of exactly T from t (no projection skipped), for tests and benchmarks.
   void step(Network& network, double t, double T, Vec& x);
+  // Stage r's derivative in the last step (stage 0: at the step's start state).
+  const Vec& stage_derivative(int r) const { return xi_[r]; }
 
  private:
   struct Term {
@@ -86,7 +95,7 @@ class RungeKuttaStepper final : public Stepper {
   double dt_;
   std::vector<std::vector<Term>> stage_terms_;  // nonzero a_rj of each stage
   std::vector<Term> weights_;                   // nonzero b_r
-  std::vector<Vec> xi_;  // stage derivatives, allocated once
+  std::vector<Vec> xi_;                         // stage derivatives, allocated once
   Vec stage_x_;
 };
 
@@ -107,11 +116,15 @@ class SymplecticEulerStepper final : public Stepper {
 
 class AdaptiveRk4Stepper final : public Stepper {
  public:
-  // tolerance: mixed absolute/relative bound on the local error of each state entry.
-  AdaptiveRk4Stepper(int state_dim, double initial_dt, double tolerance);
+  // tolerance: mixed absolute/relative bound on the local error of each state entry;
+  // max_step: the longest step (simulate: a few output rows, core/simulation.hpp).
+  AdaptiveRk4Stepper(int state_dim, double initial_dt, double tolerance,
+                     double max_step = std::numeric_limits<double>::infinity());
   const std::string& name() const override { return name_; }
   int order() const override { return 4; }
   double advance(Network& network, double t, double limit, Vec& x) override;
+  // The first stage of the accepted step's single step of h: f(t, x; h / 2).
+  const Vec* start_derivative() const override { return &f_start_; }
   // Changes of regime located so far (each cost a bisection of the step).
   long switches() const { return switches_; }
 
@@ -127,7 +140,18 @@ class AdaptiveRk4Stepper final : public Stepper {
   static bool same_regimes(Network& network, const Vec& a, std::size_t a_regimes, const Vec& b,
                            double tau);
   // The step from (t, x) that lands just before the first change of regime within h.
-  double switch_point(Network& network, double t, double h, const Vec& x, std::size_t start_regimes);
+  double switch_point(Network& network, double t, double h, const Vec& x,
+                      std::size_t start_regimes);
+  // Dense output control: once f at the previous step's end is known (x, f_start_), the
+  // scaled error of that step's Hermite interpolant at its middle against the state the
+  // step itself passed through there (mid_), and from it the longest step whose
+  // interpolant keeps the tolerance (dense_cap_).
+  // Only the bodies' states are measured: they are what the rows show, while an impedance's
+  // state (a friction spring's e, of natural size F / K) moves on its own fast scale, which
+  // the step's error test already holds to the tolerance.
+  void measure_previous_interpolant(Network& network, const Vec& x);
+  // Keeps what measure_previous_interpolant needs of the step just accepted from x.
+  void remember_step(const Vec& x, double h, bool smooth);
 
   std::string name_ = "rk4_adaptive";
   RungeKuttaStepper rk4_;
@@ -135,14 +159,25 @@ class AdaptiveRk4Stepper final : public Stepper {
   double tolerance_;
   Vec full_, half_, mid_, probe_;  // mid_: after the first half step
   Vec floor_;
+  Vec f_start_;  // start_derivative()
+  double max_step_;
+  // The previous step (start, start derivative, middle, length), whether its interpolant is
+  // measured (not across a regime switch, where the derivatives jump), and the step cap.
+  Vec prev_x0_, prev_f0_, prev_mid_;
+  double prev_h_ = 0.0;
+  bool prev_smooth_ = false;
+  std::vector<int> body_slots_;  // the admittances' state entries
+  double dense_cap_ = std::numeric_limits<double>::infinity();
   bool crossing_ = false;  // the next step crosses a located switch: not located again
   long switches_ = 0;
 };
 
 // euler | symplectic_euler | heun | rk4 use dt; rk4_adaptive uses dt as its first step and
 // needs tolerance > 0. Throws std::invalid_argument naming the known integrators.
+// max_step bounds rk4_adaptive's step (the others ignore it).
 std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,
-                                      double tolerance = 0.0);
+                                      double tolerance = 0.0,
+                                      double max_step = std::numeric_limits<double>::infinity());
 // The tableau of an explicit RK integrator name, or nullptr (symplectic Euler, adaptive).
 const Tableau* find_tableau(const std::string& name);
 // Same, but throws std::invalid_argument for a name without a tableau.

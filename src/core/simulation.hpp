@@ -1,6 +1,8 @@
-// Owns time: steps a network with one integrator, samples its signals at the output rate
-// (independent of dt: rows are interpolated between the two steps around each sample
-// time), and stops at the first sign of numerical instability.
+// Owns time: steps a network with one integrator and calls its observers around each step
+// (core/run_observer.hpp): rows at the output rate, independent of dt (core/row_sampler.hpp:
+// linear between fixed steps, a cubic Hermite of the state between variable ones), slip
+// events (core/slip_observer.hpp), the first sign of numerical instability
+// (core/instability_observer.hpp), interrupts and progress.
 #pragma once
 
 #include <atomic>
@@ -20,8 +22,8 @@ namespace stiction::core {
 
 struct RunOptions {
   std::string integrator = "rk4";
-  double dt = 1e-4;            // the step (rk4_adaptive: its first step)
-  double tolerance = 0.0;      // rk4_adaptive only
+  double dt = 1e-4;        // the step (rk4_adaptive: its first step)
+  double tolerance = 0.0;  // rk4_adaptive only
   double duration = 1.0;
   double output_rate = 1000.0;  // rows per second of simulated time
   // Stop as unstable when the network energy (admittances plus springs) exceeds its initial
@@ -58,7 +60,7 @@ struct RunResult {
   long evaluations = 0;  // network evaluations (the integrator's cost)
   double wall_seconds = 0.0;
   std::optional<Instability> instability;
-  bool interrupted = false;  // stopped early through RunOptions::stop
+  bool interrupted = false;              // stopped early through RunOptions::stop
   std::vector<SlipHistory> slip_events;  // one per impedance with a slip speed
 };
 
@@ -69,6 +71,17 @@ using ProgressCallback = std::function<void(double fraction_done)>;
 inline double energy_margin(const RunOptions& options, double initial_energy, double work) {
   return work + options.energy_growth_limit * (std::abs(initial_energy) + work) + 1e-9;
 }
+
+// rk4_adaptive's longest step: kAdaptiveRowsPerStep output rows. Its error control alone lets
+// a step grow without bound in a smooth phase (a thrown mass took 8 steps over 0.9 s), and
+// then (1) the slip and instability monitors, which see the state at step ends only, would
+// watch it more coarsely than the rows show it, (2) the signals of a row are written with the
+// step taken as tau, and Kikuuwe friction's force depends on tau (its stuck damping is of
+// order tau K), so an unbounded step changes the friction shown, and (3) the Hermite rows'
+// error grows as h^4 while the step's own error check sees only the step's end. A bound of a
+// few rows costs little where the output is dense enough to show the motion anyway.
+inline constexpr double kAdaptiveRowsPerStep = 4.0;
+double adaptive_step_bound(const RunOptions& options);
 
 // std::invalid_argument when the options break core/run_limits.hpp (checked before anything
 // is allocated). With a sink, rows go to it in blocks as they are produced (memory

@@ -1,0 +1,69 @@
+// Writes the run's rows, [t, signal...] at the output rate (RunOptions::output_rate),
+// independent of the step: into the result's trajectory, or in blocks of kBlockRows to a
+// RowSink. Angles reported modulo 2 pi are unwrapped: each value is moved by whole turns to
+// the nearest of the previous row's.
+//
+// - A fixed step: rows at step ends are the step's signals; a row strictly inside a step is
+//   the linear blend of the signals at its two ends (an O(dt^2) error of the output only, and
+//   the rows of every existing run, bit for bit).
+// - A variable step (rk4_adaptive, whose steps span several rows in smooth phases): rows come
+//   from the state interpolated by a cubic Hermite (core/hermite.hpp) from both ends' values
+//   and derivatives, quaternions renormalized (Network::project), then
+//   Network::write_signals at the row's time with the step taken as tau. The derivative at a
+//   step's start is the stepper's own first evaluation (Stepper::start_derivative), and at
+//   its end that of the next step: a step's rows are written once the next step is taken
+//   (no extra evaluation), and the last step's at finish(), which evaluates the network once.
+#pragma once
+
+#include <vector>
+
+#include "core/integrator.hpp"
+#include "core/network.hpp"
+#include "core/row_sink.hpp"
+#include "core/run_observer.hpp"
+#include "core/simulation.hpp"
+
+namespace stiction::core {
+
+class RowSampler final : public RunObserver {
+ public:
+  // Writes the row at t = 0 from x0 at once.
+  RowSampler(Network& network, const RunOptions& options, const Stepper& stepper, RunResult& result,
+             RowSink* sink, const Vec& x0);
+  Before before_step(const StepPlan& plan) override;
+  Verdict after_step(const StepTaken& step) override;
+  // Writes what is pending, flushes the sink and keeps the last row in the trajectory.
+  void finish(const Vec& x) override;
+
+ private:
+  void emit(double ts, const Vec& values);
+  void flush();
+  void sample_linear(const StepTaken& step);
+  // Writes the rows in (t0_, t1_] from the pending step, its end derivative in f1_.
+  void sample_dense();
+
+  static constexpr std::size_t kBlockRows = 256;
+
+  Network& network_;
+  const Stepper& stepper_;
+  RunResult& result_;
+  RowSink* sink_;
+  bool dense_;
+  double T_;  // RunOptions::dt
+  double sample_period_;
+  long total_samples_;
+  long sample_ = 0;           // the next row to write
+  int n_;                     // signals per row
+  std::vector<int> wrapped_;  // signal columns that are angles modulo 2 pi
+  std::vector<double> block_;
+  std::size_t block_rows_ = 0;
+  std::vector<double> row_, last_row_;
+  bool emitted_ = false;
+  Vec row_prev_, row_now_;  // signals at a step's two ends (linear) or at a row (dense)
+  // Dense output: the step whose rows wait for its end derivative.
+  bool pending_ = false;
+  double t0_ = 0.0, t1_ = 0.0;
+  Vec x0_, f0_, x1_, f1_, x_row_;
+};
+
+}  // namespace stiction::core

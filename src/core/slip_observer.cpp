@@ -1,0 +1,97 @@
+#include "core/slip_observer.hpp"
+
+namespace stiction::core {
+
+SlipObserver::SlipObserver(Network& network, const RunOptions& options, const Stepper& stepper,
+                           RunResult& result, const Vec& x0)
+    : network_(network), histories_(result.slip_events) {
+  const double resolution = options.event_resolution >= 0.0 ? options.event_resolution : options.dt;
+  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
+    const auto& imp = *network.impedances()[i];
+    if (network.capabilities(i).slip == nullptr) continue;
+    const auto it = options.stick_thresholds.find(imp.name());
+    const double threshold =
+        it != options.stick_thresholds.end() ? it->second : options.default_stick_threshold;
+    slipping_.push_back(i);
+    contacts_.push_back(network.capabilities(i).contact);
+    histories_.push_back({imp.name(), SlipMonitor(threshold, resolution)});
+    observe(slipping_.size() - 1, 0.0, x0, options.dt);
+  }
+  capture_ = !slipping_.empty() && stepper.evaluates_start_first();
+  if (capture_) {
+    for (int i : slipping_) {
+      captured_inputs_.push_back(network.captured_input(i));
+      captured_states_.push_back(network.captured_state(i));
+    }
+  }
+}
+
+void SlipObserver::observe_from(std::size_t m, double time, ConstVecRef x_hat, ConstVecRef y,
+                                double tau) {
+  const Capabilities& c = network_.capabilities(slipping_[m]);
+  SlipMonitor& monitor = histories_[m].monitor;
+  const bool open = contacts_[m] != nullptr && !(contacts_[m]->contact_normal_force(x_hat) > 0.0);
+  const Vec3 slip = c.slip->slip_velocity(x_hat);
+  // The friction law (Kikuuwe: stuck while within its limit), asked only where it matters
+  // (it costs an evaluation): while stuck, to bound a slip onset, and above the threshold.
+  SlipMonitor::Law law = SlipMonitor::Law::unknown;
+  if (!open && c.friction != nullptr && (monitor.sticking() || slip.norm() > monitor.threshold())) {
+    law = c.friction->regime(x_hat, y, tau) == 1 ? SlipMonitor::Law::held
+                                                 : SlipMonitor::Law::released;
+  }
+  monitor.observe(time, slip, open, law);
+}
+
+void SlipObserver::observe(std::size_t m, double time, const Vec& state, double tau) {
+  const int i = slipping_[m];
+  const Slot s = network_.impedance_slot(i);
+  observe_from(m, time, network_.impedance_input(i, state),
+               state.segment(s.state_offset, s.state_size), tau);
+}
+
+void SlipObserver::settle(const Vec& state) {
+  if (!pending_) return;
+  pending_ = false;
+  const bool served = requested_ && !network_.capture_pending();
+  requested_ = false;
+  if (!served) {
+    network_.cancel_capture();
+    for (std::size_t m = 0; m < slipping_.size(); ++m)
+      observe(m, pending_time_, state, pending_tau_);
+    return;
+  }
+  for (std::size_t m = 0; m < slipping_.size(); ++m) {
+    observe_from(m, pending_time_, captured_inputs_[m], captured_states_[m], pending_tau_);
+  }
+}
+
+RunObserver::Before SlipObserver::before_step(const StepPlan&) {
+  if (pending_) {
+    network_.capture_slip_inputs_next();
+    requested_ = true;
+  }
+  return {};
+}
+
+// Served by the step's first evaluation; a fixed stepper that threw changed x only once it
+// had evaluated, so x is then still the pending state.
+void SlipObserver::after_advance(const Vec& x) { settle(x); }
+
+Verdict SlipObserver::after_step(const StepTaken& step) {
+  const double tau = step.t_now - step.t;
+  if (capture_) {
+    pending_ = true;
+    pending_time_ = step.t_now;
+    pending_tau_ = tau;
+  } else {
+    for (std::size_t m = 0; m < slipping_.size(); ++m) observe(m, step.t_now, step.x, tau);
+  }
+  return Verdict::go_on;
+}
+
+void SlipObserver::finish(const Vec& x) {
+  settle(x);  // the state the run ends at (no step after it)
+  for (auto& history : histories_) history.monitor.finish();
+}
+
+}  // namespace stiction::core
