@@ -2,13 +2,18 @@
 // (energy_scenes.hpp) run with every fixed-step integrator at 0.8x, 1.0x, 1.3x and 1.6x
 // the step limit `stiction check` predicts for them (core::sample_states +
 // core::predict_step_limit, as src/app/check.cpp calls them). A run that rose above 1% of
-// its energy scale beyond the sources' work (core/energy_budget.hpp; checked here at every
-// step, the monitor checks every 8th) must not end without an instability, and a run at
-// 0.8x the limit, or a bundled scene at its own step, must not be stopped.
+// its energy scale beyond the sources' work (core/energy_budget.hpp; recomputed here at
+// every step of the same steps, with the work summed here) must not end without an
+// instability; no run may be stopped without such a rise (a false alarm), and no bundled
+// scene at its own step may be stopped at all. A run at 0.8x the limit that is stopped is
+// counted apart: there the integrator did gain energy (the prediction leaves out modes that
+// grow by less than 5% per step, core/stability.hpp, e.g. explicit Euler on a contact).
 //
 // The fast cases run by default; `test_extremes "[.energy_table]"` runs the full set and
 // prints the table of docs/study.md ("Energy monitor: generated scenes at multiples of the
 // predicted limit"); STICTION_ENERGY_TABLE_SEEDS and _DURATION change its size.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -16,7 +21,6 @@
 #include <fstream>
 #include <map>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "core/energy_budget.hpp"
@@ -55,7 +59,8 @@ Outcome run_and_watch(const fs::path& path, const std::string& integrator, doubl
   if (out.flagged) out.reason = result.instability->reason;
   const double end = out.flagged ? result.instability->time : options.duration;
 
-  core::Network& network = *scene.network;
+  auto fresh = scene::load_scene(path.string());  // no state left from the run
+  core::Network& network = *fresh.network;
   auto stepper = core::make_stepper(integrator, network.state_dim(), dt, options.tolerance);
   core::Vec x = network.initial_state();
   core::EnergyBudget budget(network, options.energy_tolerance);
@@ -63,11 +68,13 @@ Outcome run_and_watch(const fs::path& path, const std::string& integrator, doubl
   const bool sources = network.has_sources();
   double power = sources ? std::abs(network.source_power(0.0, x)) : 0.0, work = 0.0;
   const long steps = static_cast<long>(std::ceil(end / dt - 1e-9));
+  const long total = static_cast<long>(std::ceil(options.duration / dt - 1e-9));
   double t = 0.0;
   for (long k = 0; k < steps; ++k) {
-    const double t_next = k + 1 >= steps ? end : static_cast<double>(k + 1) * dt;
-    stepper->advance(network, t, t_next - t, x);
-    t = t_next;
+    // The step and its time exactly as core::simulate takes them (the same bits: a run near
+    // its limit amplifies a difference in the last bit of a step).
+    stepper->advance(network, t, options.duration - t, x);
+    t = k + 1 >= total ? options.duration : static_cast<double>(k + 1) * dt;
     if (!x.allFinite()) {
       out.rose = true;
       out.worst_rise = INFINITY;
@@ -119,8 +126,7 @@ std::vector<Case> predicted_cases(const fs::path& dir, const std::vector<unsigne
   return cases;
 }
 
-std::map<double, Tally> measure(const fs::path& dir, const std::vector<Case>& cases,
-                                 bool verbose) {
+std::map<double, Tally> measure(const fs::path& dir, const std::vector<Case>& cases, bool verbose) {
   std::map<double, Tally> table;
   for (const Case& c : cases) {
     const fs::path path = dir / (c.kind + "_" + std::to_string(c.seed) + ".toml");
@@ -130,7 +136,7 @@ std::map<double, Tally> measure(const fs::path& dir, const std::vector<Case>& ca
       ++tally.runs;
       tally.flagged += o.flagged;
       const bool missed = !o.flagged && o.rose;
-      const bool false_alarm = o.flagged && multiple < 1.0;
+      const bool false_alarm = o.flagged && !o.rose;
       tally.missed += missed;
       tally.false_alarms += false_alarm;
       if (verbose || missed || false_alarm) {
@@ -140,9 +146,8 @@ std::map<double, Tally> measure(const fs::path& dir, const std::vector<Case>& ca
                     false_alarm ? ("  FALSE ALARM: " + o.reason).c_str() : "");
       }
       INFO(c.kind << " seed " << c.seed << " " << c.integrator << " at " << multiple
-                  << "x the predicted limit " << c.limit << " s: "
-                  << (o.flagged ? o.reason : "ok") << ", worst rise " << o.worst_rise
-                  << " of the energy scale");
+                  << "x the predicted limit " << c.limit << " s: " << (o.flagged ? o.reason : "ok")
+                  << ", worst rise " << o.worst_rise << " of the energy scale");
       CHECK_FALSE(missed);
       CHECK_FALSE(false_alarm);
     }
@@ -151,11 +156,12 @@ std::map<double, Tally> measure(const fs::path& dir, const std::vector<Case>& ca
 }
 
 void print_table(const std::map<double, Tally>& table) {
-  std::printf("| multiple of the predicted limit | runs | flagged unstable | exit 0 with a rise "
-              "> 1%% of the scale | false alarms (flagged at 0.8x) |\n|---|---|---|---|---|\n");
+  std::printf(
+      "| multiple of the predicted limit | runs | flagged unstable | exit 0 with a rise "
+      "> 1%% of the scale | false alarms (flagged, rise <= 1%%) |\n|---|---|---|---|---|\n");
   for (const auto& [multiple, t] : table) {
-    std::printf("| %.1fx | %d | %d | %d | %s |\n", multiple, t.runs, t.flagged, t.missed,
-                multiple < 1.0 ? std::to_string(t.false_alarms).c_str() : "-");
+    std::printf("| %.1fx | %d | %d | %d | %d |\n", multiple, t.runs, t.flagged, t.missed,
+                t.false_alarms);
   }
 }
 
@@ -197,8 +203,8 @@ TEST_CASE("energy monitor: the full table over generated scenes", "[.energy_tabl
 }
 
 TEST_CASE("energy monitor: no bundled scene is stopped at its own step", "[energy][extreme]") {
-  for (const auto& [name, path] : scene::bundled_scenes()) {
-    auto scene = scene::load_scene(path);
+  for (const auto& [name, description] : scene::bundled_scenes()) {
+    auto scene = scene::load_scene(name);
     core::RunOptions options = scene.run;
     options.duration = std::min(options.duration, 3.0);  // the tests' time budget
     const auto result = core::simulate(*scene.network, options);
@@ -245,8 +251,8 @@ TEST_CASE("energy monitor: a pure numerical gain of a few percent is caught", "[
   REQUIRE(result.instability);
   CHECK(result.instability->time < 0.1);
   // With a tolerance of 1 (the old key's name), a gain below 100% of the scale passes.
-  auto loose = scene::load_scene((dir / "spring.toml").string(),
-                                 {"simulation.energy_growth_limit=1.0"});
+  auto loose =
+      scene::load_scene((dir / "spring.toml").string(), {"simulation.energy_growth_limit=1.0"});
   CHECK_FALSE(core::simulate(*loose.network, loose.run).instability);
   fs::remove_all(dir);
 }
