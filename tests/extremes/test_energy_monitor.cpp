@@ -87,8 +87,12 @@ Outcome run_and_watch(const fs::path& path, const std::string& integrator, doubl
     }
     budget.observe(x, work);
     const double beyond = budget.rise() - budget.rounding();
-    if (budget.scale() > 0.0) out.worst_rise = std::max(out.worst_rise, beyond / budget.scale());
-    if (beyond > 0.01 * budget.scale()) out.rose = true;
+    if (budget.scale() > 0.0 && k + 1 >= core::kSettleObservations) {
+      out.worst_rise = std::max(out.worst_rise, beyond / budget.scale());
+    }
+    // After the monitor's first kSettleObservations steps, where it gives no verdict (a
+    // first-order method started from rest: core/energy_budget.hpp).
+    if (k + 1 >= core::kSettleObservations && beyond > 0.01 * budget.scale()) out.rose = true;
   }
   return out;
 }
