@@ -25,7 +25,7 @@ std::string cache_key(const scene::Scene& scene, const core::RunOptions& pilot) 
   key << "step_check 1\n"
       << scene.path.string() << "\n"
       << pilot.integrator << " dt " << pilot.dt << " duration " << pilot.duration << " of "
-      << scene.run.duration << " energy " << scene.run.energy_growth_limit << "\n"
+      << scene.run.duration << " energy " << scene.run.energy_tolerance << "\n"
       << scene.document;
   return key.str();
 }

@@ -5,14 +5,14 @@
 
 namespace stiction::core {
 
-FeedbackMonitor::FeedbackMonitor(Network& network, const RunOptions& options, const Vec& x0,
-                                 double initial_energy)
+FeedbackMonitor::FeedbackMonitor(Network& network, const RunOptions& options, const Vec& x0)
     : network_(network),
       options_(options),
-      initial_energy_(initial_energy),
       active_(network.has_feedback_sources() && options.integrator != "rk4_adaptive" &&
-              std::isfinite(initial_energy)) {
+              std::isfinite(network.energy(x0))),
+      driven_(network, options.energy_tolerance) {
   if (!active_) return;
+  driven_.observe(x0, 0.0);
   power_checked_ = std::abs(network.source_power(0.0, x0, true));
   x_checked_ = x0;
 }
@@ -36,19 +36,18 @@ StepRadius FeedbackMonitor::radius(double t, const Vec& x_prev, const Vec& x) {
 }
 
 std::optional<std::string> FeedbackMonitor::check(double t, const Vec& x_prev, const Vec& x,
-                                                  double energy, double all_work) {
+                                                  const EnergyBudget& all_sources) {
   if (!active_) return std::nullopt;
   const double power = std::abs(network_.source_power(t, x, true));
   driven_work_ += 0.5 * (power_checked_ + power) * (t - t_checked_);
   power_checked_ = power;
   std::optional<std::string> unstable;
+  driven_.observe(x, driven_work_);
   // Growth past what the time-driven sources allow: the feedback's work, or the integrator.
-  const double growth = energy - initial_energy_;
-  const double excess = growth - energy_margin(options_, initial_energy_, driven_work_);
-  if (excess > 0.0 && excess > 2.0 * verified_excess_) {
+  const double excess = driven_.rise() - driven_.allowed();
+  if (driven_.monitored() && excess > 0.0 && excess > 2.0 * verified_excess_) {
     const StepRadius r = radius(t, x_prev, x);
-    const double headroom = energy_margin(options_, initial_energy_, all_work) - growth;
-    if (unstable_step(r, headroom)) {
+    if (unstable_step(r, all_sources.headroom())) {
       char text[240];
       std::snprintf(text, sizeof text,
                     "energy grew beyond what the time-driven sources put in, and the step map "

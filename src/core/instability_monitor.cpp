@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace stiction::core {
 namespace {
@@ -27,11 +28,11 @@ std::string fastest_growing(Network& network, const Vec& before, const Vec& afte
 
 InstabilityMonitor::InstabilityMonitor(Network& network, const RunOptions& options, const Vec& x0)
     : network_(network),
-      options_(options),
-      initial_energy_(network.energy(x0)),
       has_sources_(network.has_sources()),
       power_checked_(has_sources_ ? std::abs(network.source_power(0.0, x0)) : 0.0),
-      feedback_(network, options, x0, initial_energy_) {
+      budget_(network, options.energy_tolerance),
+      feedback_(network, options, x0) {
+  budget_.observe(x0, 0.0);
   for (std::size_t i = 0; i < network.impedances().size(); ++i) {
     const Impedance& imp = *network.impedances()[i];
     const Slot s = network.impedance_slot(static_cast<int>(i));
@@ -50,14 +51,17 @@ std::optional<Instability> InstabilityMonitor::check(double t, const Vec& x_prev
     power_checked_ = power;
     t_checked_ = t;
   }
-  const double energy = network_.energy(x);
+  budget_.observe(x, work_in_);
   // With feedback sources, their work is neither credited nor charged: FeedbackMonitor.
-  if (!feedback_.active() && std::isfinite(initial_energy_) && std::isfinite(energy) &&
-      energy - initial_energy_ > energy_margin(options_, initial_energy_, work_in_)) {
-    return Instability{t, fastest_growing(network_, x_prev, x),
-                       "energy grew beyond what the sources put in"};
+  if (!feedback_.active() && budget_.exceeded()) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "energy grew beyond what the sources put in (by %.3g J, past the tolerance "
+                  "%.3g J of the energy scale %.3g J)",
+                  budget_.rise(), budget_.allowed(), budget_.scale());
+    return Instability{t, fastest_growing(network_, x_prev, x), text};
   }
-  if (auto reason = feedback_.check(t, x_prev, x, energy, work_in_)) {
+  if (auto reason = feedback_.check(t, x_prev, x, budget_)) {
     return Instability{t, fastest_growing(network_, x_prev, x), std::move(*reason)};
   }
   for (const auto& b : bounded_) {

@@ -1,5 +1,6 @@
 // The run's monitor beyond finiteness (core::simulate asks it every few steps): the network
-// energy against its start plus what the sources put in (energy_margin), and every state with
+// energy less what the sources put in, against its lowest value so far (core/energy_budget.hpp:
+// any rise past a tolerance of the scene's energy scale is numerical), and every state with
 // a bound its model keeps (BoundedState) against twice that bound, for instabilities whose
 // error dissipates and so does not show in the energy.
 #pragma once
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/energy_budget.hpp"
 #include "core/feedback_monitor.hpp"
 #include "core/network.hpp"
 #include "core/simulation.hpp"
@@ -28,13 +30,12 @@ class InstabilityMonitor {
     double limit;
   };
   Network& network_;
-  const RunOptions& options_;
-  double initial_energy_;
   bool has_sources_;
   double work_in_ = 0.0;  // |work| done by sources so far
   double power_checked_;
   double t_checked_ = 0.0;
   std::vector<BoundedState> bounded_;
+  EnergyBudget budget_;       // with the work of all sources credited
   FeedbackMonitor feedback_;  // feedback sources' work: core/feedback_monitor.hpp
 };
 

@@ -26,11 +26,9 @@ struct RunOptions {
   double tolerance = 0.0;  // rk4_adaptive only
   double duration = 1.0;
   double output_rate = 1000.0;  // rows per second of simulated time
-  // Stop as unstable when the network energy (admittances plus springs) exceeds its initial
-  // value plus the work done by sources by more than this factor times (|initial energy|
-  // + that work): passive elements can only store or dissipate, so such growth is the
-  // integrator's doing.
-  double energy_growth_limit = 1.0;
+  // Stop as unstable when the network energy less the sources' work rises above its lowest
+  // value by more than this fraction of the scene's energy scale: core/energy_budget.hpp.
+  double energy_tolerance = 0.01;
   // Slip speed below which a contact or joint counts as stuck, per impedance name.
   std::map<std::string, double> stick_thresholds;
   double default_stick_threshold = 1e-3;  // m/s or rad/s
@@ -65,12 +63,6 @@ struct RunResult {
 };
 
 using ProgressCallback = std::function<void(double fraction_done)>;
-
-// How far the network energy may rise above its initial value, with `work` done by the
-// sources so far, before the monitor calls the run unstable (RunOptions::energy_growth_limit).
-inline double energy_margin(const RunOptions& options, double initial_energy, double work) {
-  return work + options.energy_growth_limit * (std::abs(initial_energy) + work) + 1e-9;
-}
 
 // rk4_adaptive's longest step: kAdaptiveRowsPerStep output rows. Its error control alone lets
 // a step grow without bound in a smooth phase (a thrown mass took 8 steps over 0.9 s), and

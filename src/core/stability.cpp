@@ -8,17 +8,11 @@
 #include <utility>
 #include <vector>
 
+#include "core/energy_budget.hpp"
 #include "core/integrator.hpp"
 
 namespace stiction::core {
 namespace {
-
-// Headroom of the energy monitor (simulation.cpp) at a state of energy `energy`, with
-// `work` done by sources so far.
-double headroom(const RunOptions& options, double initial_energy, double energy, double work) {
-  if (!std::isfinite(initial_energy) || !std::isfinite(energy)) return INFINITY;  // unmonitored
-  return energy_margin(options, initial_energy, work) - (energy - initial_energy);
-}
 
 // Runs the scene at its options and calls visit(step, t, x, work) before every step.
 template <typename Visit>
@@ -264,8 +258,16 @@ std::vector<TimedState> sample_states(Network& network, const RunOptions& option
   std::map<std::size_t, long> seen, taken;
   std::vector<TimedState> states;
   std::vector<long> rank;  // of each state among those taken from its regime (0: the first)
-  const double initial_energy = network.energy(network.initial_state());
-  walk_run(network, options, [&](long, double t, const Vec& x, double work) {
+  // The energy monitor's headroom at each state, from the same budget the run's monitor
+  // keeps (core/energy_budget.hpp), here updated at every step.
+  EnergyBudget budget(network, options.energy_tolerance);
+  // The monitor gives its first verdict at step kSettleObservations: a state before that is
+  // judged with the headroom there (none is given if the run is shorter).
+  double first_verdict_headroom = INFINITY;
+  std::vector<std::size_t> before_verdict;
+  walk_run(network, options, [&](long k, double t, const Vec& x, double work) {
+    budget.observe(x, work);
+    if (k == kSettleObservations) first_verdict_headroom = budget.headroom();
     const std::size_t regime = network.regime_signature(x, options.dt);
     const long total = steps_in[regime];
     const long index = seen[regime]++;
@@ -273,10 +275,12 @@ std::vector<TimedState> sample_states(Network& network, const RunOptions& option
     // evenly spread, or every step of a regime shorter than that.
     const long n = std::max(1, per_regime);
     if (index == 0 || (index * n) / total != ((index - 1) * n) / total) {
-      states.push_back({t, x, headroom(options, initial_energy, network.energy(x), work)});
+      if (k < kSettleObservations) before_verdict.push_back(states.size());
+      states.push_back({t, x, budget.headroom()});
       rank.push_back(taken[regime]++);
     }
   });
+  for (std::size_t i : before_verdict) states[i].energy_headroom = first_verdict_headroom;
   // Bounded whatever the scene (a box bouncing on eight corners passes through hundreds of
   // regimes): every regime's first state before any regime's second, and so on; the
   // states of the last rank that fits only in part evenly spread over the run.

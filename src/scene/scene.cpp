@@ -81,7 +81,14 @@ core::RunOptions read_simulation(TableReader& root) {
   run.dt = sim->positive("dt", run.dt);
   run.duration = sim->positive("duration", run.duration);
   run.output_rate = sim->positive("output_rate", run.output_rate);
-  run.energy_growth_limit = sim->positive("energy_growth_limit", run.energy_growth_limit);
+  // energy_growth_limit: the key's old name, still read (the same number, now a fraction of
+  // the scene's energy scale: core/energy_budget.hpp).
+  if (sim->has("energy_growth_limit") && sim->has("energy_tolerance")) {
+    sim->fail("energy_growth_limit", "give energy_tolerance or its old name, not both");
+  }
+  run.energy_tolerance = sim->positive(
+      sim->has("energy_growth_limit") ? "energy_growth_limit" : "energy_tolerance",
+      run.energy_tolerance);
   if (const auto violation = core::check_run_limits(run)) sim->fail(violation->key, violation->message);
   if (sim->has("event_resolution")) {
     run.event_resolution = sim->non_negative("event_resolution", run.event_resolution);

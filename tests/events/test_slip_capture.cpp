@@ -176,7 +176,12 @@ TEST_CASE("slip capture: simulate's events equal those of a loop evaluating the 
       scene::Scene sc = random_scene(rng, 2);
       core::RunOptions options = sc.run;
       options.integrator = integrator;
-      if (std::string(integrator) == "euler") options.dt = 2e-5;  // stable with stiffness 1e6
+      if (std::string(integrator) == "euler") {
+        options.dt = 2e-5;  // stable with stiffness 1e6
+        // but not free of Euler's energy gain on the contacts' lightly damped modes, which the
+        // 1% energy monitor stops; this test compares events, not energy.
+        options.energy_tolerance = 1e6;
+      }
       check_same_events(sc, options);
     }
   }

@@ -44,15 +44,19 @@ TEST_CASE("sphere_roll rk4: the same prediction from 3, 10 or 30 states per regi
   }
 }
 
-TEST_CASE("sphere_roll: a run at 0.9x of the predicted rk4 and symplectic_euler limits is clean, "
+TEST_CASE("sphere_roll: a run at 0.5x of the predicted rk4 and symplectic_euler limits is clean, "
           "at 1.1x it is caught", "[stability]") {
+  // Not 0.9x: the energy monitor now sees gains of 1% of the energy scale (issue 26), and
+  // sphere_roll gains that much below its linear limit (a mode growing < 5% per step is left
+  // out of the prediction): symplectic Euler from 0.6x in the 2 mm fall onto the plane
+  // (+1.1%), rk4 at 0.9x in the roll (+4.7%).
   for (const std::string integrator : {"rk4", "symplectic_euler"}) {
     const auto limit = predict("sphere_roll", integrator, 10);
     REQUIRE_FALSE(limit.unbounded);
     REQUIRE(limit.max_step > 0.0);
-    const bool below = runs_clean("sphere_roll", integrator, 0.9 * limit.max_step);
+    const bool below = runs_clean("sphere_roll", integrator, 0.5 * limit.max_step);
     const bool above = runs_clean("sphere_roll", integrator, 1.1 * limit.max_step);
-    std::printf("sphere_roll %s: predicted %.4g s (chatter-free below %.4g s); 0.9x %s, 1.1x %s\n",
+    std::printf("sphere_roll %s: predicted %.4g s (chatter-free below %.4g s); 0.5x %s, 1.1x %s\n",
                 integrator.c_str(), limit.max_step, limit.chatter_free_step,
                 below ? "clean" : "unstable", above ? "clean" : "unstable");
     CHECK(below);
@@ -98,8 +102,11 @@ struct Drop {
 // `only` >= 0 keeps that sphere alone.
 std::string resting_spheres(const std::vector<std::array<double, 3>>& spheres, int only,
                             const Drop& drop = {}) {
+  // energy_tolerance: the energy monitor's budget is the whole scene's (one scale, one rise),
+  // so whether a stuck friction's chatter counts would couple the spheres; these tests are
+  // about the step map's groups, so chatter never counts here.
   std::string text = "name = \"resting\"\n[simulation]\nintegrator = \"rk4\"\ndt = 1e-4\nduration = " +
-                     std::to_string(drop.duration) + "\n";
+                     std::to_string(drop.duration) + "\nenergy_tolerance = 1e6\n";
   for (std::size_t i = 0; i < spheres.size(); ++i) {
     if (only >= 0 && static_cast<std::size_t>(only) != i) continue;
     const auto [stiffness, mass, radius] = spheres[i];

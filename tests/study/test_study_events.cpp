@@ -26,15 +26,21 @@ TEST_CASE("study roll_to_slip: a slip-onset error for every integrator") {
   std::vector<std::string> measured;
   for (const auto& row : r.rows) {
     INFO(row.integrator << " dt " << row.dt << " tol " << row.tolerance << " " << row.status);
+    // Forward Euler amplifies the stuck contact's barely damped vibration (no stable
+    // interval on the imaginary axis, docs/study.md): its energy grows past 1% of the scene's
+    // tiny energy scale (the ball at rest), which the energy monitor stops as unstable.
+    if (row.integrator == "euler" && row.status == "unstable") {
+      measured.push_back(row.integrator);
+      continue;
+    }
     REQUIRE(row.status == "ok");
     REQUIRE(row.event_relative_errors.size() == 1);
     std::printf("%-16s %-8g slip onset %.7f s, error %.2e (relative)\n", row.integrator.c_str(),
                 row.tolerance > 0.0 ? row.tolerance : row.dt, row.event_times[0],
                 row.event_relative_errors[0]);
     CHECK(std::isfinite(row.event_relative_errors[0]));
-    // Forward Euler amplifies the stuck contact's barely damped vibration (no stable
-    // interval on the imaginary axis, docs/study.md) until the friction saturates: its
-    // discrete model really slips early. Every other method finds t*.
+    // Where the monitor lets Euler finish, its discrete model really slips early (the
+    // vibration grows until the friction saturates). Every other method finds t*.
     if (row.integrator != "euler") CHECK(row.event_relative_errors[0] < 5e-3);
     measured.push_back(row.integrator);
   }

@@ -1,0 +1,115 @@
+// What the run's energy monitor allows the network energy to do (issue 26, item 2). Passive
+// elements only store or dissipate, so the network energy minus the work the sources put in
+// can only fall: every rise of E - W above the lowest value it has had is the integrator's
+// doing, whatever its size. It is called an instability once it exceeds
+//   tolerance * scale + rounding,
+// where the scale is the energy the scene actually moves around, not its absolute level:
+//   scale    = the largest kinetic energy plus spring energy seen so far
+//              (admittances' kinetic energy; what contacts, friction springs and springs
+//              store) + the work the sources have put in so far;
+//   rounding = 1e4 * eps * the largest sum of |component energies| seen so far.
+// Potential energy of gravity enters only the rounding term: a block resting on a slope at
+// z = 1000 m gets the same bound as at z = 0 (up to rounding of m g z, ~1e-9 of it), and a
+// falling body's bound grows with the speed it gains. `tolerance` is
+// RunOptions::energy_tolerance ([simulation] energy_tolerance, default 0.01).
+//
+// During the first kSettleObservations observations the tolerance is widened by 1/(2k) at
+// the k-th: a first-order method started from rest gains KE/(2k) at its k-th step (explicit
+// Euler's first step adds speed but no fall), an error of 1/(2k) of all the energy moved so
+// far that no a-posteriori scale can absorb; it is below 1% from the 50th step on. A runaway
+// grows geometrically and passes that widened bound within a few steps, so a short run with
+// a large step is still caught (a run of 10 steps has no window to hide in). The headroom
+// (below) ignores the widening, as chatter outlasts it.
+//
+// The same budget gives the stability prediction its headroom (core/stability.cpp), so that
+// a stuck friction's chatter counts as an instability exactly where the monitor stops it.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/network.hpp"
+
+namespace stiction::core {
+
+// The kinetic, spring and absolute energies of a state, one pass over the components.
+struct EnergyParts {
+  double total = 0.0;     // Network::energy: kinetic + potential + stored
+  double kinetic = 0.0;   // admittances' energy minus the same with velocities zeroed
+  double stored = 0.0;    // impedances' springs
+  double absolute = 0.0;  // sum of |component energy|: what rounding acts on
+};
+
+inline EnergyParts energy_parts(Network& network, const Vec& x, Vec& scratch) {
+  EnergyParts e;
+  e.total = network.energy(x);
+  scratch = x;
+  const auto& positions = network.position_slots();
+  double admittances = 0.0;
+  for (std::size_t j = 0; j < network.admittances().size(); ++j) {
+    const Slot s = network.admittance_slot(static_cast<int>(j));
+    for (int k = 0; k < s.state_size; ++k) {
+      const auto i = static_cast<std::size_t>(s.state_offset + k);
+      if (!positions[i]) scratch[static_cast<Eigen::Index>(i)] = 0.0;
+    }
+    const auto& a = *network.admittances()[j];
+    const double full = a.energy(x.segment(s.state_offset, s.state_size));
+    const double at_rest = a.energy(scratch.segment(s.state_offset, s.state_size));
+    admittances += full;
+    e.kinetic += std::max(0.0, full - at_rest);
+    e.absolute += std::abs(full) + std::abs(at_rest);
+  }
+  e.stored = std::max(0.0, e.total - admittances);
+  e.absolute += e.stored;
+  return e;
+}
+
+inline constexpr long kSettleObservations = 64;
+
+class EnergyBudget {
+ public:
+  EnergyBudget(Network& network, double tolerance) : network_(network), tolerance_(tolerance) {}
+
+  // The state x reached with `work` put in by the sources so far (the work credited).
+  void observe(const Vec& x, double work) {
+    const EnergyParts e = energy_parts(network_, x, scratch_);
+    energy_ = e.total;
+    ++observations_;
+    if (!std::isfinite(e.total)) return;
+    moved_ = std::max(moved_, e.kinetic + e.stored);
+    absolute_ = std::max(absolute_, e.absolute);
+    work_ = std::max(work_, work);
+    floor_ = std::min(floor_, e.total - work);
+    rise_ = e.total - work - floor_;
+  }
+  // The energy at the last observed state (NaN if a component defines none).
+  double energy() const { return energy_; }
+  bool monitored() const { return std::isfinite(energy_) && std::isfinite(floor_); }
+  double scale() const { return moved_ + work_; }
+  double rounding() const { return 1e4 * std::numeric_limits<double>::epsilon() * absolute_; }
+  // How far E - W may rise above its lowest value before the run is called unstable.
+  double allowed() const { return tolerance_ * scale() + rounding(); }
+  // E - W above its lowest value so far, at the last observed state.
+  double rise() const { return rise_; }
+  double headroom() const { return monitored() ? allowed() - rise_ : INFINITY; }
+  bool exceeded() const {
+    const double settling =
+        observations_ <= kSettleObservations ? 0.5 / static_cast<double>(observations_) : 0.0;
+    return monitored() && rise_ > allowed() + settling * scale();
+  }
+
+ private:
+  Network& network_;
+  double tolerance_;
+  Vec scratch_;
+  double energy_ = 0.0;
+  double moved_ = 0.0;
+  double absolute_ = 0.0;
+  double work_ = 0.0;
+  double floor_ = INFINITY;
+  double rise_ = 0.0;
+  long observations_ = 0;
+};
+
+}  // namespace stiction::core
