@@ -90,7 +90,8 @@ int run_command(const RunArguments& args) {
   // written (app/step_guard.hpp).
   std::vector<scene::Warning> warnings = scene.warnings;
   if (!args.quiet) {
-    for (const scene::Warning& w : warnings) std::fprintf(stderr, "%s\n", scene::format_warning(w).c_str());
+    for (const scene::Warning& w : warnings)
+      std::fprintf(stderr, "%s\n", scene::format_warning(w).c_str());
   }
   StepGuard guard = guard_step(scene, authored_dt, args.force_step);
   if (guard.refusal) {
@@ -126,13 +127,17 @@ int run_command(const RunArguments& args) {
   // summary ([] if none); printed before the simulation.
   summary["warnings"] = nlohmann::ordered_json::array();
   for (const scene::Warning& w : warnings) {
-    summary["warnings"].push_back(
-        {{"file", w.file}, {"line", w.line}, {"column", w.column}, {"key", w.key}, {"text", w.text}});
+    summary["warnings"].push_back({{"file", w.file},
+                                   {"line", w.line},
+                                   {"column", w.column},
+                                   {"key", w.key},
+                                   {"text", w.text}});
   }
   rows.commit_csv();  // the rows up to the last complete one, also when interrupted
   out.wrote(out / "trajectory.csv");
-  const double time_reached =
-      result.trajectory.row_count() > 0 ? result.trajectory.at(result.trajectory.row_count() - 1, 0) : 0.0;
+  const double time_reached = result.trajectory.row_count() > 0
+                                  ? result.trajectory.at(result.trajectory.row_count() - 1, 0)
+                                  : 0.0;
   // summary.json lists the files written so far, itself included; it is written again
   // after the plots and the video with the complete list.
   const auto write_summary = [&](const char* interrupted_in) {
@@ -163,7 +168,8 @@ int run_command(const RunArguments& args) {
         {"reason", result.instability ? "the run was unstable" : "the run was interrupted"}};
   }
   write_summary(result.interrupted ? "simulate" : nullptr);
-  if (result.interrupted) return interrupted_exit(args.quiet, "simulate", out.files(), time_reached);
+  if (result.interrupted)
+    return interrupted_exit(args.quiet, "simulate", out.files(), time_reached);
 
   if (result.instability) {
     // The rows up to the instability are in the CSV; pictures of a diverging run are not
@@ -181,7 +187,8 @@ int run_command(const RunArguments& args) {
                 result.wall_seconds);
     for (const std::string& line : event_lines(summary["events"], summary["accuracy"]))
       std::printf("  %s\n", line.c_str());
-    std::printf("  wrote %s and %s\n", (out / "trajectory.csv").c_str(), (out / "summary.json").c_str());
+    std::printf("  wrote %s and %s\n", (out / "trajectory.csv").c_str(),
+                (out / "summary.json").c_str());
     std::fflush(stdout);
   }
   if (!args.quiet && accuracy.verdict == "inaccurate") print_inaccurate(scene.name, run, accuracy);
@@ -214,12 +221,13 @@ int run_command(const RunArguments& args) {
   if (!args.no_video || args.frames) {
     render::RenderResult rendered;
     try {
-      rendered = write_video(scene, result, rows.for_video(), render_settings, out.path(), !args.no_video, args.frames,
-                             progress);
+      rendered = write_video(scene, result, rows.for_video(), render_settings, out.path(),
+                             !args.no_video, args.frames, progress);
     } catch (const scene::InputError&) {
       throw;  // exit 2, message already located
     } catch (const render::GlError& e) {
-      std::fprintf(stderr, "error: OpenGL (OSMesa): %s\n  (--no-video skips rendering)\n", e.what());
+      std::fprintf(stderr, "error: OpenGL (OSMesa): %s\n  (--no-video skips rendering)\n",
+                   e.what());
       return kExitFailure;
     } catch (const render::VideoError& e) {
       std::fprintf(stderr, "error: video: %s\n", e.what());
@@ -241,7 +249,8 @@ int run_command(const RunArguments& args) {
     if (!rendered.video.empty()) out.wrote(rendered.video);
     if (rendered.interrupted) {
       std::fprintf(stderr, "interrupted: rendered %d frames", rendered.frames);
-      if (!rendered.video.empty()) std::fprintf(stderr, "; the partial video is %s", rendered.video.c_str());
+      if (!rendered.video.empty())
+        std::fprintf(stderr, "; the partial video is %s", rendered.video.c_str());
       std::fprintf(stderr, "\n");
       write_summary("render");
       return interrupted_exit(args.quiet, "render", out.files(), time_reached);
