@@ -129,7 +129,7 @@ int compare_command(const CompareArguments& args) {
   // comparison with exit 3 and nothing written.
   std::vector<StepCheck> checks;
   for (scene::Scene& s : scenes) {
-    const StepGuard guard = guard_step(s, s.run.dt, args.force_step);
+    const StepGuard guard = guard_step(s, args.force_step);
     if (guard.refusal) {
       print_refusal(s.name, guard);
       return kExitUnstable;

@@ -68,7 +68,6 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
 
 int run_command(const RunArguments& args) {
   scene::Scene scene = scene::load_scene(args.scene, args.overrides);
-  const double authored_dt = scene.run.dt;  // the scene file's step, before --dt
   apply_overrides(scene, {args.integrator, args.dt, args.duration, args.tolerance});
   const core::RunOptions& run = scene.run;
 
@@ -93,7 +92,7 @@ int run_command(const RunArguments& args) {
     for (const scene::Warning& w : warnings)
       std::fprintf(stderr, "%s\n", scene::format_warning(w).c_str());
   }
-  StepGuard guard = guard_step(scene, authored_dt, args.force_step);
+  StepGuard guard = guard_step(scene, args.force_step);
   if (guard.refusal) {
     print_refusal(scene.name, guard);
     return kExitUnstable;

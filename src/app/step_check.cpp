@@ -64,7 +64,7 @@ double StepCheck::safe_step() const {
   return 0.8 * (limit > 0.0 ? limit : lowest_step);
 }
 
-StepCheck check_step(scene::Scene& scene, double authored_dt) {
+StepCheck check_step(scene::Scene& scene) {
   StepCheck c;
   c.integrator = scene.run.integrator;
   c.dt = scene.run.dt;
@@ -73,7 +73,7 @@ StepCheck check_step(scene::Scene& scene, double authored_dt) {
     return c;
   }
   core::RunOptions pilot_run = scene.run;
-  pilot_run.dt = std::min(scene.run.dt, authored_dt);
+  pilot_run.dt = std::min(scene.run.dt, scene.authored_dt);
   const Pilot pilot = bounded_pilot(*scene.network, pilot_run);
   c.pilot_dt = pilot_run.dt;
   c.pilot_duration = pilot.options.duration;

@@ -54,9 +54,10 @@ inline constexpr double kMaxAnalysedStep = 1.0;  // s
 // (two_link_dahl over 1.5 s: rk4's limit 9.3e-4 s with 10 states, 1.05e-4 s with 48).
 inline constexpr int kStatesPerRegime = 48;
 
-// The check of scene.run (integrator, dt) on the scene, with `authored_dt` the scene file's
-// own step (before --dt). Throws sys::Interrupted when a signal arrives during the analysis.
-StepCheck check_step(scene::Scene& scene, double authored_dt);
+// The check of scene.run (integrator, dt) on the scene; the pilot runs at no more than
+// scene.authored_dt (the scene file's own step). Throws sys::Interrupted when a signal
+// arrives during the analysis.
+StepCheck check_step(scene::Scene& scene);
 
 // The limits of a prediction (core::predict_step_limit from lowest_step up) as a check of
 // `dt` with `integrator`.

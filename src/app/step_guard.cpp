@@ -4,10 +4,9 @@
 
 namespace stiction::app {
 
-StepGuard guard_step(scene::Scene& scene, double authored_dt, bool force,
-                     double suggestion_budget) {
+StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget) {
   StepGuard guard;
-  guard.check = check_step(scene, authored_dt);
+  guard.check = check_step(scene);
   const std::string verdict = guard.check.verdict();
   if (verdict == "unstable") {
     if (force) {

@@ -22,10 +22,9 @@ struct StepGuard {
   std::optional<std::string> warning;     // set: the run goes on with this warning
 };
 
-// `authored_dt`: the scene file's own step, before --dt. `force`: --force-step.
-// `suggestion_budget`: wall-clock seconds the trials of a refusal's suggestion may take.
-StepGuard guard_step(scene::Scene& scene, double authored_dt, bool force,
-                     double suggestion_budget = 30.0);
+// `force`: --force-step. `suggestion_budget`: wall-clock seconds the trials of a refusal's
+// suggestion may take.
+StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget = 30.0);
 
 // The guard's warning located as the scene's warnings are: at [simulation] dt of the scene
 // file, or on the command line (file "(command line)", key "--dt") when --dt set the step.

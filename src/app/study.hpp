@@ -77,7 +77,7 @@ struct StudyRow {
   std::vector<double> event_errors;
   std::vector<double> event_relative_errors;
   double max_event_relative_error = 0.0;  // NaN when an event is missing or there are none
-  // CPU time of the simulation (process CPU clock), median over `repeats` like wall_seconds.
+  // CPU time of the simulation (the thread CPU clock), median over `repeats` like wall_seconds.
   double cpu_seconds = 0.0;
   // Accuracy against the target: the largest |t - t_ref| / duration over the events
   // (infinity when the run misses one, NaN without events or when unstable) and the largest

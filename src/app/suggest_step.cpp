@@ -7,6 +7,7 @@
 
 #include "app/pilot.hpp"
 #include "core/simulation.hpp"
+#include "sys/interrupt.hpp"
 
 namespace stiction::app {
 namespace {
@@ -90,20 +91,22 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
     core::RunOptions options = base;
     options.dt = s.dt;
     if (pilot_bounded) options = bounded_pilot(*scene.network, options).options;
-    options.stop = base.stop;
+    // Trials stop on SIGINT/SIGTERM, whichever command asked for them (the caller's run
+    // options may not have the flag yet: the guard runs before the simulation).
+    options.stop = &sys::interrupt_flag();
     core::RunOptions reference_options = options;
     reference_options.dt = s.dt / 2.0;
     const double tolerance = event_tolerance(s.dt, options.duration);
     try {
       const core::RunResult r = timed_run(scene, options, start, trial_budget_seconds);
-      if (r.interrupted) break;
+      if (r.interrupted) throw sys::Interrupted{};
       if (r.instability) {
         last_failure = format("unstable at t = %.3g s", r.instability->time);
         s.dt /= 2.0;
         continue;
       }
       const core::RunResult ref = timed_run(scene, reference_options, start, trial_budget_seconds);
-      if (ref.interrupted) break;
+      if (ref.interrupted) throw sys::Interrupted{};
       if (ref.instability) {
         last_failure = format("the reference at half the step went unstable at t = %.3g s",
                               ref.instability->time);
@@ -139,15 +142,15 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
 
 // Where the predicted candidate comes from, for the explanation.
 std::string predicted_origin(const StepCheck& check) {
+  if (check.chatter_limit <= 0.0 || (!check.unbounded && check.instability_limit <= 0.0)) {
+    return format("0.8 x the smallest step analysed, %.3g s", check.lowest_step);
+  }
   if (check.chatter_limit < check.instability_limit ||
       (check.unbounded && check.chatter_limit < kMaxAnalysedStep)) {
     return format("0.8 x the predicted step %.3g s above which stuck friction chatters",
                   check.chatter_limit);
   }
-  if (check.instability_limit > 0.0) {
-    return format("0.8 x the predicted instability limit %.3g s", check.instability_limit);
-  }
-  return format("0.8 x the smallest step analysed, %.3g s", check.lowest_step);
+  return format("0.8 x the predicted instability limit %.3g s", check.instability_limit);
 }
 
 }  // namespace

@@ -30,6 +30,7 @@ struct StepSuggestion {
 double event_tolerance(double step, double duration);
 
 // For scene.run as it failed or was refused (integrator and dt), with its step check.
+// Throws sys::Interrupted when a signal stops a trial.
 // rk4_adaptive: dt is a quarter of the first step and `how` says to lower the tolerance
 // instead (no trial). With `pilot_bounded` the trials cover only what a pilot run may
 // (app/pilot.hpp), as `check` needs.

@@ -22,6 +22,7 @@
 #include "io/csv_writer.hpp"
 #include "io/summary.hpp"
 #include "scene/scene.hpp"
+#include "sys/interrupt.hpp"
 
 namespace stiction::app {
 namespace fs = std::filesystem;
@@ -88,6 +89,7 @@ class PointRunner {
               const std::vector<std::string>& records, const fs::path& out)
       : args_(args), plan_(plan), probe_(probe), records_(records), out_(out) {}
 
+  // The point's table row; empty when a signal stopped it before it had one.
   std::vector<std::string> run(const SweepPoint& point) const {
     std::vector<std::string> row(plan_.columns.size());
     row[0] = std::to_string(point.index);
@@ -95,7 +97,6 @@ class PointRunner {
     const std::size_t base = 1 + point.values.size();  // status, steps, wall_s, suggested_dt, note
     try {
       scene::Scene scene = scene::load_scene(args_.scene, point_overrides(args_, plan_, point));
-      const double authored_dt = scene.run.dt;
       apply_overrides(scene, {args_.integrator, args_.dt, args_.duration, args_.tolerance});
       if (scene.network->signal_columns() != probe_.signals) {
         row[base] = "error";
@@ -104,7 +105,7 @@ class PointRunner {
       }
       // The step guard, per point (the values may move the limits): a point predicted
       // unstable is not simulated; its row says so and suggests a step.
-      const StepGuard guard = guard_step(scene, authored_dt, args_.force_step, kSuggestionBudget);
+      const StepGuard guard = guard_step(scene, args_.force_step, kSuggestionBudget);
       if (guard.refusal) {
         row[base] = "refused";
         row[base + 3] = number_text(guard.refusal->dt);
@@ -113,7 +114,8 @@ class PointRunner {
         return row;
       }
       // Rows stream to the point's trajectory.csv (--keep all) or nowhere: the table needs
-      // only the last row, which the result keeps.
+      // only the last row, which the result keeps. A signal stops the point: no row for it.
+      scene.run.stop = &sys::interrupt_flag();
       core::RunResult result;
       if (args_.keep == "all") {
         std::vector<std::string> columns = probe_.signals;
@@ -121,11 +123,12 @@ class PointRunner {
         fs::create_directories(point_dir(point));
         io::CsvStream csv(point_dir(point) / "trajectory.csv", columns);
         result = core::simulate(*scene.network, scene.run, {}, &csv);
-        csv.commit();
+        if (!result.interrupted) csv.commit();  // else no complete-looking file
       } else {
         DiscardRows none;
         result = core::simulate(*scene.network, scene.run, {}, &none);
       }
+      if (result.interrupted) return {};
       row[base + 1] = std::to_string(result.steps);
       char wall[32];
       std::snprintf(wall, sizeof wall, "%.4g", result.wall_seconds);
@@ -159,6 +162,8 @@ class PointRunner {
         row[c++] = tr.row_count() > 0 ? number_text(tr.at(tr.row_count() - 1, col)) : "";
       }
       keep(point, scene, result, guard.check);
+    } catch (const sys::Interrupted&) {
+      return {};  // a signal during the step check or a suggestion's trials: no row
     } catch (const scene::InputError& e) {
       row[base] = "error";
       row[base + 4] = e.what();
@@ -183,6 +188,18 @@ class PointRunner {
     fs::create_directories(dir);
     auto summary = io::make_summary(describe_run(scene), result);
     summary["step_check"] = step_check_json(check);
+    summary["accuracy"] = {{"method", "off"},
+                           {"reason",
+                            "a sweep point estimates no accuracy (run the point "
+                            "with `stiction run` for its error bars)"}};
+    summary["warnings"] = nlohmann::ordered_json::array();
+    for (const scene::Warning& w : scene.warnings) {
+      summary["warnings"].push_back({{"file", w.file},
+                                     {"line", w.line},
+                                     {"column", w.column},
+                                     {"key", w.key},
+                                     {"text", w.text}});
+    }
     io::write_summary(summary, dir / "summary.json");
   }
 
@@ -353,6 +370,13 @@ int sweep_command(const SweepArguments& args) {
     }
     it = keep ? std::next(it) : table.rows.erase(it);
   }
+  // With --force-step, points the guard refused before are run now (their note says so).
+  if (args.force_step) {
+    const std::size_t status_column = 1 + plan.keys.size();
+    for (auto it = table.rows.begin(); it != table.rows.end();) {
+      it = it->second[status_column] == "refused" ? table.rows.erase(it) : std::next(it);
+    }
+  }
   const std::size_t resumed = table.rows.size();
   write_sweep_table(table, table_path);  // drops a row cut short by an interruption
 
@@ -384,7 +408,9 @@ int sweep_command(const SweepArguments& args) {
   std::exception_ptr failure;
   auto work = [&] {
     for (std::size_t i = next++; i < todo.size(); i = next++) {
+      if (sys::interrupted()) return;  // SIGINT/SIGTERM: the rows so far stay, resumable
       std::vector<std::string> row = runner.run(*todo[i]);
+      if (row.empty()) return;
       std::lock_guard<std::mutex> lock(mutex);
       try {
         appender.append(row);

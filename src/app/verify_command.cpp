@@ -128,7 +128,7 @@ int verify_command(const VerifyArguments& args) {
   // The step guard for every scene before the first simulation: a golden set made at a step
   // predicted unstable would record an accident (exit 3, nothing written).
   for (VerifyJob& job : jobs) {
-    const StepGuard guard = guard_step(job.scene, job.scene.run.dt, args.force_step);
+    const StepGuard guard = guard_step(job.scene, args.force_step);
     if (guard.refusal) {
       print_refusal(job.scene.name, guard);
       return kExitUnstable;

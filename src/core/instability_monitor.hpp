@@ -1,4 +1,4 @@
-// The run's monitor beyond finiteness (core::simulate asks it every few steps): the network
+// The run's monitor beyond finiteness (core::simulate asks it every step): the network
 // energy less what the sources put in, against its lowest value so far (core/energy_budget.hpp:
 // any rise past a tolerance of the scene's energy scale is numerical), and every state with
 // a bound its model keeps (BoundedState) against twice that bound, for instabilities whose

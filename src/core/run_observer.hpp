@@ -43,8 +43,8 @@ class RunObserver {
   // anything judges the state.
   virtual void after_advance(const Vec&) {}
   // After the step; stop ends the run (the observer says why in the result) and the later
-  // observers do not see this step. The instability observer comes first, so the others see
-  // finite states only.
+  // observers do not see this step. The interrupt observer comes first, then the instability
+  // observer, so the others see finite states only.
   virtual Verdict after_step(const StepTaken&) { return Verdict::go_on; }
   // Once, at the state the run ends at (also after an instability or an interrupt).
   virtual void finish(const Vec&) {}

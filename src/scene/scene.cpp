@@ -49,7 +49,8 @@ std::string invalid_name_reason(const std::string& name) {
   if (name.front() == '.') return "must not start with '.'";
   for (const char c : name) {
     if (c == '/' || c == '\\') return "must not contain a path separator ('/' or '\\')";
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "must not contain control characters";
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return "must not contain control characters";
   }
   return {};
 }
@@ -61,8 +62,8 @@ core::RunOptions read_simulation(TableReader& root) {
   const auto names = core::integrator_names();
   run.integrator = sim->string("integrator", run.integrator);
   if (std::find(names.begin(), names.end(), run.integrator) == names.end()) {
-    sim->fail("integrator", "unknown integrator '" + run.integrator + "' (expected one of " +
-                                join(names) + ")");
+    sim->fail("integrator",
+              "unknown integrator '" + run.integrator + "' (expected one of " + join(names) + ")");
   }
   // A tolerance selects the adaptive integrator unless one is named; a fixed-step integrator
   // would silently ignore it, and rk4_adaptive cannot run without one.
@@ -75,8 +76,9 @@ core::RunOptions read_simulation(TableReader& root) {
                                  run.integrator + "')");
     }
   } else if (run.integrator == "rk4_adaptive") {
-    sim->fail("integrator", "rk4_adaptive needs a tolerance: add tolerance = 1e-8 (for example) "
-                            "to [simulation]");
+    sim->fail("integrator",
+              "rk4_adaptive needs a tolerance: add tolerance = 1e-8 (for example) "
+              "to [simulation]");
   }
   run.dt = sim->positive("dt", run.dt);
   run.duration = sim->positive("duration", run.duration);
@@ -86,10 +88,11 @@ core::RunOptions read_simulation(TableReader& root) {
   if (sim->has("energy_growth_limit") && sim->has("energy_tolerance")) {
     sim->fail("energy_growth_limit", "give energy_tolerance or its old name, not both");
   }
-  run.energy_tolerance = sim->positive(
-      sim->has("energy_growth_limit") ? "energy_growth_limit" : "energy_tolerance",
-      run.energy_tolerance);
-  if (const auto violation = core::check_run_limits(run)) sim->fail(violation->key, violation->message);
+  run.energy_tolerance =
+      sim->positive(sim->has("energy_growth_limit") ? "energy_growth_limit" : "energy_tolerance",
+                    run.energy_tolerance);
+  if (const auto violation = core::check_run_limits(run))
+    sim->fail(violation->key, violation->message);
   if (sim->has("event_resolution")) {
     run.event_resolution = sim->non_negative("event_resolution", run.event_resolution);
   }
@@ -146,8 +149,16 @@ std::vector<std::pair<std::string, std::string>> bundled_scenes() {
 Scene load_scene(const std::string& name_or_path, const std::vector<std::string>& overrides) {
   const fs::path path = find_scene(name_or_path);
   toml::table document = parse_file(path);
+  // The file's own step, before --set: the step guard pilots at it when a run asks for a
+  // larger one (a wrong type or value is reported when the scene is built).
+  const double file_dt =
+      document.at_path("simulation.dt").value<double>().value_or(core::RunOptions{}.dt);
   for (const std::string& assignment : overrides) apply_override(document, assignment);
-  return build_scene(std::move(document), path);
+  Scene scene = build_scene(std::move(document), path);
+  if (std::isfinite(file_dt) && file_dt > 0.0) {
+    scene.authored_dt = std::min(scene.authored_dt, file_dt);
+  }
+  return scene;
 }
 
 Scene build_scene(toml::table document, const fs::path& path) {
@@ -159,13 +170,14 @@ Scene build_scene(toml::table document, const fs::path& path) {
   // The name becomes the default output directory out/<name>/: one plain path component.
   if (const std::string why = invalid_name_reason(scene.name); !why.empty()) {
     if (root.has("name")) root.fail("name", why);
-    throw InputError::at(scene.document.source(), "name: the file name '" + scene.name + "' " + why +
-                                                      "; give the scene a `name`");
+    throw InputError::at(scene.document.source(), "name: the file name '" + scene.name + "' " +
+                                                      why + "; give the scene a `name`");
   }
   scene.description = root.string("description", "");
   for (const char* section : kForeignSections) root.node(section);
   const core::Vec3 gravity = root.vec3("gravity", core::Vec3(0.0, 0.0, -9.8));
   scene.run = read_simulation(root);
+  scene.authored_dt = scene.run.dt;
 
   scene.network = std::make_unique<core::Network>();
   ComponentBuilder builder(*scene.network, gravity);
@@ -184,7 +196,7 @@ Scene build_scene(toml::table document, const fs::path& path) {
   }
   scene.run.stick_thresholds = builder.stick_thresholds();  // per contact or joint
   scene.network->finalize();
-  builder.locate_observed();  // sources reading other elements' signals
+  builder.locate_observed();                      // sources reading other elements' signals
   scene.warnings = plausibility_warnings(scene);  // after the build: checks read the network
   return scene;
 }

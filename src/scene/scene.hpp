@@ -28,6 +28,10 @@ struct Scene {
   std::unique_ptr<core::Network> network;          // finalized; owns every component
   core::RunOptions run;                            // [simulation]
   toml::table document;                            // whole parsed document after overrides
+  // The smaller of the scene file's step and the step after --set: the step guard's pilot
+  // runs at no more than this (app/step_check.hpp), so a larger step asked for on the
+  // command line cannot hide the regimes it would blow up in.
+  double authored_dt = 0.0;
   // Plausibility warnings (scene/plausibility.hpp): valid values that look like a mistake.
   std::vector<Warning> warnings;
 

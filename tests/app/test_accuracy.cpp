@@ -425,7 +425,10 @@ TEST_CASE("accuracy: rk4_adaptive against a tighter tolerance", "[accuracy]") {
   // it within the factor 3 (or both are below 1e-9 s).
   const double truth = std::abs(stick.time - 10.18 / (3.5 * 0.2 * 9.8));
   INFO("stick " << stick.time << ", true error " << truth << ", estimate " << *stick.error);
-  CHECK(*stick.error < 1e-3);
+  if (truth > 1e-9 || *stick.error > 1e-9) {
+    CHECK(*stick.error <= 3.0 * truth);
+    CHECK(*stick.error >= truth / 3.0);
+  }
   const nlohmann::ordered_json j = app::accuracy_json(e);
   CHECK(j["companion"]["tolerance"].get<double>() == Approx(1e-10));
   CHECK(j["step_limits"]["chatter"].get<double>() == Approx(1.03e-3));

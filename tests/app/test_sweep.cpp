@@ -249,8 +249,10 @@ TEST_CASE("sweep: four shards as separate processes merge into the unsharded tab
 TEST_CASE("sweep: an unstable point is a row with its suggestion, bad input exits 2") {
   const fs::path dir = scratch("unstable");
   const Outcome o =
+      // --force-step: the step guard would refuse 4e-3 s (tests/ci/test_step_guard.cpp).
       stiction::testing::run_stiction({"sweep", "sphere_roll", "--vary", "simulation.dt=1e-4,4e-3",
-                                       "--duration", "0.3", "--zip", "--out", "u", "--quiet"},
+                                       "--duration", "0.3", "--zip", "--out", "u", "--quiet",
+                                       "--force-step"},
                                       dir);
   INFO(o.out);
   REQUIRE(o.code == 0);

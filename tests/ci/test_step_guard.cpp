@@ -173,6 +173,16 @@ TEST_CASE("step guard: a sweep point above the limit is refused, --force-step si
       CHECK_THAT(table, Contains("not simulated: dt = 0.004 s is above rk4's predicted"));
     }
   }
+  // Resuming the guarded sweep with --force-step runs the refused point, as its note says.
+  const SplitOutcome resumed =
+      run_split({"sweep", "ball.toml", "--vary", "simulation.dt=1e-4,4e-3", "--quiet", "--keep",
+                 "none", "-j", "1", "--out", "guarded", "--force-step"},
+                dir);
+  INFO(resumed.err);
+  REQUIRE(resumed.code == 0);
+  const std::string table = read_text(dir / "guarded" / "sweep.csv");
+  CHECK_THAT(table, Contains(",unstable,"));
+  CHECK_THAT(table, !Contains(",refused,"));
   fs::remove_all(dir);
 }
 
