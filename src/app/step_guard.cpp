@@ -42,11 +42,13 @@ scene::Warning step_warning(const scene::Scene& scene, bool dt_from_command_line
 }
 
 void print_refusal(const std::string& scene_name, const StepGuard& guard) {
+  // "works" only for a step a trial confirmed; otherwise it is a step to try.
   std::fprintf(stderr,
-               "error: %s: %s; nothing was simulated.\n  a step that works: --dt %g (%s)\n"
+               "error: %s: %s; nothing was simulated.\n  %s: --dt %g (%s)\n"
                "  --force-step runs it anyway\n",
-               scene_name.c_str(), step_check_text(guard.check).c_str(), guard.refusal->dt,
-               guard.refusal->how.c_str());
+               scene_name.c_str(), step_check_text(guard.check).c_str(),
+               guard.refusal->verified ? "a step that works" : "a smaller step to try",
+               guard.refusal->dt, guard.refusal->how.c_str());
 }
 
 }  // namespace stiction::app
