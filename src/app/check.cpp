@@ -10,6 +10,7 @@
 #include "app/network_graph.hpp"
 #include "app/pilot.hpp"
 #include "app/step_check.hpp"
+#include "app/step_guard.hpp"
 #include "app/suggest_step.hpp"
 #include "app/verify_settings.hpp"
 #include "core/integrator.hpp"
@@ -200,11 +201,7 @@ nlohmann::json report_json(const scene::Scene& scene, const CheckReport& report)
   nlohmann::json j;
   j["ok"] = true;
   j["errors"] = nlohmann::json::array();
-  j["warnings"] = nlohmann::json::array();
-  for (const scene::Warning& w : scene.warnings) {
-    j["warnings"].push_back(
-        {{"file", w.file}, {"line", w.line}, {"column", w.column}, {"key", w.key}, {"text", w.text}});
-  }
+  j["warnings"] = nlohmann::json(warnings_json(scene.warnings));
   j["scene"] = scene.name;
   j["path"] = scene.path.string();
   j["simulation"] = {{"integrator", run.integrator},

@@ -124,14 +124,7 @@ int run_command(const RunArguments& args) {
   summary["step_check"] = step_check_json(guard.check);
   // Plausibility warnings of the scene (scene/plausibility.hpp) and the step guard's, in the
   // summary ([] if none); printed before the simulation.
-  summary["warnings"] = nlohmann::ordered_json::array();
-  for (const scene::Warning& w : warnings) {
-    summary["warnings"].push_back({{"file", w.file},
-                                   {"line", w.line},
-                                   {"column", w.column},
-                                   {"key", w.key},
-                                   {"text", w.text}});
-  }
+  summary["warnings"] = warnings_json(warnings);
   rows.commit_csv();  // the rows up to the last complete one, also when interrupted
   out.wrote(out / "trajectory.csv");
   const double time_reached = result.trajectory.row_count() > 0

@@ -41,6 +41,18 @@ scene::Warning step_warning(const scene::Scene& scene, bool dt_from_command_line
   return w;
 }
 
+nlohmann::ordered_json warnings_json(const std::vector<scene::Warning>& warnings) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const scene::Warning& w : warnings) {
+    list.push_back({{"file", w.file},
+                    {"line", w.line},
+                    {"column", w.column},
+                    {"key", w.key},
+                    {"text", w.text}});
+  }
+  return list;
+}
+
 void print_refusal(const std::string& scene_name, const StepGuard& guard) {
   // "works" only for a step a trial confirmed; otherwise it is a step to try.
   std::fprintf(stderr,

@@ -6,8 +6,10 @@
 //   ok, not_checked         -> nothing to say.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/step_check.hpp"
 #include "app/suggest_step.hpp"
@@ -30,6 +32,9 @@ StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget =
 // file, or on the command line (file "(command line)", key "--dt") when --dt set the step.
 scene::Warning step_warning(const scene::Scene& scene, bool dt_from_command_line,
                             const std::string& text);
+
+// summary.json's and check --json's `warnings`: [{"file", "line", "column", "key", "text"}].
+nlohmann::ordered_json warnings_json(const std::vector<scene::Warning>& warnings);
 
 // "error: NAME: dt = ... is above ...; a step that works: --dt X (how); --force-step runs it
 // anyway" on stderr.

@@ -192,14 +192,7 @@ class PointRunner {
                            {"reason",
                             "a sweep point estimates no accuracy (run the point "
                             "with `stiction run` for its error bars)"}};
-    summary["warnings"] = nlohmann::ordered_json::array();
-    for (const scene::Warning& w : scene.warnings) {
-      summary["warnings"].push_back({{"file", w.file},
-                                     {"line", w.line},
-                                     {"column", w.column},
-                                     {"key", w.key},
-                                     {"text", w.text}});
-    }
+    summary["warnings"] = warnings_json(scene.warnings);
     io::write_summary(summary, dir / "summary.json");
   }
 
