@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "app/network_graph.hpp"
-#include "app/pilot.hpp"
-#include "app/step_check.hpp"
-#include "app/step_guard.hpp"
-#include "app/suggest_step.hpp"
-#include "app/verify_settings.hpp"
+#include "services/network_graph.hpp"
+#include "services/pilot.hpp"
+#include "services/step_check.hpp"
+#include "services/step_guard.hpp"
+#include "services/suggest_step.hpp"
+#include "services/verify_settings.hpp"
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
 #include "plot/plot_spec.hpp"
@@ -22,6 +22,7 @@
 #include "sys/interrupt.hpp"
 
 namespace stiction::app {
+using namespace services;
 namespace {
 
 // Mobility (inverse effective mass or inertia) that impedance i sees at the initial state:

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "app/run_support.hpp"
-#include "app/step_guard.hpp"
+#include "services/run_support.hpp"
+#include "services/step_guard.hpp"
 #include "core/column_info.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/plot_spec.hpp"
@@ -22,6 +22,7 @@
 #include "sys/interrupt.hpp"
 
 namespace stiction::app {
+using namespace services;
 namespace fs = std::filesystem;
 namespace {
 

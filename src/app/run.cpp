@@ -8,18 +8,18 @@
 #include <string>
 #include <vector>
 
-#include "app/accuracy.hpp"
 #include "app/commands.hpp"
 #include "app/event_lines.hpp"
-#include "app/interrupted_run.hpp"
-#include "app/output_dir.hpp"
-#include "app/plot_outputs.hpp"
-#include "app/progress.hpp"
-#include "app/render_loader.hpp"
-#include "app/run_support.hpp"
-#include "app/step_guard.hpp"
-#include "app/streamed_rows.hpp"
-#include "app/verify_settings.hpp"
+#include "services/interrupted_run.hpp"
+#include "services/output_dir.hpp"
+#include "services/plot_outputs.hpp"
+#include "services/progress.hpp"
+#include "services/render_loader.hpp"
+#include "services/run_service.hpp"
+#include "services/run_support.hpp"
+#include "services/step_guard.hpp"
+#include "services/streamed_rows.hpp"
+#include "services/verify_settings.hpp"
 #include "core/column_info.hpp"
 #include "core/simulation.hpp"
 #include "image/image.hpp"
@@ -37,6 +37,7 @@
 #include "text/font.hpp"
 
 namespace stiction::app {
+using namespace services;
 namespace fs = std::filesystem;
 namespace {
 
@@ -67,69 +68,48 @@ render::RenderResult write_video(const scene::Scene& scene, const core::RunResul
 }  // namespace
 
 int run_command(const RunArguments& args) {
-  scene::Scene scene = scene::load_scene(args.scene, args.overrides);
-  apply_overrides(scene, {args.integrator, args.dt, args.duration, args.tolerance});
-  const core::RunOptions& run = scene.run;
-
-  // Checked before the simulation: both fail with file:line:col on a bad table or signal.
-  const render::RenderSettings render_settings = render::read_render_settings(scene);
-  if (!args.no_video || args.frames) render::check_frame_count(scene, render_settings);
-  std::vector<std::string> columns = scene.network->signal_columns();
-  columns.insert(columns.begin(), "t");
-  const std::vector<core::ColumnInfo> infos = core::column_infos(*scene.network);
-  std::vector<plot::PlotSpec> plot_specs =
-      plot::read_plot_specs(scene.document, scene.path.string(), infos);
-  if (plot_specs.empty()) plot_specs = plot::default_plot_specs(infos);
-  read_verify_settings(scene.document, run.duration);  // [verify]: same errors as check/verify
-
+  RunRequest request;
+  request.overrides = {args.integrator, args.dt, args.duration, args.tolerance};
+  request.force_step = args.force_step;
+  request.accuracy = args.accuracy;
+  request.check_frames = !args.no_video || args.frames;
+  request.progress = show_progress(args.quiet);
+  request.stop = &sys::interrupt_flag();
   // Interrupted while loading: nothing was written, nothing to keep.
-  if (sys::interrupted()) return interrupted_exit(args.quiet, "load", {});
-
-  // The step guard: a step predicted unstable is refused before anything is simulated or
-  // written (app/step_guard.hpp).
-  std::vector<scene::Warning> warnings = scene.warnings;
+  const auto interrupted_in_load = [&] { return interrupted_exit(args.quiet, "load", {}); };
+  PreparedRun prepared = prepare_run(scene::load_scene(args.scene, args.overrides), request);
+  if (sys::interrupted()) return interrupted_in_load();
   if (!args.quiet) {
-    for (const scene::Warning& w : warnings)
+    for (const scene::Warning& w : prepared.warnings)
       std::fprintf(stderr, "%s\n", scene::format_warning(w).c_str());
   }
-  StepGuard guard = guard_step(scene, args.force_step);
+  guard_run(prepared, request);
+  const scene::Scene& scene = prepared.scene;
+  const core::RunOptions& run = scene.run;
+  const StepGuard& guard = prepared.guard;
   if (guard.refusal) {
     print_refusal(scene.name, guard);
     return kExitUnstable;
   }
-  if (guard.warning) {
-    warnings.push_back(step_warning(scene, args.dt.has_value(), *guard.warning));
-    if (!args.quiet) std::fprintf(stderr, "%s\n", scene::format_warning(warnings.back()).c_str());
-  }
+  if (guard.warning && !args.quiet)
+    std::fprintf(stderr, "%s\n", scene::format_warning(prepared.warnings.back()).c_str());
   OutputDirectory out(args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out));
 
   // Streaming: rows go to trajectory.csv as they are produced; plots and the video get
   // thinned copies (StreamedRows), so memory does not grow with the run's length.
   const bool video_or_frames = !args.no_video || args.frames;
-  StreamedRows rows(out / "trajectory.csv", columns, run, render_settings, !args.no_plots,
-                    video_or_frames);
-  const bool progress = show_progress(args.quiet);
-  scene.run.stop = &sys::interrupt_flag();
-  const core::RunResult result = simulate_scene(scene, progress, &rows.sink());
+  StreamedRows rows(out / "trajectory.csv", prepared.columns, run, prepared.render_settings,
+                    !args.no_plots, video_or_frames);
+  RunOutcome outcome = simulate_run(prepared, request, &rows.sink());
+  const core::RunResult& result = outcome.result;
+  nlohmann::ordered_json& summary = outcome.summary;
+  const AccuracyEstimate& accuracy = outcome.accuracy;
+  const double time_reached = outcome.time_reached;
+  const render::RenderSettings& render_settings = prepared.render_settings;
+  const bool progress = request.progress;
 
-  io::RunDescription description = describe_run(scene);
-  std::optional<StepSuggestion> suggestion;
-  if (result.instability) {
-    suggestion = suggested_dt(scene, guard.check);
-    description.suggested_dt = suggestion->dt;
-  }
-  description.columns = infos;
-
-  auto summary = io::make_summary(description, result);
-  summary["step_check"] = step_check_json(guard.check);
-  // Plausibility warnings of the scene (scene/plausibility.hpp) and the step guard's, in the
-  // summary ([] if none); printed before the simulation.
-  summary["warnings"] = warnings_json(warnings);
   rows.commit_csv();  // the rows up to the last complete one, also when interrupted
   out.wrote(out / "trajectory.csv");
-  const double time_reached = result.trajectory.row_count() > 0
-                                  ? result.trajectory.at(result.trajectory.row_count() - 1, 0)
-                                  : 0.0;
   // summary.json lists the files written so far, itself included; it is written again
   // after the plots and the video with the complete list.
   const auto write_summary = [&](const char* interrupted_in) {
@@ -138,26 +118,9 @@ int run_command(const RunArguments& args) {
     summary["files"] = out.files();
     io::write_summary(summary, out / "summary.json");
   };
-  // The run's error estimate (docs/accuracy.md): a companion run, for finished runs only.
-  AccuracyEstimate accuracy;
-  if (!result.instability && !result.interrupted) {
-    AccuracySettings settings;
-    if (args.accuracy) settings.mode = *args.accuracy ? AccuracyMode::on : AccuracyMode::off;
-    PredictedStepLimits limits;
-    if (guard.check.applies) {
-      limits.chatter_limit = guard.check.chatter_limit;
-      if (!guard.check.unbounded) limits.instability_limit = guard.check.instability_limit;
-    }
-    accuracy = estimate_accuracy(scene, result, limits, settings);
-    summary["accuracy"] = accuracy_json(accuracy);
-    if (accuracy.interrupted) {
-      write_summary("accuracy");
-      return interrupted_exit(args.quiet, "accuracy", out.files(), time_reached);
-    }
-  } else {
-    summary["accuracy"] = {
-        {"method", "off"},
-        {"reason", result.instability ? "the run was unstable" : "the run was interrupted"}};
+  if (outcome.accuracy_interrupted) {
+    write_summary("accuracy");
+    return interrupted_exit(args.quiet, "accuracy", out.files(), time_reached);
   }
   write_summary(result.interrupted ? "simulate" : nullptr);
   if (result.interrupted)
@@ -166,7 +129,7 @@ int run_command(const RunArguments& args) {
   if (result.instability) {
     // The rows up to the instability are in the CSV; pictures of a diverging run are not
     // worth the time, so the plots and the video are skipped.
-    print_instability(scene.name, run, *result.instability, *suggestion);
+    print_instability(scene.name, run, *result.instability, *outcome.suggestion);
     if (!args.quiet) {
       std::fprintf(stderr, "  wrote %s and %s (rows up to the instability); no plots or video\n",
                    (out / "trajectory.csv").c_str(), (out / "summary.json").c_str());
@@ -188,7 +151,7 @@ int run_command(const RunArguments& args) {
   if (!args.no_plots) {
     try {
       const std::vector<fs::path> plots =
-          write_run_plots(plot_specs, result, rows.for_plots(), out / "plots", args.plot_format);
+          write_run_plots(prepared.plot_specs, result, rows.for_plots(), out / "plots", args.plot_format);
       for (const fs::path& p : plots) out.wrote(p);
       if (sys::interrupted()) {
         write_summary("plots");

@@ -7,11 +7,12 @@
 #include <string>
 
 #include "app/commands.hpp"
-#include "app/heartbeat.hpp"
-#include "app/study.hpp"
+#include "services/heartbeat.hpp"
+#include "services/study.hpp"
 #include "scene/scene.hpp"
 
 namespace stiction::app {
+using namespace services;
 
 int study_command(const StudyArguments& args) {
   StudyOptions options;

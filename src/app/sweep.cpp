@@ -4,7 +4,7 @@
 // fails (instability, a value the loader rejects) is a row with its status, never the end of
 // the sweep. Finished rows are appended to the table file at once, so re-running after an
 // interruption skips them.
-#include "app/sweep.hpp"
+#include "services/sweep.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -15,8 +15,8 @@
 #include <thread>
 
 #include "app/commands.hpp"
-#include "app/run_support.hpp"
-#include "app/step_guard.hpp"
+#include "services/run_support.hpp"
+#include "services/step_guard.hpp"
 #include "core/simulation.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_writer.hpp"
@@ -25,6 +25,7 @@
 #include "sys/interrupt.hpp"
 
 namespace stiction::app {
+using namespace services;
 namespace fs = std::filesystem;
 namespace {
 

@@ -13,15 +13,16 @@
 #include <thread>
 
 #include "app/commands.hpp"
-#include "app/progress.hpp"
-#include "app/run_support.hpp"
-#include "app/step_guard.hpp"
-#include "app/verify_report.hpp"
-#include "app/verify_scene.hpp"
+#include "services/progress.hpp"
+#include "services/run_support.hpp"
+#include "services/step_guard.hpp"
+#include "services/verify_report.hpp"
+#include "services/verify_scene.hpp"
 #include "io/atomic_file.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace stiction::app {
+using namespace services;
 namespace fs = std::filesystem;
 namespace {
 

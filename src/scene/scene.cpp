@@ -23,16 +23,20 @@ namespace {
 // Tables owned by the renderer, the plotter and `verify` (validated there, not here).
 constexpr const char* kForeignSections[] = {"render", "camera", "overlay", "plots", "verify"};
 
+toml::table parse_text(const std::string& text, const std::string& origin) {
+  try {
+    return toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    throw InputError::at(e.source(), std::string(e.description()));
+  }
+}
+
 toml::table parse_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": error: cannot read the scene file");
   std::stringstream text;
   text << in.rdbuf();
-  try {
-    return toml::parse(text.str(), path.string());
-  } catch (const toml::parse_error& e) {
-    throw InputError::at(e.source(), std::string(e.description()));
-  }
+  return parse_text(text.str(), path.string());
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -146,24 +150,33 @@ std::vector<std::pair<std::string, std::string>> bundled_scenes() {
   return {found.begin(), found.end()};
 }
 
-Scene load_scene(const std::string& name_or_path, const std::vector<std::string>& overrides) {
-  const fs::path path = find_scene(name_or_path);
-  toml::table document = parse_file(path);
+SceneSource SceneSource::from_text(std::string toml_text, std::string origin) {
+  SceneSource source;
+  source.text = std::move(toml_text);
+  source.origin = std::move(origin);
+  return source;
+}
+
+Scene load_scene(const SceneSource& source, const std::vector<std::string>& overrides) {
+  const fs::path path = source.is_text() ? fs::path(source.origin) : find_scene(source.name_or_path);
+  toml::table document = source.is_text() ? parse_text(source.text, source.origin) : parse_file(path);
   // The file's own step, before --set: the step guard pilots at it when a run asks for a
   // larger one (a wrong type or value is reported when the scene is built).
   const double file_dt =
       document.at_path("simulation.dt").value<double>().value_or(core::RunOptions{}.dt);
   for (const std::string& assignment : overrides) apply_override(document, assignment);
-  Scene scene = build_scene(std::move(document), path);
+  Scene scene = build_scene(std::move(document), path, source.externals);
   if (std::isfinite(file_dt) && file_dt > 0.0) {
     scene.authored_dt = std::min(scene.authored_dt, file_dt);
   }
   return scene;
 }
 
-Scene build_scene(toml::table document, const fs::path& path) {
+Scene build_scene(toml::table document, const fs::path& path,
+                  std::shared_ptr<const ExternalElements> externals) {
   Scene scene;
   scene.path = path;
+  scene.externals = std::move(externals);
   scene.document = std::move(document);
   TableReader root(scene.document, "");
   scene.name = root.string("name", path.stem().string());

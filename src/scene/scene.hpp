@@ -21,6 +21,26 @@
 
 namespace stiction::scene {
 
+// Elements a program supplies in code rather than in the file: a source's law or a whole
+// impedance given by the caller (the Python module's callables, scene/external_elements.hpp).
+struct ExternalElements;
+
+// Where a scene comes from, so that a service can load fresh copies of it (a sweep's points,
+// a study's runs): a bundled name or a path, or a TOML text (origin names it in errors), plus
+// the elements supplied in code. Converts from a name or path.
+struct SceneSource {
+  std::string name_or_path;  // used when `text` is empty
+  std::string text;          // a TOML document
+  std::string origin;        // the text's name in messages and its scene's default name
+  std::shared_ptr<const ExternalElements> externals;
+
+  SceneSource() = default;
+  SceneSource(std::string name) : name_or_path(std::move(name)) {}  // NOLINT: implicit
+  SceneSource(const char* name) : name_or_path(name) {}            // NOLINT: implicit
+  static SceneSource from_text(std::string toml_text, std::string origin);
+  bool is_text() const { return !text.empty(); }
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -34,6 +54,8 @@ struct Scene {
   double authored_dt = 0.0;
   // Plausibility warnings (scene/plausibility.hpp): valid values that look like a mistake.
   std::vector<Warning> warnings;
+  // The elements supplied in code it was built with (null: none).
+  std::shared_ptr<const ExternalElements> externals;
 
   Scene() = default;
   Scene(Scene&&) noexcept = default;
@@ -46,11 +68,13 @@ struct Scene {
 // dir, then in the source tree). InputError if neither.
 std::filesystem::path find_scene(const std::string& name_or_path);
 
-// Reads, applies the overrides ("KEY=VALUE", in order), validates and builds.
-Scene load_scene(const std::string& name_or_path, const std::vector<std::string>& overrides = {});
+// Reads, applies the overrides ("KEY=VALUE", in order), validates and builds. A text source
+// is parsed with its origin as the file name.
+Scene load_scene(const SceneSource& source, const std::vector<std::string>& overrides = {});
 
 // Builds a scene from a document already parsed (tests; `path` only names the origin).
-Scene build_scene(toml::table document, const std::filesystem::path& path);
+Scene build_scene(toml::table document, const std::filesystem::path& path,
+                  std::shared_ptr<const ExternalElements> externals = nullptr);
 
 // Name and one-line description of every bundled scene, sorted by name.
 std::vector<std::pair<std::string, std::string>> bundled_scenes();

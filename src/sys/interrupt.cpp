@@ -30,7 +30,29 @@ extern "C" void on_signal(int signal) {
   ::_exit(128 + received.load());
 }
 
+extern "C" void on_embedded_signal(int signal) {
+  int expected = 0;
+  received.compare_exchange_strong(expected, signal);
+  flag.store(true);
+}
+
 }  // namespace
+
+ScopedInterrupt::ScopedInterrupt() {
+  flag.store(false);
+  received.store(0);
+  struct sigaction action {};
+  action.sa_handler = on_embedded_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  ::sigaction(SIGINT, &action, &previous_);
+}
+
+ScopedInterrupt::~ScopedInterrupt() {
+  ::sigaction(SIGINT, &previous_, nullptr);
+  flag.store(false);
+  received.store(0);
+}
 
 void install_interrupt_handlers() {
   struct sigaction action {};

@@ -7,6 +7,8 @@
 
 #include <atomic>
 
+#include <signal.h>
+
 namespace stiction::sys {
 
 // Installs the handlers for the rest of the process (idempotent).
@@ -22,6 +24,23 @@ int interrupt_signal();
 int interrupt_exit_code();
 // "SIGINT" or "SIGTERM".
 const char* interrupt_signal_name();
+
+// For a program that embeds the services (the Python module): while it lives, SIGINT sets the
+// flag as above (a second SIGINT as well: the host, not the services, decides what to do),
+// and the host's own handler is put back afterwards. The flag starts cleared; caught()
+// tells whether a SIGINT arrived. Only one may live at a time, on the thread that handles
+// signals.
+class ScopedInterrupt {
+ public:
+  ScopedInterrupt();
+  ~ScopedInterrupt();
+  ScopedInterrupt(const ScopedInterrupt&) = delete;
+  ScopedInterrupt& operator=(const ScopedInterrupt&) = delete;
+  bool caught() const { return interrupted(); }
+
+ private:
+  struct sigaction previous_ {};
+};
 
 // Thrown by a phase that noticed the interrupt and has nothing of its own to keep.
 struct Interrupted {};

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "app/accuracy.hpp"
+#include "services/accuracy.hpp"
 #include "generated_scenes.hpp"
 #include "run_stiction.hpp"
 #include "scene/scene.hpp"
@@ -179,14 +179,14 @@ std::vector<Quantity> measure(const Case& c, const std::string& integrator, doub
   scene::Scene scene = scene::load_scene(path.string());
   const core::RunResult result = core::simulate(*scene.network, scene.run);
   REQUIRE_FALSE(result.instability);
-  app::AccuracySettings on;
-  on.mode = app::AccuracyMode::on;
-  const app::AccuracyEstimate e = app::estimate_accuracy(scene, result, {}, on);
+  services::AccuracySettings on;
+  on.mode = services::AccuracyMode::on;
+  const services::AccuracyEstimate e = services::estimate_accuracy(scene, result, {}, on);
   REQUIRE(e.method == "richardson");
   std::vector<Quantity> out;
-  for (const app::ElementEvents& element : e.events) {
+  for (const services::ElementEvents& element : e.events) {
     if (element.element != c.truth.element) continue;
-    for (const app::EventAccuracy& a : element.events) {
+    for (const services::EventAccuracy& a : element.events) {
       if (a.kind != c.truth.kind) continue;
       // Events that differ between the run and its companion have no error estimate: the
       // run is inaccurate for that reason alone (checked by the verdict below).
@@ -200,7 +200,7 @@ std::vector<Quantity> measure(const Case& c, const std::string& integrator, doub
       break;
     }
   }
-  for (const app::FinalAccuracy& f : e.finals) {
+  for (const services::FinalAccuracy& f : e.finals) {
     if (c.truth.finals.count(f.column) > 0) out.push_back({f.column, f.value, f.error, f.scale});
   }
   REQUIRE(out.size() >= c.truth.finals.size());
@@ -283,9 +283,9 @@ TEST_CASE("accuracy: the bowling ball at dt = 0.003 s is flagged inaccurate", "[
   scene.run.energy_tolerance = 1e6;
   const core::RunResult result = core::simulate(*scene.network, scene.run);
   REQUIRE_FALSE(result.instability);
-  app::AccuracySettings on;
-  on.mode = app::AccuracyMode::on;
-  const app::AccuracyEstimate e = app::estimate_accuracy(scene, result, {}, on);
+  services::AccuracySettings on;
+  on.mode = services::AccuracyMode::on;
+  const services::AccuracyEstimate e = services::estimate_accuracy(scene, result, {}, on);
   CHECK(e.method == "richardson");
   CHECK(e.order == 4);
   CHECK(e.companion_dt == Approx(0.0015));
@@ -379,10 +379,10 @@ TEST_CASE("accuracy: the default stays within its budget", "[accuracy]") {
   scene.run.duration = 0.5;
   core::RunResult result = core::simulate(*scene.network, scene.run);
   REQUIRE_FALSE(result.instability);
-  app::AccuracySettings automatic;
-  CHECK(app::estimate_accuracy(scene, result, {}, automatic).method == "richardson");
+  services::AccuracySettings automatic;
+  CHECK(services::estimate_accuracy(scene, result, {}, automatic).method == "richardson");
   automatic.budget_seconds = 1.9 * result.wall_seconds;
-  const app::AccuracyEstimate skipped = app::estimate_accuracy(scene, result, {}, automatic);
+  const services::AccuracyEstimate skipped = services::estimate_accuracy(scene, result, {}, automatic);
   CHECK(skipped.method == "off");
   CHECK(skipped.cpu_seconds == 0.0);
   CHECK(skipped.reason.find("budget") != std::string::npos);
@@ -390,14 +390,14 @@ TEST_CASE("accuracy: the default stays within its budget", "[accuracy]") {
   // stopped at its first progress report, past a budget of 1 ns.
   result.wall_seconds = 0.0;
   automatic.budget_seconds = 1e-9;
-  const app::AccuracyEstimate abandoned = app::estimate_accuracy(scene, result, {}, automatic);
+  const services::AccuracyEstimate abandoned = services::estimate_accuracy(scene, result, {}, automatic);
   CHECK(abandoned.method == "off");
   CHECK(abandoned.reason.find("passed the 1e-09 s budget") != std::string::npos);
   CHECK(abandoned.cpu_seconds > 0.0);
-  app::AccuracySettings forced;
-  forced.mode = app::AccuracyMode::on;
+  services::AccuracySettings forced;
+  forced.mode = services::AccuracyMode::on;
   forced.budget_seconds = 1e-9;
-  CHECK(app::estimate_accuracy(scene, result, {}, forced).method == "richardson");
+  CHECK(services::estimate_accuracy(scene, result, {}, forced).method == "richardson");
 }
 
 // rk4_adaptive: the companion at a tolerance 100 times tighter; the JSON of the estimate
@@ -409,16 +409,16 @@ TEST_CASE("accuracy: rk4_adaptive against a tighter tolerance", "[accuracy]") {
   scene.run.duration = 2.0;
   const core::RunResult result = core::simulate(*scene.network, scene.run);
   REQUIRE_FALSE(result.instability);
-  app::AccuracySettings on;
-  on.mode = app::AccuracyMode::on;
-  const app::AccuracyEstimate e = app::estimate_accuracy(scene, result, {1.03e-3, 2.49e-3}, on);
+  services::AccuracySettings on;
+  on.mode = services::AccuracyMode::on;
+  const services::AccuracyEstimate e = services::estimate_accuracy(scene, result, {1.03e-3, 2.49e-3}, on);
   CHECK(e.method == "tighter_tolerance");
   REQUIRE(e.companion_tolerance);
   CHECK(*e.companion_tolerance == Approx(1e-10));
   CHECK(e.verdict == "accurate");
   REQUIRE(e.events.size() == 1);
   REQUIRE(e.events[0].events.size() == 1);
-  const app::EventAccuracy& stick = e.events[0].events[0];
+  const services::EventAccuracy& stick = e.events[0].events[0];
   CHECK(stick.kind == "stick");
   REQUIRE(stick.error);
   // The closed form's stick, 10.18 / (3.5 mu g): the estimate bounds the run's distance to
@@ -429,7 +429,7 @@ TEST_CASE("accuracy: rk4_adaptive against a tighter tolerance", "[accuracy]") {
     CHECK(*stick.error <= 3.0 * truth);
     CHECK(*stick.error >= truth / 3.0);
   }
-  const nlohmann::ordered_json j = app::accuracy_json(e);
+  const nlohmann::ordered_json j = services::accuracy_json(e);
   CHECK(j["companion"]["tolerance"].get<double>() == Approx(1e-10));
   CHECK(j["step_limits"]["chatter"].get<double>() == Approx(1.03e-3));
   CHECK(j["events"]["lane"][0]["kind"] == "stick");

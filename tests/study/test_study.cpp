@@ -10,7 +10,7 @@
 
 #include <unistd.h>
 
-#include "app/study.hpp"
+#include "services/study.hpp"
 
 namespace fs = std::filesystem;
 using namespace stiction;
@@ -26,8 +26,8 @@ std::string read_text(const fs::path& path) {
   return s.str();
 }
 
-app::StudyOptions oscillator_options(const std::string& integrator, std::vector<double> dts) {
-  app::StudyOptions options;
+services::StudyOptions oscillator_options(const std::string& integrator, std::vector<double> dts) {
+  services::StudyOptions options;
   options.scene = kOscillator;
   options.integrators = {integrator};
   options.dts = std::move(dts);
@@ -43,13 +43,13 @@ TEST_CASE("key signals are positions, velocities and joint angles") {
   const std::vector<std::string> columns{"t", "sphere.p.x", "sphere.v.z", "sphere.q.w", "sphere.w.x",
                                          "ground.f.x", "ground.slip.x", "arm.theta.1", "arm.omega.1",
                                          "joint0_friction.e"};
-  CHECK(app::key_signal_columns(columns) ==
+  CHECK(services::key_signal_columns(columns) ==
         std::vector<std::string>{"sphere.p.x", "sphere.v.z", "arm.theta.1"});
 }
 
 TEST_CASE("observed order on a smooth case: rk4 about 4, euler about 1") {
   SECTION("rk4") {
-    const app::StudyResult r = app::run_study(oscillator_options("rk4", {0.04, 0.02, 0.01, 0.005}));
+    const services::StudyResult r = services::run_study(oscillator_options("rk4", {0.04, 0.02, 0.01, 0.005}));
     REQUIRE(r.rows.size() == 4);
     for (const auto& row : r.rows) {
       CHECK(row.status == "ok");
@@ -63,8 +63,8 @@ TEST_CASE("observed order on a smooth case: rk4 about 4, euler about 1") {
     CHECK(r.orders[0].order < 4.2);
   }
   SECTION("euler") {
-    const app::StudyResult r =
-        app::run_study(oscillator_options("euler", {1e-3, 5e-4, 2.5e-4, 1.25e-4}));
+    const services::StudyResult r =
+        services::run_study(oscillator_options("euler", {1e-3, 5e-4, 2.5e-4, 1.25e-4}));
     REQUIRE(r.orders.size() == 1);
     CHECK(r.orders[0].points == 4);
     CHECK(r.orders[0].order > 0.9);
@@ -74,13 +74,13 @@ TEST_CASE("observed order on a smooth case: rk4 about 4, euler about 1") {
 
 TEST_CASE("an unstable run is a row, not a failure, and the bisection brackets the limit") {
   // Forward Euler on the lightly damped spring grows for dt > 2 zeta / omega = 0.0127 s.
-  app::StudyOptions options = oscillator_options("euler", {0.08, 1e-3});
+  services::StudyOptions options = oscillator_options("euler", {0.08, 1e-3});
   options.bisect = true;
   options.stability_samples = 10;
-  app::StudyResult r;
-  REQUIRE_NOTHROW(r = app::run_study(options));
+  services::StudyResult r;
+  REQUIRE_NOTHROW(r = services::run_study(options));
   REQUIRE(r.rows.size() == 2);
-  const app::StudyRow& bad = r.rows[0];
+  const services::StudyRow& bad = r.rows[0];
   CHECK(bad.dt == 0.08);
   CHECK(bad.status == "unstable");
   REQUIRE(bad.instability.has_value());
@@ -90,12 +90,12 @@ TEST_CASE("an unstable run is a row, not a failure, and the bisection brackets t
   CHECK(r.rows[1].status == "ok");
   CHECK(r.rows[1].key_error < 0.05);
   // The unstable row is left out of the order fit and shows in the reports as a row.
-  CHECK(app::observed_order(r, "euler").points == 1);
-  CHECK(app::study_csv(r).find(",unstable,") != std::string::npos);
-  CHECK(app::study_markdown(r).find("| euler | 0.08 | unstable at") != std::string::npos);
+  CHECK(services::observed_order(r, "euler").points == 1);
+  CHECK(services::study_csv(r).find(",unstable,") != std::string::npos);
+  CHECK(services::study_markdown(r).find("| euler | 0.08 | unstable at") != std::string::npos);
 
   REQUIRE(r.limits.size() == 1);
-  const app::StabilityLimit& limit = r.limits[0];
+  const services::StabilityLimit& limit = r.limits[0];
   CHECK(limit.bisected >= 1e-3);
   CHECK(limit.unstable_above <= 0.08);
   CHECK(limit.unstable_above / limit.bisected < 1.0 + 1.5 * options.bisection_precision);

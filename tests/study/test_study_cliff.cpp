@@ -18,8 +18,8 @@
 #include <random>
 #include <string>
 
-#include "app/study.hpp"
-#include "app/study_grid.hpp"
+#include "services/study.hpp"
+#include "services/study_grid.hpp"
 
 namespace fs = std::filesystem;
 using namespace stiction;
@@ -88,7 +88,7 @@ TEST_CASE("the default grid runs from well inside to past the predicted limit") 
   core::StepLimit predicted;
   predicted.max_step = 2.49e-3;
   predicted.chatter_free_step = 1.03e-3;
-  const app::StepGrid grid = app::default_step_grid(1e-4, predicted, 6.25e-6, 0.75);
+  const services::StepGrid grid = services::default_step_grid(1e-4, predicted, 6.25e-6, 0.75);
   REQUIRE(grid.steps.size() > 6);
   CHECK(std::is_sorted(grid.steps.rbegin(), grid.steps.rend()));
   CHECK(grid.past_limit == 2);
@@ -106,13 +106,13 @@ TEST_CASE("the default grid runs from well inside to past the predicted limit") 
   SECTION("no bounded prediction: the scene's dt x 8, 4, 2, ...") {
     predicted.unbounded = true;
     predicted.max_step = 1.0;
-    const app::StepGrid plain = app::default_step_grid(1e-3, predicted, 1e-4, 0.5);
+    const services::StepGrid plain = services::default_step_grid(1e-3, predicted, 1e-4, 0.5);
     CHECK(plain.past_limit == 0);
     CHECK(plain.steps.front() == Approx(8e-3));
     CHECK_FALSE(plain.note.empty());
   }
   SECTION("a limit beyond a quarter of the duration is not passed, and the note says so") {
-    const app::StepGrid cut = app::default_step_grid(1e-4, predicted, 1e-4, 3.5e-3);
+    const services::StepGrid cut = services::default_step_grid(1e-4, predicted, 1e-4, 3.5e-3);
     CHECK(cut.past_limit == 1);
     CHECK(cut.steps.front() <= 3.5e-3);
     CHECK_FALSE(cut.note.empty());
@@ -127,11 +127,11 @@ TEST_CASE("study of a sliding block: both largest steps, and a recommendation th
   const fs::path scene = write_block_scene(block, dir);
   INFO("mass " << block.mass << " mu " << block.mu << " v0 " << block.v0 << " K " << block.K);
 
-  app::StudyOptions options;
+  services::StudyOptions options;
   options.scene = scene.string();
   options.integrators = {"heun", "rk4"};
   options.repeats = 1;
-  const app::StudyResult r = app::run_study(options);
+  const services::StudyResult r = services::run_study(options);
 
   // The reference is the closed form's block.
   REQUIRE(r.event_names.size() >= 1);
@@ -141,7 +141,7 @@ TEST_CASE("study of a sliding block: both largest steps, and a recommendation th
         Approx(block.stop_time()).epsilon(2e-3));
 
   REQUIRE(r.limits.size() == 2);
-  for (const app::StabilityLimit& limit : r.limits) {
+  for (const services::StabilityLimit& limit : r.limits) {
     INFO(limit.integrator << ": predicted " << limit.predicted << ", chatter-free "
                           << limit.chatter_free << ", stable " << limit.bisected << ", accurate "
                           << limit.accurate << " (" << limit.accuracy_failure << " at "
@@ -159,13 +159,13 @@ TEST_CASE("study of a sliding block: both largest steps, and a recommendation th
     CHECK(limit.inaccurate_above / limit.accurate < 1.0 + 1.5 * options.bisection_precision);
   }
 
-  const app::Recommendation& rec = r.recommendation;
+  const services::Recommendation& rec = r.recommendation;
   REQUIRE_FALSE(rec.integrator.empty());
   CHECK(rec.evaluations_per_second > 0.0);
   CHECK(rec.cpu_per_second > 0.0);
   CHECK(rec.event_time_error <= r.target_error);
   CHECK(rec.final_value_error <= r.target_error);
-  const std::string md = app::study_markdown(r);
+  const std::string md = services::study_markdown(r);
   CHECK(md.find("## Largest step: by stability and by accuracy") != std::string::npos);
   CHECK(md.find("**Recommendation** (target 0.001): `" + rec.integrator + "`") !=
         std::string::npos);
@@ -173,9 +173,9 @@ TEST_CASE("study of a sliding block: both largest steps, and a recommendation th
   // Each integrator's candidate is its run at its largest accurate step (the fewest
   // evaluations within the target), and the recommendation the one with the least CPU time.
   REQUIRE(r.candidates.size() == 2);
-  for (const app::Recommendation& c : r.candidates) {
+  for (const services::Recommendation& c : r.candidates) {
     CHECK(c.cpu_per_second >= rec.cpu_per_second);
-    for (const app::StabilityLimit& limit : r.limits) {
+    for (const services::StabilityLimit& limit : r.limits) {
       if (limit.integrator == c.integrator) CHECK(c.dt == limit.accurate);
     }
     for (const auto& row : r.rows) {
@@ -187,13 +187,13 @@ TEST_CASE("study of a sliding block: both largest steps, and a recommendation th
 
   // Run again at the recommended step, alone: it meets the target, and the stick time and
   // the slide length match the closed form to the target (plus the reference's own error).
-  app::StudyOptions again;
+  services::StudyOptions again;
   again.scene = scene.string();
   again.integrators = {rec.integrator};
   again.dts = {rec.dt};
   again.repeats = 1;
   again.bisect = false;
-  const app::StudyResult rerun = app::run_study(again);
+  const services::StudyResult rerun = services::run_study(again);
   REQUIRE(rerun.rows.size() == 1);
   CHECK(rerun.rows[0].meets_target);
   CHECK(rerun.rows[0].evaluations == Approx(rec.evaluations_per_second * r.duration));
@@ -203,16 +203,16 @@ TEST_CASE("study of a sliding block: both largest steps, and a recommendation th
 }
 
 TEST_CASE("past the predicted limit of a stiff spring the runs are rows marked unstable") {
-  app::StudyOptions options;
+  services::StudyOptions options;
   options.scene = std::string(STICTION_STUDY_TEST_DIR) + "/oscillator.toml";
   options.overrides = {"impedances.spring.stiffness=3947.8",
                        "simulation.duration=1.0"};  // omega 62.8 rad/s
   options.integrators = {"rk4", "symplectic_euler"};
   options.reference_dt = 1e-4;
   options.repeats = 1;
-  const app::StudyResult r = app::run_study(options);
+  const services::StudyResult r = services::run_study(options);
   REQUIRE(r.limits.size() == 2);
-  for (const app::StabilityLimit& limit : r.limits) {
+  for (const services::StabilityLimit& limit : r.limits) {
     INFO(limit.integrator << ": predicted " << limit.predicted << ", stable " << limit.bisected);
     CHECK(limit.grid_past_limit == 2);
     int past = 0;
@@ -231,7 +231,7 @@ TEST_CASE("past the predicted limit of a stiff spring the runs are rows marked u
     if (limit.integrator == "rk4") CHECK(limit.bisected == Approx(limit.predicted).epsilon(0.1));
     CHECK(limit.accurate < limit.bisected);
   }
-  CHECK(app::study_markdown(r).find("| rk4 | ") != std::string::npos);
+  CHECK(services::study_markdown(r).find("| rk4 | ") != std::string::npos);
 }
 
 TEST_CASE("a target error that is not a relative error in (0, 1) exits 2") {
@@ -244,8 +244,8 @@ TEST_CASE("a target error that is not a relative error in (0, 1) exits 2") {
         bad + " 2>/dev/null";
     CHECK(exit_code(command) == 2);
   }
-  app::StudyOptions options;
+  services::StudyOptions options;
   options.scene = std::string(STICTION_STUDY_TEST_DIR) + "/oscillator.toml";
   options.target_error = 1.0;
-  CHECK_THROWS_WITH(app::run_study(options), Catch::Contains("--target-error"));
+  CHECK_THROWS_WITH(services::run_study(options), Catch::Contains("--target-error"));
 }

@@ -7,19 +7,19 @@
 #include <cstdio>
 #include <string>
 
-#include "app/study.hpp"
+#include "services/study.hpp"
 
 using namespace stiction;
 
 TEST_CASE("study roll_to_slip: a slip-onset error for every integrator") {
-  app::StudyOptions options;
+  services::StudyOptions options;
   options.scene = "roll_to_slip";
   options.dts = {2.5e-5, 1.25e-5};
   options.tolerances = {1e-6};
   options.reference_dt = 6.25e-6;
   options.repeats = 1;
   options.bisect = false;
-  const app::StudyResult r = app::run_study(options);
+  const services::StudyResult r = services::run_study(options);
   REQUIRE(r.event_names == std::vector<std::string>{"ground slip"});
   REQUIRE(r.reference_event_times.size() == 1);
   CHECK(r.reference_event_times[0] == Approx(2.0).epsilon(5e-3));  // t* = 7 mu M g R / (5 k)
@@ -47,16 +47,16 @@ TEST_CASE("study roll_to_slip: a slip-onset error for every integrator") {
   for (const auto& name : {"euler", "symplectic_euler", "heun", "rk4", "rk4_adaptive"}) {
     CHECK(std::find(measured.begin(), measured.end(), name) != measured.end());
   }
-  const std::string md = app::study_markdown(r);
+  const std::string md = services::study_markdown(r);
   CHECK(md.find("ground slip") != std::string::npos);
   CHECK(md.find("## Event errors") != std::string::npos);
   CHECK(md.find("  (") == std::string::npos);   // no empty number before a unit
   CHECK(md.find("|  |") == std::string::npos);  // no empty cell
-  CHECK(app::study_csv(r).find("slip_relative_error_ground") != std::string::npos);
+  CHECK(services::study_csv(r).find("slip_relative_error_ground") != std::string::npos);
 }
 
 TEST_CASE("study: a scene whose reference has no event prints no empty number") {
-  app::StudyOptions options;
+  services::StudyOptions options;
   options.scene = "slope_hold";  // held from the first step: no stick, no slip event
   options.overrides = {"simulation.duration=0.5"};
   options.integrators = {"rk4"};
@@ -64,9 +64,9 @@ TEST_CASE("study: a scene whose reference has no event prints no empty number") 
   options.reference_dt = 5e-5;
   options.repeats = 1;
   options.bisect = false;
-  const app::StudyResult r = app::run_study(options);
+  const services::StudyResult r = services::run_study(options);
   CHECK(r.event_names.empty());
-  const std::string md = app::study_markdown(r);
+  const std::string md = services::study_markdown(r);
   CHECK(md.find("no stick and no slip event") != std::string::npos);
   CHECK(md.find("  (") == std::string::npos);
   CHECK(md.find("|  |") == std::string::npos);

@@ -1,0 +1,8 @@
+// Filled in by its own change (docs/python.md).
+#include "bindings.hpp"
+
+namespace stiction::python {
+
+void bind_tools(py::module_&) {}
+
+}  // namespace stiction::python

@@ -1,0 +1,37 @@
+// Loads the renderer on demand (fast start): `run --no-video`, `check`, `scenes` and the
+// other commands never map OSMesa, LLVM or libav, which cost about 0.36 s and 70 MiB at
+// start-up when linked. The plugin is $STICTION_RENDER_PLUGIN when that is set; otherwise it
+// is looked for in <directory of the executable>/../<libdir>/stiction/ (an installed,
+// possibly moved, prefix), then in the build tree.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "image/image.hpp"
+
+#include "render/render_outputs.hpp"
+#include "render/render_settings.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::services {
+
+// render::render_outputs through the plugin. Throws what render_outputs throws
+// (render::GlError, VideoError, RenderError, image::ImageError, text::FontError,
+// scene::InputError); render::RenderError when the plugin cannot be loaded.
+render::RenderResult render_outputs_on_demand(const scene::Scene& scene, const core::Trajectory& trajectory,
+                                              const render::RenderSettings& settings,
+                                              const render::RenderRequest& request);
+
+// Single frames of one run through the plugin (`stiction verify`): `choose_times` gets the
+// run's frame clock and returns the times to render.
+struct RenderedFrames {
+  std::vector<double> times;
+  std::vector<image::Image> images;
+};
+RenderedFrames render_frames_on_demand(
+    const scene::Scene& scene, const core::Trajectory& trajectory,
+    const render::RenderSettings& settings,
+    const std::function<std::vector<double>(const render::FrameClock&)>& choose_times);
+
+}  // namespace stiction::services

@@ -1,0 +1,177 @@
+#include "services/step_check.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include "services/pilot.hpp"
+#include "services/step_check_cache.hpp"
+#include "core/stability.hpp"
+#include "sys/interrupt.hpp"
+
+namespace stiction::services {
+namespace {
+
+// The analysis starts this far below the smaller of the run's and the pilot's step: a limit
+// further below is reported as "below lowest_step", which is all a guard needs to know, and
+// the grid points below it (each linearizes every sampled state) are not paid for.
+constexpr double kLowestStepRatio = 1.0 / 32.0;
+
+// What the analysis depends on, as text (StepCheckCache compares it in full).
+std::string cache_key(const scene::Scene& scene, const core::RunOptions& pilot) {
+  std::ostringstream key;
+  key.precision(17);
+  key << "step_check 1\n"
+      << scene.path.string() << "\n"
+      << pilot.integrator << " dt " << pilot.dt << " duration " << pilot.duration << " of "
+      << scene.run.duration << " energy " << scene.run.energy_tolerance << "\n"
+      << scene.document;
+  return key.str();
+}
+
+nlohmann::json to_cache(const StepCheck& c) {
+  return {{"unbounded", c.unbounded},           {"instability_limit", c.instability_limit},
+          {"chatter_limit", c.chatter_limit},   {"limiting_time", c.limiting_time},
+          {"pilot_duration", c.pilot_duration}, {"pilot_shortened", c.pilot_shortened}};
+}
+
+bool from_cache(const nlohmann::json& j, StepCheck& c) {
+  try {
+    c.unbounded = j.at("unbounded").get<bool>();
+    c.instability_limit = j.at("instability_limit").get<double>();
+    c.chatter_limit = j.at("chatter_limit").get<double>();
+    c.limiting_time = j.at("limiting_time").get<double>();
+    c.pilot_duration = j.at("pilot_duration").get<double>();
+    c.pilot_shortened = j.at("pilot_shortened").get<bool>();
+    return true;
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+std::string StepCheck::verdict() const {
+  if (!applies) return "not_checked";
+  if (!unbounded && dt > instability_limit) return "unstable";
+  if (dt > chatter_limit) return "chatter";
+  return "ok";
+}
+
+double StepCheck::safe_step() const {
+  const double limit = std::min(instability_limit, chatter_limit);
+  return 0.8 * (limit > 0.0 ? limit : lowest_step);
+}
+
+StepCheck check_step(scene::Scene& scene) {
+  StepCheck c;
+  c.integrator = scene.run.integrator;
+  c.dt = scene.run.dt;
+  if (core::find_tableau(c.integrator) == nullptr && c.integrator != "symplectic_euler") {
+    c.applies = false;  // rk4_adaptive: its step follows its tolerance
+    return c;
+  }
+  core::RunOptions pilot_run = scene.run;
+  pilot_run.dt = std::min(scene.run.dt, scene.authored_dt);
+  const Pilot pilot = bounded_pilot(*scene.network, pilot_run);
+  c.pilot_dt = pilot_run.dt;
+  c.pilot_duration = pilot.options.duration;
+  c.pilot_shortened = pilot.shortened;
+  c.lowest_step = kLowestStepRatio * pilot_run.dt;
+
+  const StepCheckCache cache(cache_key(scene, pilot.options));
+  if (const auto hit = cache.load(); hit && from_cache(*hit, c)) {
+    c.cached = true;
+    return c;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const auto states = core::sample_states(*scene.network, pilot.options, kStatesPerRegime);
+  if (sys::interrupted()) throw sys::Interrupted{};
+  const core::StepLimit limit = core::predict_step_limit(*scene.network, c.integrator, states,
+                                                         c.lowest_step, kMaxAnalysedStep);
+  if (sys::interrupted()) throw sys::Interrupted{};
+  const StepCheck found = step_check_from(limit, c.integrator, c.dt, c.lowest_step);
+  c.unbounded = found.unbounded;
+  c.instability_limit = found.instability_limit;
+  c.chatter_limit = found.chatter_limit;
+  c.limiting_time = found.limiting_time;
+  c.analysis_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  cache.store(to_cache(c));
+  return c;
+}
+
+StepCheck step_check_from(const core::StepLimit& limit, const std::string& integrator, double dt,
+                          double lowest_step) {
+  StepCheck c;
+  c.integrator = integrator;
+  c.dt = dt;
+  c.lowest_step = lowest_step;
+  c.unbounded = limit.unbounded;
+  c.instability_limit = limit.max_step;
+  c.chatter_limit = std::min(limit.chatter_free_step, limit.max_step);
+  c.limiting_time = limit.limiting_time;
+  return c;
+}
+
+nlohmann::ordered_json step_check_json(const StepCheck& c) {
+  nlohmann::ordered_json j;
+  j["integrator"] = c.integrator;
+  j["dt"] = c.dt;
+  j["verdict"] = c.verdict();
+  if (!c.applies) {
+    j["reason"] = "rk4_adaptive chooses its steps from its tolerance";
+    return j;
+  }
+  const auto limit_or_null = [&](double v) {
+    return v > 0.0 ? nlohmann::ordered_json(v) : nlohmann::ordered_json();
+  };
+  j["instability_limit"] =
+      c.unbounded ? nlohmann::ordered_json() : limit_or_null(c.instability_limit);
+  j["unbounded"] = c.unbounded;
+  j["chatter_limit"] = limit_or_null(c.chatter_limit);
+  j["lowest_step_analysed"] = c.lowest_step;
+  // How far below each limit the step is: limit / dt (> 1: inside).
+  j["margin"] =
+      c.unbounded ? nlohmann::ordered_json() : nlohmann::ordered_json(c.instability_limit / c.dt);
+  j["chatter_margin"] = c.chatter_limit / c.dt;
+  j["limiting_time"] = c.limiting_time;
+  j["forced"] = c.forced;
+  j["pilot"] = {
+      {"dt", c.pilot_dt}, {"duration", c.pilot_duration}, {"shortened", c.pilot_shortened}};
+  j["analysis_seconds"] = c.analysis_seconds;
+  j["cached"] = c.cached;
+  return j;
+}
+
+std::string step_check_text(const StepCheck& c) {
+  char text[400];
+  const std::string verdict = c.verdict();
+  if (verdict == "unstable") {
+    if (c.instability_limit > 0.0) {
+      std::snprintf(text, sizeof text,
+                    "dt = %g s is above %s's predicted instability limit %.3g s on this scene "
+                    "(limiting state at t = %.3g s)",
+                    c.dt, c.integrator.c_str(), c.instability_limit, c.limiting_time);
+    } else {
+      std::snprintf(text, sizeof text,
+                    "dt = %g s: %s is predicted unstable on this scene at every step down to "
+                    "%.3g s (limiting state at t = %.3g s)",
+                    c.dt, c.integrator.c_str(), c.lowest_step, c.limiting_time);
+    }
+  } else if (verdict == "chatter") {
+    std::snprintf(text, sizeof text,
+                  "dt = %g s is above the step %.3g s where stuck friction chatters under %s "
+                  "on this scene (stable up to %.3g s, but sticks may come late or not at all)",
+                  c.dt, c.chatter_limit, c.integrator.c_str(), c.instability_limit);
+  } else if (verdict == "ok") {
+    std::snprintf(text, sizeof text, "dt = %g s is below %s's predicted limits on this scene", c.dt,
+                  c.integrator.c_str());
+  } else {
+    std::snprintf(text, sizeof text, "%s: no fixed step to check", c.integrator.c_str());
+  }
+  return text;
+}
+
+}  // namespace stiction::services

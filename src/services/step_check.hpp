@@ -1,0 +1,74 @@
+// The step guard (issue 26): before anything is simulated, the predicted limits of the run's
+// integrator on its scene (the analysis `stiction check` does: the step map linearized at
+// states sampled from a pilot run, core/stability.hpp) and the verdict on the run's step:
+//   ok        below both limits;
+//   chatter   above the step where stuck friction chatters (bounded by its limit force, but
+//             sticks come late or not at all) and below the instability limit: a warning;
+//   unstable  above the instability limit: the command exits 3 before simulating, unless
+//             --force-step.
+// The prediction is a guard, not a proof: the run's own monitors stay on.
+//
+// The pilot runs at the smaller of the run's step and the step the scene file sets (a
+// larger step asked on the command line must not hide the regimes it would blow up in), and
+// its cost is bounded (app/pilot.hpp). Results are cached by the scene's content and the
+// settings (step_check_cache.hpp), so a repeated run pays nothing.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/stability.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::services {
+
+struct StepCheck {
+  std::string integrator;
+  double dt = 0.0;
+  bool applies = true;     // false for rk4_adaptive (no fixed step to check)
+  bool unbounded = false;  // no instability found up to kMaxAnalysedStep
+  // Largest stable step found; 0: unstable at every step analysed (from lowest_step up).
+  double instability_limit = 0.0;
+  // The step above which stuck friction chatters (<= instability_limit); equal to it when
+  // nothing chatters below the instability.
+  double chatter_limit = 0.0;
+  double limiting_time = 0.0;  // time of the pilot state that limits the step
+  double lowest_step = 0.0;    // the analysis starts here: a limit of 0 means "below this"
+  double pilot_dt = 0.0;
+  double pilot_duration = 0.0;  // of the scene's duration, the part the pilot covered
+  bool pilot_shortened = false;
+  double analysis_seconds = 0.0;  // wall time of the analysis (0 when cached)
+  bool cached = false;
+  bool forced = false;  // --force-step: run even though the verdict is `unstable`
+
+  // "ok", "chatter", "unstable" or "not_checked" (see the top of this file).
+  std::string verdict() const;
+  // The step the advice starts from: 0.8 times the smaller limit (below the chatter limit).
+  double safe_step() const;
+};
+
+inline constexpr double kMaxAnalysedStep = 1.0;  // s
+// States linearized per regime of the pilot (at most core::kMaxSampledStates in all): a
+// scene with one regime (LuGre and Dahl arms have no switching law) gets its 48 states
+// spread over the whole pilot, not 10, or a fast phase between two of them goes unseen
+// (two_link_dahl over 1.5 s: rk4's limit 9.3e-4 s with 10 states, 1.05e-4 s with 48).
+inline constexpr int kStatesPerRegime = 48;
+
+// The check of scene.run (integrator, dt) on the scene; the pilot runs at no more than
+// scene.authored_dt (the scene file's own step). Throws sys::Interrupted when a signal
+// arrives during the analysis.
+StepCheck check_step(scene::Scene& scene);
+
+// The limits of a prediction (core::predict_step_limit from lowest_step up) as a check of
+// `dt` with `integrator`.
+StepCheck step_check_from(const core::StepLimit& limit, const std::string& integrator, double dt,
+                          double lowest_step);
+
+// summary.json's `step_check` (DESIGN section 4).
+nlohmann::ordered_json step_check_json(const StepCheck& check);
+
+// One line for stderr, e.g. "dt = 0.0037 s is above rk4's predicted instability limit
+// 0.00238 s on this scene (limiting state at t = 0 s)".
+std::string step_check_text(const StepCheck& check);
+
+}  // namespace stiction::services

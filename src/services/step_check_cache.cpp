@@ -1,0 +1,87 @@
+#include "services/step_check_cache.hpp"
+
+#include <sys/stat.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "io/atomic_file.hpp"
+
+namespace stiction::services {
+namespace fs = std::filesystem;
+namespace {
+
+fs::path cache_directory() {
+  if (const char* dir = std::getenv("STICTION_CACHE_DIR"); dir != nullptr && *dir != '\0') {
+    if (std::string(dir) == "off") return {};
+    return fs::path(dir);
+  }
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg == '/') {
+    return fs::path(xdg) / "stiction";
+  }
+  if (const char* home = std::getenv("HOME"); home != nullptr && *home == '/') {
+    return fs::path(home) / ".cache" / "stiction";
+  }
+  return {};
+}
+
+// The running program: a rebuilt binary has another size or modification time.
+std::string program_identity() {
+  struct stat st {};
+  if (::stat("/proc/self/exe", &st) != 0) return "unknown program";
+  return std::to_string(st.st_size) + ":" + std::to_string(st.st_mtim.tv_sec) + "." +
+         std::to_string(st.st_mtim.tv_nsec);
+}
+
+// FNV-1a, 64 bits: names the entry; the key itself is compared on load.
+std::string hash_text(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char name[17];
+  std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(h));
+  return name;
+}
+
+}  // namespace
+
+StepCheckCache::StepCheckCache(std::string key) : key_(program_identity() + "\n" + std::move(key)) {
+  const fs::path dir = cache_directory();
+  if (!dir.empty()) file_ = (dir / "step_check" / (hash_text(key_) + ".json")).string();
+}
+
+std::optional<nlohmann::json> StepCheckCache::load() const {
+  if (file_.empty()) return std::nullopt;
+  std::ifstream in(file_, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::stringstream text;
+  text << in.rdbuf();
+  const nlohmann::json entry = nlohmann::json::parse(text.str(), nullptr, false);
+  if (entry.is_discarded() || !entry.is_object() || !entry.contains("key") ||
+      !entry.contains("value") || entry["key"] != key_) {
+    return std::nullopt;
+  }
+  return entry["value"];
+}
+
+void StepCheckCache::store(const nlohmann::json& value) const {
+  if (file_.empty()) return;
+  try {
+    std::error_code ec;
+    fs::create_directories(fs::path(file_).parent_path(), ec);
+    if (ec) return;
+    const nlohmann::json entry{{"key", key_}, {"value", value}};
+    io::write_file_atomically(file_, entry.dump());
+  } catch (const std::exception&) {
+    // A cache that cannot be written only costs time.
+  }
+}
+
+}  // namespace stiction::services

@@ -1,0 +1,66 @@
+#include "services/step_guard.hpp"
+
+#include <cstdio>
+
+namespace stiction::services {
+
+StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget) {
+  StepGuard guard;
+  guard.check = check_step(scene);
+  const std::string verdict = guard.check.verdict();
+  if (verdict == "unstable") {
+    if (force) {
+      guard.check.forced = true;
+      guard.warning = step_check_text(guard.check) + "; run anyway (--force-step)";
+    } else {
+      guard.refusal = suggest_step(scene, guard.check, suggestion_budget);
+    }
+  } else if (verdict == "chatter") {
+    char below[120];
+    std::snprintf(below, sizeof below, "; steps below %.3g s avoid it", guard.check.safe_step());
+    guard.warning = step_check_text(guard.check) + below;
+  }
+  return guard;
+}
+
+scene::Warning step_warning(const scene::Scene& scene, bool dt_from_command_line,
+                            const std::string& text) {
+  scene::Warning w;
+  w.file = scene.path.string();
+  w.key = "simulation.dt";
+  if (dt_from_command_line) {
+    w.file = "(command line)";
+    w.key = "--dt";
+  } else if (const toml::node* dt = scene.document.at_path("simulation.dt").node()) {
+    const toml::source_region& where = dt->source();
+    if (where.path) w.file = *where.path;
+    w.line = static_cast<long>(where.begin.line);
+    w.column = static_cast<long>(where.begin.column);
+  }
+  w.text = w.key + ": " + text;
+  return w;
+}
+
+nlohmann::ordered_json warnings_json(const std::vector<scene::Warning>& warnings) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const scene::Warning& w : warnings) {
+    list.push_back({{"file", w.file},
+                    {"line", w.line},
+                    {"column", w.column},
+                    {"key", w.key},
+                    {"text", w.text}});
+  }
+  return list;
+}
+
+void print_refusal(const std::string& scene_name, const StepGuard& guard) {
+  // "works" only for a step a trial confirmed; otherwise it is a step to try.
+  std::fprintf(stderr,
+               "error: %s: %s; nothing was simulated.\n  %s: --dt %g (%s)\n"
+               "  --force-step runs it anyway\n",
+               scene_name.c_str(), step_check_text(guard.check).c_str(),
+               guard.refusal->verified ? "a step that works" : "a smaller step to try",
+               guard.refusal->dt, guard.refusal->how.c_str());
+}
+
+}  // namespace stiction::services

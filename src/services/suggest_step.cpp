@@ -1,0 +1,187 @@
+#include "services/suggest_step.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "services/pilot.hpp"
+#include "core/simulation.hpp"
+#include "sys/interrupt.hpp"
+
+namespace stiction::services {
+namespace {
+
+std::string format(const char* pattern, double a, double b = 0.0) {
+  char text[200];
+  std::snprintf(text, sizeof text, pattern, a, b);
+  return text;
+}
+
+// Thrown from the progress callback to end a trial that has used up its time.
+struct TrialTimeout {
+  double reached = 0.0;
+};
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// A run of the scene at `options`, ended by TrialTimeout once the budget is used up.
+core::RunResult timed_run(scene::Scene& scene, const core::RunOptions& options,
+                          Clock::time_point start, double budget) {
+  const double duration = options.duration;
+  const auto callback = [&](double fraction) {
+    if (seconds_since(start) > budget) throw TrialTimeout{fraction * duration};
+  };
+  return core::simulate(*scene.network, options, callback);
+}
+
+// The first event time of each kind that a confirmed step must reproduce, per element:
+// empty when the two runs agree within `tolerance`, else what differs.
+std::optional<std::string> events_differ(const core::RunResult& trial,
+                                         const core::RunResult& reference, double tolerance) {
+  for (std::size_t m = 0; m < trial.slip_events.size() && m < reference.slip_events.size(); ++m) {
+    const core::SlipMonitor& a = trial.slip_events[m].monitor;
+    const core::SlipMonitor& b = reference.slip_events[m].monitor;
+    const struct {
+      const char* what;
+      double at_trial, at_reference;
+    } events[] = {{"first stick", a.stick_time(), b.stick_time()},
+                  {"first slip", a.first_slip(), b.first_slip()},
+                  {"last stick", a.last_stick(), b.last_stick()}};
+    for (const auto& e : events) {
+      const bool in_trial = e.at_trial >= 0.0, in_reference = e.at_reference >= 0.0;
+      const std::string element = "'" + trial.slip_events[m].component + "' ";
+      if (in_trial != in_reference) {
+        return element + e.what + (in_trial ? " only at the trial step" : " only at half of it");
+      }
+      if (in_trial && std::abs(e.at_trial - e.at_reference) > tolerance) {
+        return element + e.what +
+               format(" at %.6g s against %.6g s at half the step", e.at_trial, e.at_reference);
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+double event_tolerance(double step, double duration) { return step + 1e-3 * duration; }
+
+namespace {
+
+// Confirms `candidate` for a run at `base` (its integrator and duration), halving it after
+// each failed trial; `origin` says where the candidate came from.
+StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, double candidate,
+                            const std::string& origin, double trial_budget_seconds,
+                            bool pilot_bounded) {
+  StepSuggestion s;
+  s.dt = candidate;
+  const auto start = Clock::now();
+  const auto halvings = [](int n) {
+    return n == 0 ? std::string() : format(", halved %g time(s) after failed trials", n);
+  };
+  constexpr int kTrials = 6;
+  std::string last_failure;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    if (seconds_since(start) >= trial_budget_seconds) break;
+    core::RunOptions options = base;
+    options.dt = s.dt;
+    if (pilot_bounded) options = bounded_pilot(*scene.network, options).options;
+    // Trials stop on SIGINT/SIGTERM, whichever command asked for them (the caller's run
+    // options may not have the flag yet: the guard runs before the simulation).
+    options.stop = &sys::interrupt_flag();
+    core::RunOptions reference_options = options;
+    reference_options.dt = s.dt / 2.0;
+    const double tolerance = event_tolerance(s.dt, options.duration);
+    try {
+      const core::RunResult r = timed_run(scene, options, start, trial_budget_seconds);
+      if (r.interrupted) throw sys::Interrupted{};
+      if (r.instability) {
+        last_failure = format("unstable at t = %.3g s", r.instability->time);
+        s.dt /= 2.0;
+        continue;
+      }
+      const core::RunResult ref = timed_run(scene, reference_options, start, trial_budget_seconds);
+      if (ref.interrupted) throw sys::Interrupted{};
+      if (ref.instability) {
+        last_failure = format("the reference at half the step went unstable at t = %.3g s",
+                              ref.instability->time);
+        s.dt /= 2.0;
+        continue;
+      }
+      if (const auto differ = events_differ(r, ref, tolerance)) {
+        last_failure = *differ;
+        s.dt /= 2.0;
+        continue;
+      }
+      s.verified = true;
+      s.how = origin + halvings(trial) +
+              format(
+                  "; a trial at this step ran %g s of the scene and its events matched a run "
+                  "at half the step within %.3g s",
+                  options.duration, tolerance);
+      return s;
+    } catch (const TrialTimeout& t) {
+      s.how = origin + halvings(trial) +
+              format(
+                  "; not confirmed: the trials reached t = %.3g s of %g s within their time "
+                  "budget",
+                  t.reached, options.duration);
+      return s;
+    }
+  }
+  s.how = origin + halvings(kTrials) + "; not confirmed" +
+          (last_failure.empty() ? std::string(" (interrupted or out of time)")
+                                : ": the last trial failed (" + last_failure + ")");
+  return s;
+}
+
+// Where the predicted candidate comes from, for the explanation.
+std::string predicted_origin(const StepCheck& check) {
+  if (check.chatter_limit <= 0.0 || (!check.unbounded && check.instability_limit <= 0.0)) {
+    return format("0.8 x the smallest step analysed, %.3g s", check.lowest_step);
+  }
+  if (check.chatter_limit < check.instability_limit ||
+      (check.unbounded && check.chatter_limit < kMaxAnalysedStep)) {
+    return format("0.8 x the predicted step %.3g s above which stuck friction chatters",
+                  check.chatter_limit);
+  }
+  return format("0.8 x the predicted instability limit %.3g s", check.instability_limit);
+}
+
+}  // namespace
+
+StepSuggestion suggest_step(scene::Scene& scene, const StepCheck& check,
+                            double trial_budget_seconds, bool pilot_bounded) {
+  const core::RunOptions failed = scene.run;
+  if (failed.integrator == "rk4_adaptive") {
+    return {failed.dt / 4.0, false, "lower the tolerance instead"};
+  }
+  const double predicted = check.safe_step();
+  if (check.applies && predicted < failed.dt) {
+    return confirm_step(scene, failed, predicted, predicted_origin(check), trial_budget_seconds,
+                        pilot_bounded);
+  }
+  return confirm_step(scene, failed, failed.dt / 4.0,
+                      "a quarter of the failed step (the prediction sees no limit below it)",
+                      trial_budget_seconds, pilot_bounded);
+}
+
+StepSuggestion recommend_step(scene::Scene& scene, const StepCheck& check,
+                              double trial_budget_seconds) {
+  core::RunOptions base = scene.run;
+  base.integrator = check.integrator;
+  const bool limited = !check.unbounded || check.chatter_limit < kMaxAnalysedStep;
+  if (limited) {
+    return confirm_step(scene, base, check.safe_step(), predicted_origin(check),
+                        trial_budget_seconds, true);
+  }
+  return confirm_step(scene, base, scene.run.dt, "the scene's step (no limit predicted up to 1 s)",
+                      trial_budget_seconds, true);
+}
+
+}  // namespace stiction::services

@@ -1,0 +1,45 @@
+// The step `stiction` suggests (after an instability, when the step guard refuses a step,
+// and as `check`'s recommendation), checked before it is suggested: a step that is offered
+// must run the scene and give the events a finer step gives.
+//
+// The candidate is 0.8 times the smaller of the predicted limits (app/step_check.hpp), so it
+// lies below the step where stuck friction chatters, not only below the instability; when
+// the prediction sees no limit below the failed step, a quarter of that. Then a trial run at
+// the candidate and a reference at half of it decide: the candidate is confirmed when the
+// trial ends without instability and, for every element with stick/slip events, its first
+// stick, first slip and last stick exist in both runs alike and differ by at most
+// kEventTolerance (one candidate step plus 1e-3 of the simulated time). A trial that fails
+// halves the candidate and tries again. Trials that outlast their wall-clock budget leave
+// the candidate suggested on the prediction alone, and the explanation says so.
+#pragma once
+
+#include <string>
+
+#include "services/step_check.hpp"
+#include "scene/scene.hpp"
+
+namespace stiction::services {
+
+struct StepSuggestion {
+  double dt = 0.0;
+  bool verified = false;  // a trial at dt ran and matched the reference at dt / 2
+  std::string how;        // one clause for the message: how dt was obtained
+};
+
+// The largest difference of event times a confirmed step may show against the reference.
+double event_tolerance(double step, double duration);
+
+// For scene.run as it failed or was refused (integrator and dt), with its step check.
+// Throws sys::Interrupted when a signal stops a trial.
+// rk4_adaptive: dt is a quarter of the first step and `how` says to lower the tolerance
+// instead (no trial). With `pilot_bounded` the trials cover only what a pilot run may
+// (app/pilot.hpp), as `check` needs.
+StepSuggestion suggest_step(scene::Scene& scene, const StepCheck& check,
+                            double trial_budget_seconds = 30.0, bool pilot_bounded = false);
+
+// `check`'s recommendation for check.integrator: the same candidate and confirmation, with
+// the trials bounded as a pilot run is.
+StepSuggestion recommend_step(scene::Scene& scene, const StepCheck& check,
+                              double trial_budget_seconds = 10.0);
+
+}  // namespace stiction::services
