@@ -5,6 +5,7 @@
 #include "bindings.hpp"
 #include "io/atomic_file.hpp"
 #include "scene/toml_reader.hpp"
+#include "sys/interrupt.hpp"
 
 namespace stiction::python {
 
@@ -48,6 +49,9 @@ void bind_errors(py::module_&) {
       if (p) std::rethrow_exception(p);
     } catch (const scene::InputError& e) {
       py::object error = error_class("SceneError")(e.what());
+      PyErr_SetObject(error.get_type().ptr(), error.ptr());
+    } catch (const sys::Interrupted&) {
+      py::object error = error_class("Interrupted")("interrupted (SIGINT) before anything was kept");
       PyErr_SetObject(error.get_type().ptr(), error.ptr());
     } catch (const io::IoError& e) {
       py::object error = error_class("OutputError")(e.what());

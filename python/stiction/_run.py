@@ -35,7 +35,7 @@ def run(scene, integrator=None, dt=None, duration=None, tolerance=None, accuracy
                           "the rows so far are in .result", result=result)
     instability = handle.instability
     if instability is not None:
-        suggested = result.summary.get("suggested_dt")
+        suggested = result.summary.get("instability", {}).get("suggested_dt")
         text = (f"{scene.name}: numerical instability at t = {instability['time']:.6g} s in "
                 f"'{instability['component']}' ({instability['reason']}) with {result.summary['integrator']}, "
                 f"dt = {result.summary['dt']:g} s")
