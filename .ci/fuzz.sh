@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTICTION_FUZZ=ON \
-      -DSTICTION_BUILD_TESTS=OFF -DSTICTION_BUILD_BENCH=OFF >&2
+      -DSTICTION_BUILD_TESTS=OFF -DSTICTION_BUILD_BENCH=OFF -DSTICTION_BUILD_PYTHON=OFF >&2
 cmake --build build-fuzz -j"$(nproc)" --target fuzz_scene >&2
 corpus=build-fuzz/corpus
 mkdir -p "$corpus" build-fuzz/artifacts

@@ -17,7 +17,7 @@ start=$SECONDS
 # build keeps warnings as errors.
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSTICTION_SANITIZE=ON \
-      -DSTICTION_BUILD_BENCH=OFF "$@" >&2
+      -DSTICTION_BUILD_BENCH=OFF -DSTICTION_BUILD_PYTHON=OFF "$@" >&2
 cmake --build build-asan -j"$(nproc)" >&2
 echo "== sanitizers: built in $((SECONDS - start)) s" >&2
 

@@ -12,6 +12,8 @@ packages=(
   poppler-utils librsvg2-bin
   libavcodec-dev libavformat-dev libavutil-dev libswscale-dev
   python3
+  pybind11-dev python3-dev python3-numpy python3-pandas python3-pytest python3-matplotlib
+  python3-nbconvert python3-nbclient python3-ipykernel
   clang-14 libclang-rt-14-dev
 )
 missing=()
