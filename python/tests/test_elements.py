@@ -48,7 +48,9 @@ def test_pd_controller_in_python_reproduces_pd_arm_overshoot(tmp_path):
 
     # The same law, in double precision both ways: the peaks agree far below the CSV's digits.
     assert overshoot == pytest.approx(cli_overshoot, abs=1e-9)
-    assert overshoot == pytest.approx(0.537957, abs=5e-7)  # the figure, 6 digits
+    # The figure (the continuous peak, 6 digits): rows are 1 ms apart, so the largest
+    # row can sit below the peak by up to theta'' (0.5 ms)^2 / 2 = 240 * 0.54 * 1.25e-7 = 1.6e-5.
+    assert overshoot == pytest.approx(0.537957, abs=2e-5)
     assert result["controller.tau"][0] == pytest.approx(20 + 9.8 * 0.25)
 
 
@@ -143,6 +145,9 @@ gravity = [0.0, 0.0, 0.0]
 integrator = "rk4"
 dt = 1e-3
 duration = 1.0
+# A spring written as a force law (or as a Python element) holds energy the monitor cannot
+# see: the box's kinetic energy rises from its lowest value as the spring gives it back.
+energy_tolerance = 1.0
 [bodies.box]
 type = "point_mass"
 mass = {m!r}

@@ -226,7 +226,7 @@ TEST_CASE("external elements: an impedance in code, wired by its table, made per
 
 TEST_CASE("external elements: a missing factory or sizes that do not fit fail at the table") {
   CHECK_THROWS_WITH(from_text(joint_scene("type = \"external\"\n")),
-                    Contains("x.toml:9:") && Contains("no element named 'joint'"));
+                    Contains("x.toml:11:8:") && Contains("no element named 'joint'"));
   auto three_d = std::make_shared<scene::ExternalElements>();
   three_d->impedances["joint"] = [](const std::string& name) {
     components::SpringDamperParams p;  // 3-D: 6 inputs, 3 outputs
