@@ -272,3 +272,19 @@ def test_every_build_gets_a_fresh_element():
     stiction.run(scene, accuracy=False)
     assert len(made) > before
     assert len({id(m) for m in made}) == len(made)
+
+
+def test_the_accuracy_companion_runs_the_python_law_too():
+    calls = {"n": 0}
+
+    def law(t, s):
+        calls["n"] += 1
+        return pd_law(t, s)
+
+    scene = stiction.Scene("pd_arm").set_source("controller", law)
+    stiction.run(scene, duration=0.2, accuracy=False, force_step=True)
+    alone = calls["n"]
+    calls["n"] = 0
+    result = stiction.run(scene, duration=0.2, accuracy=True, force_step=True)
+    assert "verdict" in result.summary["accuracy"]
+    assert calls["n"] >= 2 * alone  # the companion at dt/2 loaded the scene with its law
