@@ -287,4 +287,4 @@ def test_the_accuracy_companion_runs_the_python_law_too():
     calls["n"] = 0
     result = stiction.run(scene, duration=0.2, accuracy=True, force_step=True)
     assert "verdict" in result.summary["accuracy"]
-    assert calls["n"] >= 2 * alone  # the companion at dt/2 loaded the scene with its law
+    assert calls["n"] > alone  # the companion (dt/2, its own scene load) called the law too
