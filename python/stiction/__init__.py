@@ -15,6 +15,7 @@ import os as _os
 from pathlib import Path as _Path
 
 from . import _stiction
+from ._elements import Impedance, State
 from ._result import Result
 from ._run import run
 from ._scene import Scene, scenes
@@ -33,5 +34,5 @@ def _locate_install():
 
 _locate_install()
 
-__all__ = ["Scene", "scenes", "run", "Result", "Error", "SceneError", "UnstableError",
+__all__ = ["Scene", "scenes", "run", "Result", "Impedance", "State", "Error", "SceneError", "UnstableError",
            "StepRefused", "Interrupted", "OutputError"]

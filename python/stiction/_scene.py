@@ -12,6 +12,8 @@ class Scene:
     ``Scene.from_toml(text)`` and ``Scene.from_dict(d)`` a scene written in Python.
     ``set`` changes any key as the command line's ``--set KEY=VALUE`` does, and reports a bad
     value as :class:`stiction.SceneError` (file, line, column, key) without changing the scene.
+    ``sources={"name": law}`` and ``elements={"name": Impedance}`` supply laws and elements in
+    Python from the start (as ``set_source`` and ``set_element`` do later).
 
     Read: ``name``, ``description``, ``integrator``, ``dt`` (s), ``duration`` (s),
     ``output_rate`` (rows/s), ``tolerance``, ``columns`` (the trajectory's column names),
@@ -19,23 +21,31 @@ class Scene:
     ``toml`` (the document after every override).
     """
 
-    def __init__(self, name_or_path, set=None):  # noqa: A002 - `set` as on the command line
+    def __init__(self, name_or_path, set=None, sources=None, elements=None):  # noqa: A002 - `set` as on the command line
         if isinstance(name_or_path, _stiction._Scene):
             self._handle = name_or_path
+            return
+        if sources or elements:  # laws and elements in Python: set_source, set_element
+            from ._elements import load
+            self._handle = load(os.fspath(name_or_path), None, None, _assignments(set, {}), sources, elements)
             return
         self._handle = _stiction._Scene.load(os.fspath(name_or_path), _assignments(set, {}))
 
     @classmethod
-    def from_toml(cls, text, name="<string>", set=None):  # noqa: A002
+    def from_toml(cls, text, name="<string>", set=None, sources=None, elements=None):  # noqa: A002
         """A scene from TOML text; ``name`` stands for the file in error messages and names the
         scene when the text has no ``name`` key."""
+        if sources or elements:
+            from ._elements import load
+            return cls(load(None, text, name, _assignments(set, {}), sources, elements))
         return cls(_stiction._Scene.from_text(text, name, _assignments(set, {})))
 
     @classmethod
-    def from_dict(cls, document, name="<dict>", set=None):  # noqa: A002
+    def from_dict(cls, document, name="<dict>", set=None, sources=None, elements=None):  # noqa: A002
         """A scene from nested dicts shaped as the TOML file (tables as dicts, [[plots]] as a
         list of dicts)."""
-        return cls.from_toml(_toml.document(document), name=name, set=set)
+        return cls.from_toml(_toml.document(document), name=name, set=set, sources=sources,
+                             elements=elements)
 
     def set(self, key_or_dict=None, value=None, **keys):
         """Sets keys as ``--set KEY=VALUE`` does: ``scene.set("ground.mu", 0.2)``,

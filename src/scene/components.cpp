@@ -29,8 +29,8 @@ namespace {
 
 const std::vector<std::string> kBodyTypes{"point_mass", "rigid_body", "planar_arm"};
 const std::vector<std::string> kImpedanceTypes{
-    "kikuuwe_contact", "kikuuwe_friction", "lugre",         "dahl",
-    "spring_damper",   "penalty_joint",    "torque_source", "force_source"};
+    "kikuuwe_contact", "kikuuwe_friction", "lugre",        "dahl",    "spring_damper",
+    "penalty_joint",   "torque_source",    "force_source", "external"};
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -251,6 +251,10 @@ void ComponentBuilder::add_impedance(TableReader& table) {
 
   if (type == "kikuuwe_contact") {
     add_contact(table, name);  // one element per contact point: contact_builder.cpp
+    return;
+  }
+  if (type == "external") {
+    add_external(table, name, joint_map());  // supplied in code: external_elements.cpp
     return;
   }
   if (type == "kikuuwe_friction") {

@@ -11,6 +11,7 @@
 #include "components/maps/observing_map.hpp"
 #include "core/body.hpp"
 #include "core/network.hpp"
+#include "scene/external_elements.hpp"
 #include "scene/settle.hpp"
 #include "scene/toml_reader.hpp"
 
@@ -29,12 +30,17 @@ struct SourceSpec {
   std::string name, type, signal_name;
   std::unique_ptr<core::CoordinateMap> map;  // what it drives
   std::vector<Entry> entries;
+  // A law supplied in code (scene/external_elements.hpp): replaces the entries' values.
+  const ExternalSource* external = nullptr;
+  toml::source_region where{};  // its table, for messages
 };
 
 class ComponentBuilder {
  public:
-  ComponentBuilder(core::Network& network, const core::Vec3& gravity)
-      : network_(network), gravity_(gravity) {}
+  // `externals`: the elements supplied in code (null: none); they must outlive the builder.
+  ComponentBuilder(core::Network& network, const core::Vec3& gravity,
+                   const ExternalElements* externals = nullptr)
+      : network_(network), gravity_(gravity), externals_(externals) {}
 
   // The entries of [bodies] or [impedances] in file order (toml++ keeps keys sorted; the
   // state layout and the CSV columns follow the order the author wrote).
@@ -76,12 +82,23 @@ class ComponentBuilder {
   // `joint`: the joint wiring when `body` is an arm (torque_source), else nullptr.
   void add_source(TableReader& table, const std::string& type,
                   std::unique_ptr<core::CoordinateMap> joint);
+  // The wiring of a torque about `axis` between `body` and `parent` (rigid bodies), and of
+  // a force at `point` of `body` in `frame` (sources.cpp).
+  std::unique_ptr<core::CoordinateMap> axis_torque_map(TableReader& table);
+  std::unique_ptr<core::CoordinateMap> body_force_map(TableReader& table);
+  // `type = "external"`: an element supplied in code, wired by its table's keys
+  // (external_elements.cpp). `joint`: as for add_source.
+  void add_external(TableReader& table, const std::string& name,
+                    std::unique_ptr<core::CoordinateMap> joint);
+  // Every element supplied in code names a component of the scene of its kind.
+  void check_externals_used() const;
   // Compiles the sources' expressions against every signal of the scene, rejects loops
   // between sources, and builds them (sources.cpp).
   void wire_sources();
 
   core::Network& network_;
   core::Vec3 gravity_;
+  const ExternalElements* externals_;
   std::map<std::string, BodyInfo> bodies_;
   std::map<std::string, std::string> impedance_types_;
   std::map<std::string, double> stick_thresholds_;

@@ -193,7 +193,7 @@ Scene build_scene(toml::table document, const fs::path& path,
   scene.authored_dt = scene.run.dt;
 
   scene.network = std::make_unique<core::Network>();
-  ComponentBuilder builder(*scene.network, gravity);
+  ComponentBuilder builder(*scene.network, gravity, scene.externals.get());
   if (auto bodies = root.subtable("bodies")) {
     for (TableReader& body : builder.entries(*bodies)) builder.add_body(body);
     bodies->finish();

@@ -44,6 +44,12 @@ struct Column {
   int entry = 0;     // index among its component's columns
 };
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 }  // namespace
 
 void ComponentBuilder::add_source(TableReader& table, const std::string& type,
@@ -51,50 +57,70 @@ void ComponentBuilder::add_source(TableReader& table, const std::string& type,
   auto spec = std::make_unique<SourceSpec>();
   spec->name = table.path().substr(table.path().rfind('.') + 1);
   spec->type = type;
+  spec->where = table.table().source();
+  if (externals_ != nullptr) {
+    const auto law = externals_->sources.find(spec->name);
+    if (law != externals_->sources.end()) spec->external = &law->second;
+  }
+  // With a law supplied in code the file's value is a placeholder, and may be left out.
+  const bool placeholder = spec->external != nullptr;
   if (type == "torque_source") {
     spec->signal_name = "tau";
-    spec->map = std::move(joint);
-    if (!spec->map) {
-      const core::Body* child = pose_body(table, "body");
-      const core::Body* parent = table.has("parent") ? pose_body(table, "parent") : nullptr;
-      if (!child->can_rotate() || (parent != nullptr && !parent->can_rotate())) {
-        table.fail("body", "a torque needs bodies that rotate (rigid_body) or a planar_arm joint");
-      }
-      if (parent == child) table.fail("parent", "must differ from `body`");
-      const Vec3 axis = table.vec3("axis", Vec3::UnitZ());
-      if (!(axis.norm() > 1e-12)) table.fail("axis", "must be a non-zero vector");
-      spec->map = std::make_unique<AxisTorqueMap>(*child, parent, axis.normalized());
-    }
+    spec->map = joint ? std::move(joint) : axis_torque_map(table);
     const toml::node* node = table.node("torque");
-    if (node == nullptr) table.fail("torque", "missing (a number or an expression is required)");
-    spec->entries.push_back(entry_of(*node, table.path() + ".torque", table, "torque"));
+    if (node != nullptr) {
+      spec->entries.push_back(entry_of(*node, table.path() + ".torque", table, "torque"));
+    } else if (placeholder) {
+      spec->entries.emplace_back();
+    } else {
+      table.fail("torque", "missing (a number or an expression is required)");
+    }
   } else {  // force_source
     spec->signal_name = "f";
-    const core::Body* body = pose_body(table, "body");
-    const Vec3 point = table.vec3("point", Vec3::Zero());
-    const std::string frame = table.string("frame", "world");
-    if (frame == "world") {
-      spec->map = std::make_unique<components::PointMap>(*body, point, nullptr, Vec3::Zero());
-    } else if (frame == "body") {
-      spec->map = std::make_unique<components::BodyFramePointMap>(*body, point);
-    } else {
-      table.fail("frame", "expected \"world\" or \"body\", got \"" + frame + "\"");
-    }
+    spec->map = body_force_map(table);
     const toml::node* node = table.node("force");
-    if (node == nullptr) table.fail("force", "missing (3 numbers or expressions, [fx, fy, fz])");
-    const toml::array* array = node->as_array();
-    if (array == nullptr || array->size() != 3) {
-      table.fail("force", "expected an array of 3 entries (numbers or expressions), [fx, fy, fz]");
-    }
-    for (std::size_t i = 0; i < 3; ++i) {
-      spec->entries.push_back(entry_of(
-          *array->get(i), table.path() + ".force[" + std::to_string(i) + "]", table, "force"));
+    if (node == nullptr && placeholder) {
+      spec->entries.resize(3);
+    } else {
+      if (node == nullptr) table.fail("force", "missing (3 numbers or expressions, [fx, fy, fz])");
+      const toml::array* array = node->as_array();
+      if (array == nullptr || array->size() != 3) {
+        table.fail("force",
+                   "expected an array of 3 entries (numbers or expressions), [fx, fy, fz]");
+      }
+      for (std::size_t i = 0; i < 3; ++i) {
+        spec->entries.push_back(entry_of(
+            *array->get(i), table.path() + ".force[" + std::to_string(i) + "]", table, "force"));
+      }
     }
   }
   pending_.push_back({nullptr, nullptr, std::move(spec)});
 }
 
+std::unique_ptr<core::CoordinateMap> ComponentBuilder::axis_torque_map(TableReader& table) {
+  const core::Body* child = pose_body(table, "body");
+  const core::Body* parent = table.has("parent") ? pose_body(table, "parent") : nullptr;
+  if (!child->can_rotate() || (parent != nullptr && !parent->can_rotate())) {
+    table.fail("body", "a torque needs bodies that rotate (rigid_body) or a planar_arm joint");
+  }
+  if (parent == child) table.fail("parent", "must differ from `body`");
+  const Vec3 axis = table.vec3("axis", Vec3::UnitZ());
+  if (!(axis.norm() > 1e-12)) table.fail("axis", "must be a non-zero vector");
+  return std::make_unique<AxisTorqueMap>(*child, parent, axis.normalized());
+}
+
+std::unique_ptr<core::CoordinateMap> ComponentBuilder::body_force_map(TableReader& table) {
+  const core::Body* body = pose_body(table, "body");
+  const Vec3 point = table.vec3("point", Vec3::Zero());
+  const std::string frame = table.string("frame", "world");
+  if (frame == "body") return std::make_unique<components::BodyFramePointMap>(*body, point);
+  if (frame != "world")
+    table.fail("frame", "expected \"world\" or \"body\", got \"" + frame + "\"");
+  return std::make_unique<components::PointMap>(*body, point, nullptr, Vec3::Zero());
+}
+
 void ComponentBuilder::wire_sources() {
+  check_externals_used();
   // A source's columns, from a source of the same shape (its signals do not depend on its law).
   auto source_columns = [](const SourceSpec& spec) {
     std::vector<components::TorqueSource::StateProfile> zero(
@@ -115,6 +141,7 @@ void ComponentBuilder::wire_sources() {
   };
   for (const auto& a : network_.admittances())
     add(core::column_names(a->name(), a->signals()), {a.get()});
+  const std::vector<std::string> admittance_names = names;
   for (std::size_t i = 0; i < pending_.size(); ++i) {
     const Pending& p = pending_[i];
     add(p.source ? source_columns(*p.source)
@@ -122,26 +149,63 @@ void ComponentBuilder::wire_sources() {
         {nullptr, static_cast<int>(i)});
   }
 
-  // Compile every source's expressions; note which sources each one reads.
+  // Compile every source's expressions, and note the signals each source reads, once each:
+  // its map observes them from the stage state. A law supplied in code reads the signals it
+  // names, or every admittance signal; its entries in the file are placeholders.
   std::vector<std::vector<std::shared_ptr<Expression>>> expressions(pending_.size());
+  std::vector<std::vector<std::string>> observed(pending_.size());
   for (std::size_t i = 0; i < pending_.size(); ++i) {
     if (!pending_[i].source) continue;
-    for (const auto& e : pending_[i].source->entries) {
+    const SourceSpec& spec = *pending_[i].source;
+    if (spec.external != nullptr) {
+      expressions[i].resize(spec.entries.size());
+      observed[i] = spec.external->signals.value_or(admittance_names);
+      for (std::size_t k = 0; k < observed[i].size(); ++k) {
+        const std::string& s = observed[i][k];
+        if (!columns.contains(s)) {
+          throw InputError::at(
+              spec.where,
+              "impedances." + spec.name + ": the law supplied in code reads '" + s +
+                  "', which is not a signal of the scene (signals: " + join_names(names) + ")");
+        }
+        if (std::find(observed[i].begin(), observed[i].begin() + static_cast<long>(k), s) !=
+            observed[i].begin() + static_cast<long>(k)) {
+          throw InputError::at(
+              spec.where,
+              "impedances." + spec.name + ": the law supplied in code names '" + s + "' twice");
+        }
+      }
+      continue;
+    }
+    for (const auto& e : spec.entries) {
       expressions[i].push_back(
           e.is_expression ? std::make_shared<Expression>(e.text, e.where, e.what, names) : nullptr);
+      if (!expressions[i].back()) continue;
+      for (const auto& s : expressions[i].back()->used_signals()) {
+        if (std::find(observed[i].begin(), observed[i].end(), s) == observed[i].end())
+          observed[i].push_back(s);
+      }
     }
   }
-  // The first source `i` reads and the name it reads it by, for each source it reads.
-  auto reads = [&](std::size_t i) {
-    std::vector<std::pair<int, std::pair<const Expression*, std::string>>> out;
+  // Fails at what reads signal `s` of source `i`: the expression naming it, or the table of
+  // a law supplied in code.
+  auto fail_reading = [&](std::size_t i, const std::string& s, const std::string& message) {
     for (const auto& e : expressions[i]) {
-      if (!e) continue;
-      for (const auto& s : e->used_signals()) {
-        const int j = columns.at(s).element;
-        if (j < 0 || !pending_[j].source) continue;
-        if (std::none_of(out.begin(), out.end(), [&](const auto& o) { return o.first == j; }))
-          out.push_back({j, {e.get(), s}});
-      }
+      const auto& used = e ? e->used_signals() : std::vector<std::string>{};
+      if (std::find(used.begin(), used.end(), s) != used.end()) e->fail_at(s, message);
+    }
+    throw InputError::at(
+        pending_[i].source->where,
+        "impedances." + pending_[i].source->name + ": the law supplied in code reads " + message);
+  };
+  // The sources `i` reads, each with the first name it reads it by.
+  auto reads = [&](std::size_t i) {
+    std::vector<std::pair<int, std::string>> out;
+    for (const auto& s : observed[i]) {
+      const int j = columns.at(s).element;
+      if (j < 0 || !pending_[j].source) continue;
+      if (std::none_of(out.begin(), out.end(), [&](const auto& o) { return o.first == j; }))
+        out.emplace_back(j, s);
     }
     return out;
   };
@@ -158,33 +222,36 @@ void ComponentBuilder::wire_sources() {
       if (mark[j] == Mark::building) {
         const std::string& name = pending_[i].source->name;
         if (j == i) {
-          by.first->fail_at(by.second, "'" + by.second + "' is the output of this source ('" +
-                                           name +
-                                           "'): a source may not read its own value (an "
-                                           "algebraic loop)");
+          fail_reading(i, by,
+                       "'" + by + "' is the output of this source ('" + name +
+                           "'): a source may not read its own value (an algebraic loop)");
         }
         std::string chain;
         for (auto k = std::find(path.begin(), path.end(), j); k != path.end(); ++k)
           chain += pending_[*k].source->name + " -> ";
-        by.first->fail_at(by.second, "'" + by.second + "' is the output of source '" +
-                                         pending_[j].source->name +
-                                         "', which reads this source's value: an algebraic loop (" +
-                                         chain + pending_[j].source->name +
-                                         "); a source may not depend on its own value");
+        fail_reading(i, by,
+                     "'" + by + "' is the output of source '" + pending_[j].source->name +
+                         "', which reads this source's value: an algebraic loop (" + chain +
+                         pending_[j].source->name + "); a source may not depend on its own value");
       }
       self(self, j);
     }
     SourceSpec& spec = *pending_[i].source;
-    // The signals the expressions use, once each: the map observes them from the stage state.
-    std::vector<std::string> observed;
-    for (const auto& e : expressions[i]) {
-      if (!e) continue;
-      for (const auto& s : e->used_signals()) {
-        if (std::find(observed.begin(), observed.end(), s) == observed.end()) observed.push_back(s);
-      }
-    }
     std::vector<components::TorqueSource::StateProfile> profiles;
-    for (std::size_t k = 0; k < spec.entries.size(); ++k) {
+    if (spec.external != nullptr) {
+      // One call of the law gives every entry: the first entry's profile calls it and the
+      // others read what it wrote (TorqueSource::evaluate asks for the entries in order, at
+      // the same stage).
+      SourceLaw law = spec.external->make(observed[i], static_cast<int>(spec.entries.size()));
+      auto values = std::make_shared<std::vector<double>>(spec.entries.size());
+      profiles.emplace_back([law = std::move(law), values](double t, const double* signals) {
+        law(t, signals, values->data());
+        return (*values)[0];
+      });
+      for (std::size_t k = 1; k < spec.entries.size(); ++k)
+        profiles.emplace_back([values, k](double, const double*) { return (*values)[k]; });
+    }
+    for (std::size_t k = 0; k < spec.entries.size() && spec.external == nullptr; ++k) {
       const auto& e = expressions[i][k];
       if (!e) {
         profiles.emplace_back([v = spec.entries[k].constant](double, const double*) { return v; });
@@ -194,8 +261,8 @@ void ComponentBuilder::wire_sources() {
       // sized here, so a stage evaluation does not allocate.
       std::vector<int> index;
       for (const auto& s : e->used_signals()) {
-        index.push_back(
-            static_cast<int>(std::find(observed.begin(), observed.end(), s) - observed.begin()));
+        index.push_back(static_cast<int>(std::find(observed[i].begin(), observed[i].end(), s) -
+                                         observed[i].begin()));
       }
       auto buffer = std::make_shared<std::vector<double>>(index.size());
       profiles.emplace_back([expression = e, index, buffer](double t, const double* values) {
@@ -206,9 +273,9 @@ void ComponentBuilder::wire_sources() {
     std::unique_ptr<core::CoordinateMap> map = std::move(spec.map);
     int raw = 0;
     components::TorqueSource::Observer observer;
-    if (!observed.empty()) {
+    if (!observed[i].empty()) {
       std::vector<components::ObservingMap::Observed> wiring;
-      for (const auto& s : observed) {
+      for (const auto& s : observed[i]) {
         const Column& c = columns.at(s);
         if (c.admittance) {
           wiring.push_back({.admittance = c.admittance, .entry = c.entry});

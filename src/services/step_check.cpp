@@ -81,7 +81,9 @@ StepCheck check_step(scene::Scene& scene) {
   c.lowest_step = kLowestStepRatio * pilot_run.dt;
 
   const StepCheckCache cache(cache_key(scene, pilot.options));
-  if (const auto hit = cache.load(); hit && from_cache(*hit, c)) {
+  // Elements supplied in code (Python laws) are not in the document the key holds.
+  const bool cacheable = scene.externals == nullptr;
+  if (const auto hit = cacheable ? cache.load() : std::nullopt; hit && from_cache(*hit, c)) {
     c.cached = true;
     return c;
   }
@@ -98,7 +100,7 @@ StepCheck check_step(scene::Scene& scene) {
   c.limiting_time = found.limiting_time;
   c.analysis_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  cache.store(to_cache(c));
+  if (cacheable) cache.store(to_cache(c));
   return c;
 }
 

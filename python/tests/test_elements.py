@@ -1,0 +1,290 @@
+"""Controllers and custom elements written in Python (stiction.Scene.set_source,
+stiction.Impedance): against the command line's pd_arm, the C++ example's closed forms,
+and the same scenes written with expressions and bundled elements."""
+
+import csv
+import math
+import os
+import random
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import stiction
+
+SOURCE_DIR = Path(os.environ.get("STICTION_SOURCE_DIR", Path(__file__).resolve().parents[2]))
+
+
+def stiction_binary():
+    binary = os.environ.get("STICTION_BINARY")
+    if binary:
+        return binary
+    for candidate in (Path("build/stiction"), Path("build/src/app/stiction")):
+        if candidate.is_file():
+            return str(candidate.resolve())
+    pytest.skip("no stiction binary (set STICTION_BINARY)")
+
+
+def pd_law(t, s):
+    # pd_arm's expression, written in Python.
+    theta = s["arm.theta.0"]
+    return 20 * (1 - theta) - 0.5 * s["arm.omega.0"] + 1.0 * 9.8 * 0.25 * math.cos(theta)
+
+
+def test_pd_controller_in_python_reproduces_pd_arm_overshoot(tmp_path):
+    scene = stiction.Scene("pd_arm").set_source("controller", pd_law)
+    assert scene.externals == {"sources": ["controller"], "elements": []}
+    result = stiction.run(scene, accuracy=False)
+    overshoot = result["arm.theta.0"].max() - 1.0
+
+    out = tmp_path / "cli"
+    subprocess.run([stiction_binary(), "run", "pd_arm", "--out", str(out), "--no-video", "--no-plots"],
+                   check=True, capture_output=True, env={**os.environ, "STICTION_CACHE_DIR": "off"})
+    with open(out / "trajectory.csv") as f:
+        rows = list(csv.DictReader(f))
+    cli_overshoot = max(float(r["arm.theta.0"]) for r in rows) - 1.0
+
+    # The same law, in double precision both ways: the peaks agree far below the CSV's digits.
+    assert overshoot == pytest.approx(cli_overshoot, abs=1e-9)
+    # The issue's figure (the continuous peak, 6 digits): rows are 1 ms apart, so the largest
+    # row can sit below the peak by up to theta'' (0.5 ms)^2 / 2 = 240 * 0.54 * 1.25e-7 = 1.6e-5.
+    assert overshoot == pytest.approx(0.537957, abs=2e-5)
+    assert result["controller.tau"][0] == pytest.approx(20 + 9.8 * 0.25)
+
+
+class ViscousCoulomb(stiction.Impedance):
+    """examples/viscous_coulomb_joint in Python: Kikuuwe's Coulomb friction beside a damper b,
+    f_c = sat_F((B + tau K) v + K e), e_dot = (f_c - K e) / (B + tau K), u = f_c + b v."""
+
+    input_size, output_size, state_size = 2, 1, 1
+    state_labels = ["e"]
+
+    def __init__(self, stiffness=5000.0, damping=1.0, coulomb=0.5, viscous=0.2):
+        self.K, self.B, self.F, self.b = stiffness, damping, coulomb, viscous
+        self.stiffness = stiffness  # the step guard's advice (StiffnessHint)
+
+    def evaluate(self, t, x_hat, y, tau):
+        v, e = x_hat[1], y[0]
+        bk = self.B + tau * self.K
+        coulomb = min(max(bk * v + self.K * e, -self.F), self.F)
+        return (coulomb + self.b * v,), ((coulomb - self.K * e) / bk,)
+
+    def signals(self):
+        return [("tau", "N·m", "torque on the joint"), ("e", "rad")]
+
+    def write_signals(self, x_hat, y, u):
+        return (-u[0], y[0])
+
+    def slip_velocity(self, x_hat):
+        return x_hat[1]  # stick/slip events on the joint's rate
+
+
+ARM_WITH_JOINT = """
+[simulation]
+integrator = "rk4"
+dt = 1e-4
+duration = {duration}
+output_rate = 1000.0
+
+[bodies.arm]
+type = "planar_arm"
+links = [{{ length = 0.2, width = 0.02, mass = 0.2 }}]
+
+[impedances.motor]
+type = "torque_source"
+body = "arm"
+joint = 0
+torque = "t < {released} ? {T0} : 0"
+
+[impedances.joint]
+type = "external"
+body = "arm"
+joint = 0
+"""
+
+
+def test_viscous_coulomb_joint_in_python_reproduces_the_closed_forms():
+    T0, released, F, b = 1.5, 2.0, 0.5, 0.02
+    scene = stiction.Scene.from_toml(ARM_WITH_JOINT.format(duration=4.0, released=released, T0=T0),
+                                     name="viscous_coulomb",
+                                     elements={"joint": ViscousCoulomb(viscous=b, coulomb=F)})
+    result = stiction.run(scene, accuracy=False)
+    t, omega, theta = result.t, result["arm.omega.0"], result["arm.theta.0"]
+
+    # J about the joint: the box link's own inertia m (l^2 + w^2) / 12 plus m (l/2)^2.
+    J = 0.2 * (0.2**2 + 0.02**2) / 12 + 0.2 * 0.1**2
+    tc = J / b
+    t_before = released - 1e-3  # RK4's last stage at 2 s already sees the release
+    before = int(round(t_before * 1000))
+    w_before = (T0 - F) / b * (1 - math.exp(-t_before / tc))
+    w_release = (T0 - F) / b * (1 - math.exp(-released / tc))
+    assert omega[before] == pytest.approx(w_before, rel=1e-6)
+
+    def time_at(w):
+        return released + tc * math.log((F / b + w_release) / (F / b + w))
+
+    target = 0.01 * w_release
+    r = before + np.argmax(omega[before:] < target)
+    t_slowed = t[r - 1] + (omega[r - 1] - target) / (omega[r - 1] - omega[r]) * (t[r] - t[r - 1])
+    assert t_slowed == pytest.approx(time_at(target), abs=1e-3)
+    assert abs(omega[-1]) < 1e-9
+    assert abs(theta[-1] - theta[-501]) < 1e-9  # no drift while stuck
+    assert result["joint.tau"][before] == pytest.approx(-(F + b * omega[before]), rel=1e-6)
+    # slip_velocity made it a sliding pair: the stop is a stick event.
+    assert any(e["time"] > released for e in result.events.get("joint", []))
+
+
+def random_box(rng):
+    m, k, c = rng.uniform(0.5, 3), rng.uniform(10, 200), rng.uniform(0, 2)
+    x0, v0 = rng.uniform(-0.3, 0.3), rng.uniform(-1, 1)
+    text = f"""
+gravity = [0.0, 0.0, 0.0]
+[simulation]
+integrator = "rk4"
+dt = 1e-3
+duration = 1.0
+# A spring written as a force law (or as a Python element) holds energy the monitor cannot
+# see: the box's kinetic energy rises from its lowest value as the spring gives it back.
+energy_tolerance = 1.0
+[bodies.box]
+type = "point_mass"
+mass = {m!r}
+position = [{x0!r}, 0.0, 0.0]
+velocity = [{v0!r}, 0.0, 0.0]
+"""
+    return k, c, text
+
+
+class PointSpring(stiction.Impedance):
+    """A spring-damper to the world origin at a point: u = K p + C v (3-D)."""
+
+    input_size, output_size = 6, 3
+
+    def __init__(self, k, c):
+        self.k, self.c = k, c
+
+    def evaluate(self, t, x_hat, y, tau):
+        return self.k * x_hat[:3] + self.c * x_hat[3:], None
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_random_scenes_python_law_and_element_match_expression_and_bundled(seed):
+    k, c, text = random_box(random.Random(seed))
+    expression = text + f"""
+[impedances.spring]
+type = "force_source"
+body = "box"
+force = ["-{k!r}*box.p.x - {c!r}*box.v.x", 0, 0]
+"""
+    placeholder = text + '[impedances.spring]\ntype = "force_source"\nbody = "box"\n'
+    bundled = text + f'[impedances.spring]\ntype = "spring_damper"\nbody = "box"\nstiffness = {k!r}\ndamping = {c!r}\n'
+    external = text + '[impedances.spring]\ntype = "external"\nbody = "box"\n'
+
+    def law(t, s):
+        return (-k * s["box.p.x"] - c * s["box.v.x"], 0.0, 0.0)
+
+    reference = stiction.run(stiction.Scene.from_toml(expression), accuracy=False)["box.p.x"]
+    by_law = stiction.run(stiction.Scene.from_toml(placeholder, sources={"spring": (law, ["box.p.x", "box.v.x"])}),
+                          accuracy=False)["box.p.x"]
+    np.testing.assert_allclose(by_law, reference, rtol=0, atol=1e-12)
+    assert np.ptp(reference) > 1e-3  # it oscillates
+
+    spring = stiction.run(stiction.Scene.from_toml(bundled), accuracy=False)["box.p.x"]
+    element_scene = stiction.Scene.from_toml(external, elements={"spring": PointSpring(k, c)})
+    by_element = stiction.run(element_scene, accuracy=False)
+    np.testing.assert_allclose(by_element["box.p.x"], spring, rtol=0, atol=1e-12)
+    assert "spring.u.x" in by_element.columns
+
+
+def test_a_law_gets_every_body_signal_by_default_as_a_mapping():
+    seen = {}
+
+    def law(t, s):
+        seen.update(dict(s))
+        seen["repr"] = repr(s)
+        return 0.0
+
+    stiction.run(stiction.Scene("pd_arm").set_source("controller", law), duration=0.01, accuracy=False)
+    assert "arm.theta.0" in seen and "arm.omega.0" in seen
+    assert seen["repr"].startswith("<stiction.State arm.theta.0=")
+
+
+def test_an_exception_in_a_law_stops_the_run_and_is_raised():
+    calls = []
+
+    def law(t, s):
+        calls.append(t)
+        if t > 0.05:
+            raise ZeroDivisionError("the controller failed at t > 0.05")
+        return 0.0
+
+    scene = stiction.Scene("pd_arm").set_source("controller", law)
+    with pytest.raises(ZeroDivisionError, match="controller failed"):
+        stiction.run(scene, accuracy=False, force_step=True)
+    assert max(calls) < 0.06  # stopped there, not carried on
+
+    scene.set_source("controller", lambda t, s: "not a number")
+    with pytest.raises(TypeError, match="source 'controller' returned 'not a number'"):
+        stiction.run(scene, accuracy=False, force_step=True)
+
+
+def test_an_exception_in_an_element_is_raised():
+    class Broken(ViscousCoulomb):
+        def evaluate(self, t, x_hat, y, tau):
+            if t > 0.01:
+                raise RuntimeError("broken joint")
+            return super().evaluate(t, x_hat, y, tau)
+
+    scene = stiction.Scene.from_toml(ARM_WITH_JOINT.format(duration=0.1, released=2.0, T0=1.0),
+                                     elements={"joint": Broken})
+    with pytest.raises(RuntimeError, match="broken joint"):
+        stiction.run(scene, accuracy=False, force_step=True)
+
+
+def test_mistakes_are_scene_errors_naming_the_component():
+    scene = stiction.Scene("pd_arm")
+    with pytest.raises(stiction.SceneError, match=r"impedances\.controller.*'arm\.nothing'.*not a signal"):
+        scene.set_source("controller", pd_law, signals=["arm.nothing"])
+    with pytest.raises(stiction.SceneError, match="no torque_source or force_source"):
+        scene.set_source("motor", pd_law)
+    assert scene.externals == {"sources": [], "elements": []}  # unchanged after a failure
+
+    text = ARM_WITH_JOINT.format(duration=0.1, released=2.0, T0=1.0)
+    with pytest.raises(stiction.SceneError, match="no element named 'joint' was supplied"):
+        stiction.Scene.from_toml(text)
+    with pytest.raises(stiction.SceneError, match="takes 6 inputs and gives 3 outputs"):
+        stiction.Scene.from_toml(text, elements={"joint": PointSpring(1.0, 0.0)})
+
+
+def test_every_build_gets_a_fresh_element():
+    made = []
+
+    class Counting(ViscousCoulomb):
+        def __init__(self):
+            super().__init__()
+            made.append(self)
+
+    scene = stiction.Scene.from_toml(ARM_WITH_JOINT.format(duration=0.05, released=2.0, T0=1.0),
+                                     elements={"joint": Counting})
+    before = len(made)
+    stiction.run(scene, accuracy=False)
+    assert len(made) > before
+    assert len({id(m) for m in made}) == len(made)
+
+
+def test_the_accuracy_companion_runs_the_python_law_too():
+    calls = {"n": 0}
+
+    def law(t, s):
+        calls["n"] += 1
+        return pd_law(t, s)
+
+    scene = stiction.Scene("pd_arm").set_source("controller", law)
+    stiction.run(scene, duration=0.2, accuracy=False, force_step=True)
+    alone = calls["n"]
+    calls["n"] = 0
+    result = stiction.run(scene, duration=0.2, accuracy=True, force_step=True)
+    assert "verdict" in result.summary["accuracy"]
+    assert calls["n"] > alone  # the companion (dt/2, its own scene load) called the law too
