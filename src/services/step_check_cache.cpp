@@ -1,5 +1,6 @@
 #include "services/step_check_cache.hpp"
 
+#include <dlfcn.h>
 #include <sys/stat.h>
 
 #include <cstdint>
@@ -30,11 +31,23 @@ fs::path cache_directory() {
   return {};
 }
 
-// The running program: a rebuilt binary has another size or modification time.
+// The file holding this code: the `stiction` executable, or the Python extension that links
+// the services (there /proc/self/exe is the interpreter, which a rebuild does not change).
+std::string code_file() {
+  Dl_info info{};
+  if (::dladdr(reinterpret_cast<const void*>(&code_file), &info) != 0 && info.dli_fname != nullptr &&
+      info.dli_fname[0] == '/') {
+    return info.dli_fname;
+  }
+  return "/proc/self/exe";
+}
+
+// The running program: a rebuilt binary has another path, size or modification time.
 std::string program_identity() {
+  const std::string file = code_file();
   struct stat st {};
-  if (::stat("/proc/self/exe", &st) != 0) return "unknown program";
-  return std::to_string(st.st_size) + ":" + std::to_string(st.st_mtim.tv_sec) + "." +
+  if (::stat(file.c_str(), &st) != 0) return "unknown program";
+  return file + ":" + std::to_string(st.st_size) + ":" + std::to_string(st.st_mtim.tv_sec) + "." +
          std::to_string(st.st_mtim.tv_nsec);
 }
 
