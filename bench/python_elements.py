@@ -1,6 +1,6 @@
 """What a Python source law and a Python impedance cost per call (docs/python.md quotes it).
 
-    PYTHONPATH=build/python /usr/bin/python3 python/tests/measure_elements.py
+    PYTHONPATH=build/python /usr/bin/python3 bench/python_elements.py
 
 Each Python run is timed against the same scene with the law as an expression, or with a
 bundled element doing the same work; the difference over the number of stage evaluations
