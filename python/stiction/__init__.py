@@ -18,6 +18,7 @@ from . import _stiction
 from ._result import Result
 from ._run import run
 from ._scene import Scene, scenes
+from ._tools import Comparison, Study, Sweep, check, compare, study, sweep
 from .errors import Error, Interrupted, OutputError, SceneError, StepRefused, UnstableError
 
 
@@ -34,4 +35,5 @@ def _locate_install():
 _locate_install()
 
 __all__ = ["Scene", "scenes", "run", "Result", "Error", "SceneError", "UnstableError",
-           "StepRefused", "Interrupted", "OutputError"]
+           "StepRefused", "Interrupted", "OutputError", "check", "study", "Study", "sweep", "Sweep",
+           "compare", "Comparison"]
