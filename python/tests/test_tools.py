@@ -6,7 +6,9 @@ import json
 import math
 import os
 import random
+import signal
 import subprocess
+import threading
 
 import numpy as np
 import pytest
@@ -157,6 +159,25 @@ def test_sweep_zip_and_ranges_follow_the_command_line():
                           record=["block.v.x"], jobs=2)
     assert len(grid) == 6  # the last key fastest
     assert grid.table["impedances.slope.damping"].tolist() == [1000.0, 2000.0, 3000.0] * 2
+
+
+def test_ctrl_c_stops_a_sweep_and_keeps_the_finished_points():
+    """SIGINT half a second into a sweep that would take far longer (100 points of 20 s of
+    simulated time on one thread): stiction.Interrupted, whose result holds the finished
+    rows, each complete."""
+    scene = stiction.Scene.from_dict(slope_block(20.0, 0.5, duration=20.0))
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(stiction.Interrupted) as stopped:
+            stiction.sweep(scene, vary={"impedances.slope.damping": "1000:3000:100"}, jobs=1,
+                           record=["block.v.x"])
+    finally:
+        timer.cancel()
+    partial = stopped.value.result
+    assert isinstance(partial, stiction.Sweep) and len(partial) < 100
+    assert set(partial.table["status"]) <= {"ok"}
+    assert partial.table["point"].tolist() == list(range(len(partial)))
 
 
 # ------------------------------------------------------------------------------------ check
