@@ -19,6 +19,7 @@ from ._elements import Impedance, State
 from ._result import Result
 from ._run import run
 from ._scene import Scene, scenes
+from ._tools import Comparison, Study, Sweep, check, compare, study, sweep
 from .errors import Error, Interrupted, OutputError, SceneError, StepRefused, UnstableError
 
 
@@ -34,5 +35,6 @@ def _locate_install():
 
 _locate_install()
 
-__all__ = ["Scene", "scenes", "run", "Result", "Impedance", "State", "Error", "SceneError", "UnstableError",
+__all__ = ["Scene", "scenes", "run", "Result", "check", "study", "Study", "sweep", "Sweep",
+           "compare", "Comparison", "Impedance", "State", "Error", "SceneError", "UnstableError",
            "StepRefused", "Interrupted", "OutputError"]

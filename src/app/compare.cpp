@@ -1,24 +1,20 @@
 // `stiction compare SCENE SCENE...`: runs each scene as `run --no-video --no-plots` would
-// and overlays them in one figure, OUT/compare.png (default out/compare/). The arm scenes
-// get the drift comparison (joint angles and their change after the arm stopped); other
-// runs a figure of the signals they have in common, or of the ones --signals names.
+// and overlays them in one figure, OUT/compare.png (default out/compare/), drawn by
+// services/comparison.hpp; this file parses the scene arguments, guards and simulates the
+// runs and prints.
 // A scene argument may carry overrides of its own after '@' ("sphere_roll@ground.mu=0.3");
 // each run is labelled by its scene name plus the overrides that tell it from the others.
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <map>
-#include <set>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
+#include "core/column_info.hpp"
+#include "scene/scene.hpp"
+#include "services/comparison.hpp"
 #include "services/run_support.hpp"
 #include "services/step_guard.hpp"
-#include "core/column_info.hpp"
-#include "io/atomic_file.hpp"
-#include "plot/plot_spec.hpp"
-#include "scene/scene.hpp"
 #include "sys/interrupt.hpp"
 
 namespace stiction::app {
@@ -54,41 +50,6 @@ RunRequest parse_request(const std::string& argument) {
   return request;
 }
 
-// Scene name plus the overrides not shared by every run with that scene name; "(run N)" when
-// two runs would still read the same.
-std::vector<std::string> run_labels(const std::vector<std::string>& names,
-                                    const std::vector<RunRequest>& requests) {
-  std::vector<std::string> labels;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    std::vector<std::string> own;
-    for (const std::string& o : requests[i].overrides) {
-      bool everywhere = true;
-      for (std::size_t j = 0; j < names.size(); ++j) {
-        const auto& other = requests[j].overrides;
-        if (std::find(other.begin(), other.end(), o) == other.end()) everywhere = false;
-      }
-      if (!everywhere) own.push_back(o);
-    }
-    std::string label = names[i];
-    if (!own.empty()) {
-      label += " (";
-      for (std::size_t k = 0; k < own.size(); ++k) label += (k ? ", " : "") + own[k];
-      label += ")";
-    }
-    labels.push_back(label);
-  }
-  std::map<std::string, int> uses;
-  for (const std::string& l : labels) ++uses[l];
-  std::map<std::string, int> seen;
-  for (std::string& l : labels) {
-    if (uses[l] > 1) {
-      const std::string base = l;
-      l += " (run " + std::to_string(++seen[base]) + ")";
-    }
-  }
-  return labels;
-}
-
 }  // namespace
 
 int compare_command(const CompareArguments& args) {
@@ -110,21 +71,16 @@ int compare_command(const CompareArguments& args) {
     apply_overrides(scenes.back(), run);
   }
   std::vector<std::string> names;
-  for (const scene::Scene& s : scenes) names.push_back(s.name);
-  const std::vector<std::string> labels = run_labels(names, requests);
+  std::vector<std::vector<std::string>> own_overrides, signal_columns;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    names.push_back(scenes[i].name);
+    own_overrides.push_back(requests[i].overrides);
+    signal_columns.push_back(scenes[i].network->signal_columns());
+  }
+  const std::vector<std::string> labels = comparison_labels(names, own_overrides);
 
   // --signals is checked against the scenes' columns before anything runs (exit 2 at once).
-  if (!args.signals.empty()) {
-    std::vector<core::Trajectory> empty;
-    for (const scene::Scene& s : scenes) {
-      std::vector<std::string> columns = s.network->signal_columns();
-      columns.insert(columns.begin(), "t");
-      empty.emplace_back(columns);
-    }
-    std::vector<plot::Run> probe;
-    for (std::size_t i = 0; i < scenes.size(); ++i) probe.push_back({labels[i], &empty[i]});
-    plot::comparison_spec(probe, args.signals);
-  }
+  check_comparison_signals(labels, signal_columns, args.signals);
 
   // The step guard for every run before the first simulation: a refused step ends the
   // comparison with exit 3 and nothing written.
@@ -142,9 +98,7 @@ int compare_command(const CompareArguments& args) {
   }
 
   const fs::path out = args.out.empty() ? fs::path("out") / "compare" : fs::path(args.out);
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec) throw io::IoError(out.string() + ": cannot create the output directory: " + ec.message());
+  make_comparison_directory(out);
 
   const bool progress = show_progress(args.quiet);
   std::vector<core::RunResult> results;
@@ -169,33 +123,11 @@ int compare_command(const CompareArguments& args) {
     }
   }
 
-  std::vector<plot::Run> runs;
+  std::vector<ComparedRun> runs;
   for (std::size_t i = 0; i < scenes.size(); ++i)
-    runs.push_back({labels[i], &results[i].trajectory});
-  std::vector<core::ColumnInfo> columns;
-  for (const scene::Scene& s : scenes) {
-    for (const core::ColumnInfo& c : core::column_infos(*s.network)) {
-      if (std::none_of(columns.begin(), columns.end(),
-                       [&](const core::ColumnInfo& k) { return k.name == c.name; })) {
-        columns.push_back(c);
-      }
-    }
-  }
-  plot::PlotSpec spec = args.signals.empty() ? plot::default_comparison_spec(runs)
-                                             : plot::comparison_spec(runs, args.signals, columns);
-  if (args.signals.empty()) {
-    // Units for the default panels, from the components.
-    for (plot::PanelSpec& panel : spec.panels) {
-      if (!panel.unit.empty() || panel.signals.empty()) continue;
-      const auto info =
-          std::find_if(columns.begin(), columns.end(),
-                       [&](const core::ColumnInfo& c) { return c.name == panel.signals.front(); });
-      if (info != columns.end()) panel.unit = info->unit;
-    }
-  }
-  const plot::Format format = args.plot_format.value_or(plot::Format::png);
-  const fs::path path = out / (std::string("compare") + plot::extension(format));
-  plot::write_comparison_plot(spec, runs, path, format);
+    runs.push_back({labels[i], &results[i].trajectory, core::column_infos(*scenes[i].network)});
+  const fs::path path =
+      write_comparison(runs, args.signals, out, args.plot_format.value_or(plot::Format::png));
   if (!args.quiet) std::printf("  wrote %s\n", path.c_str());
   return kExitOk;
 }

@@ -20,8 +20,6 @@
 // study.md, work_precision.png) and from the command line (study_command.cpp).
 #pragma once
 
-#include "services/step_check.hpp"
-
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -30,27 +28,29 @@
 
 #include "core/simulation.hpp"
 #include "image/image.hpp"
+#include "scene/scene.hpp"
+#include "services/step_check.hpp"
 #include "text/font.hpp"
 
 namespace stiction::services {
 
 struct StudyOptions {
-  std::string scene;                    // bundled name or path
-  std::vector<std::string> overrides;   // --set KEY=VALUE
-  std::vector<std::string> integrators; // empty: every integrator
-  std::vector<double> dts;              // empty: around the predicted limits (study_grid.hpp)
-  std::vector<double> tolerances;       // empty: 1e-4 .. 1e-10 (rk4_adaptive)
-  std::optional<double> reference_dt;   // empty: scene dt / 16
-  int repeats = 3;                      // timing repeats (fewer for long runs)
+  scene::SceneSource scene;              // bundled name or path, or a TOML text
+  std::vector<std::string> overrides;    // --set KEY=VALUE
+  std::vector<std::string> integrators;  // empty: every integrator
+  std::vector<double> dts;               // empty: around the predicted limits (study_grid.hpp)
+  std::vector<double> tolerances;        // empty: 1e-4 .. 1e-10 (rk4_adaptive)
+  std::optional<double> reference_dt;    // empty: scene dt / 16
+  int repeats = 3;                       // timing repeats (fewer for long runs)
   // Default grids only: a finer step is not run when the previous run of the same
   // integrator, doubled, would take longer than this (wall seconds). The finest default
   // step is the reference's (rk4: 4x the reference's).
   double max_run_seconds = 3.0;
   // Timing repeats are cut so that one grid point takes at most about this long.
   double repeat_budget_seconds = 2.0;
-  bool bisect = true;                   // stability limits (fixed-step integrators)
+  bool bisect = true;                        // stability limits (fixed-step integrators)
   int stability_samples = kStatesPerRegime;  // per regime, for core::predict_step_limit (as check)
-  double bisection_precision = 0.01;    // relative width of the final bracket
+  double bisection_precision = 0.01;         // relative width of the final bracket
   // Relative accuracy a run must meet (event times and final values), in (0, 1).
   double target_error = 1e-3;
 };
@@ -101,7 +101,7 @@ struct OrderEstimate {
 
 struct StabilityLimit {
   std::string integrator;
-  double predicted = 0.0;       // core::predict_step_limit (0: none found)
+  double predicted = 0.0;  // core::predict_step_limit (0: none found)
   bool predicted_unbounded = false;
   double predicted_time = 0.0;  // time of the sampled state that limits it
   double chatter_free = 0.0;    // largest step at which no stuck friction chatters either

@@ -1,0 +1,189 @@
+#include "services/check_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <regex>
+
+#include "core/integrator.hpp"
+#include "services/step_check.hpp"
+#include "services/step_guard.hpp"
+#include "sys/interrupt.hpp"
+
+namespace stiction::services {
+namespace {
+
+// Mobility (inverse effective mass or inertia) that impedance i sees at the initial state:
+// push with a unit force through its map, let the admittances accelerate for a unit time
+// and read the velocity part of x_hat back. The largest entry gives the stiffest mode, the
+// one that limits the step. Works for every map whose x_hat is [position (n), velocity (n)]
+// with n = force size; NaN otherwise.
+double largest_mobility(core::Network& network, int i) {
+  const core::CoordinateMap& map = network.map_of(i);
+  const int n = map.force_size();
+  if (map.motion_size() != 2 * n) return std::nan("");
+  const core::Vec x0 = network.initial_state();
+  core::Vec base_hat(map.motion_size()), pushed_hat(map.motion_size());
+  map.motion(x0, base_hat);
+  double largest = 0.0;
+  for (int k = 0; k < n; ++k) {
+    core::Vec u = core::Vec::Zero(n);
+    u[k] = 1.0;
+    core::Vec u_hat = core::Vec::Zero(network.input_dim());
+    map.apply(x0, u, u_hat);
+    core::Vec x1 = x0;
+    for (std::size_t a = 0; a < network.admittances().size(); ++a) {
+      const core::Admittance& adm = *network.admittances()[a];
+      const core::Slot s = network.admittance_slot(static_cast<int>(a));
+      core::Vec with(s.state_size), without(s.state_size);
+      adm.derivative(x0.segment(s.state_offset, s.state_size),
+                     u_hat.segment(s.input_offset, s.input_size), with);
+      adm.derivative(x0.segment(s.state_offset, s.state_size), core::Vec::Zero(s.input_size),
+                     without);
+      x1.segment(s.state_offset, s.state_size) += with - without;
+    }
+    map.motion(x1, pushed_hat);
+    // The moving side receives -u: a positive mobility shows as a negative response.
+    largest = std::max(largest, -(pushed_hat[n + k] - base_hat[n + k]));
+  }
+  return largest;
+}
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
+
+}  // namespace
+
+const std::vector<std::string>& checked_integrators() {
+  static const std::vector<std::string> names = {"euler", "symplectic_euler", "heun", "rk4"};
+  return names;
+}
+
+CheckReport check_scene(scene::Scene& scene) {
+  core::Network& network = *scene.network;
+  const core::RunOptions& run = scene.run;
+
+  // What `run` reads before it simulates, with the same readers, hence the same messages.
+  CheckReport report;
+  report.render = render::read_render_settings(scene);
+  const std::vector<core::ColumnInfo> columns = core::column_infos(network);
+  std::vector<plot::PlotSpec> specs =
+      plot::read_plot_specs(scene.document, scene.path.string(), columns);
+  if (specs.empty()) specs = plot::default_plot_specs(columns);
+  for (const plot::PlotSpec& s : specs) report.plots.push_back(s.name);
+  report.verify = read_verify_settings(scene.document, run.duration);
+
+  for (std::size_t i = 0; i < network.impedances().size(); ++i) {
+    const core::Impedance& imp = *network.impedances()[i];
+    const core::StiffnessHint* hint = network.capabilities(static_cast<int>(i)).stiffness;
+    if (hint == nullptr) continue;
+    StiffElement s;
+    s.stiffness = hint->stiffness();
+    if (!(s.stiffness > 0.0)) continue;
+    s.component = imp.name();
+    s.type = std::string(imp.type());
+    s.mobility = largest_mobility(network, static_cast<int>(i));
+    s.wired = s.mobility > 0.0;
+    if (s.wired) {
+      s.omega = std::sqrt(s.stiffness * s.mobility);
+      const double B = hint->damping();
+      s.damping_ratio = std::isfinite(B) ? B * s.mobility / (2.0 * s.omega) : std::nan("");
+    }
+    report.stiff.push_back(s);
+  }
+
+  // The real limit depends on all elements at once, on the friction laws' stage sizes and on
+  // the states the scene passes through: linearize the actual step map along a run.
+  report.pilot = bounded_pilot(network, run);
+  const auto states = core::sample_states(network, report.pilot.options, kStatesPerRegime);
+  if (sys::interrupted()) throw sys::Interrupted{};
+  constexpr double kLowestStep = 1e-9;
+  for (const std::string& name : checked_integrators()) {
+    const core::StepLimit limit = core::predict_step_limit(network, name, states, kLowestStep);
+    const StepCheck as_check = step_check_from(limit, name, run.dt, kLowestStep);
+    report.limits.push_back({name, limit, recommend_step(scene, as_check)});
+    if (sys::interrupted()) throw sys::Interrupted{};
+  }
+  return report;
+}
+
+nlohmann::json check_json(const scene::Scene& scene, const CheckReport& report) {
+  const core::Network& network = *scene.network;
+  const core::RunOptions& run = scene.run;
+  nlohmann::json j;
+  j["ok"] = true;
+  j["errors"] = nlohmann::json::array();
+  j["warnings"] = nlohmann::json(warnings_json(scene.warnings));
+  j["scene"] = scene.name;
+  j["path"] = scene.path.string();
+  j["simulation"] = {{"integrator", run.integrator},
+                     {"dt", run.dt},
+                     {"duration", run.duration},
+                     {"output_rate", run.output_rate}};
+  j["state_dim"] = network.state_dim();
+  nlohmann::json layout = nlohmann::json::array();
+  for (const core::LayoutEntry& e : network.layout()) {
+    layout.push_back({{"component", e.component},
+                      {"type", e.type},
+                      {"offset", e.offset},
+                      {"size", e.size},
+                      {"labels", e.labels}});
+  }
+  j["layout"] = layout;
+  nlohmann::json stiff = nlohmann::json::array();
+  for (const StiffElement& s : report.stiff) {
+    nlohmann::json e{{"component", s.component}, {"type", s.type}, {"stiffness", s.stiffness}};
+    if (s.wired) {
+      e["effective_mass"] = 1.0 / s.mobility;
+      e["omega"] = s.omega;
+      e["damping_ratio"] = number_or_null(s.damping_ratio);
+      e["alone_rk4_unstable_above"] = 2.8284271247461903 / s.omega;
+    }
+    stiff.push_back(e);
+  }
+  j["stiff_elements"] = stiff;
+  j["pilot"] = {{"duration", report.pilot.options.duration}, {"truncated", report.pilot.shortened}};
+  nlohmann::json limits = nlohmann::json::object();
+  for (const IntegratorLimit& l : report.limits) {
+    nlohmann::json e;
+    e["unbounded"] = l.limit.unbounded;
+    e["unstable_above"] = l.limit.unbounded ? nlohmann::json() : nlohmann::json(l.limit.max_step);
+    e["limiting_time"] = l.limit.limiting_time;
+    e["chatters_above"] = l.limit.chatter_free_step < l.limit.max_step
+                              ? nlohmann::json(l.limit.chatter_free_step)
+                              : nlohmann::json();
+    if (l.integrator == run.integrator)
+      e["scene_dt_ok"] = l.limit.unbounded || run.dt < l.limit.max_step;
+    e["recommended_step"] = l.recommended.dt;
+    e["recommended_confirmed"] = l.recommended.verified;
+    e["recommendation"] = l.recommended.how;
+    limits[l.integrator] = e;
+  }
+  j["step_limits"] = limits;
+  j["render"] = {{"size", {report.render.width, report.render.height}}, {"fps", report.render.fps}};
+  j["plots"] = report.plots;
+  j["verify"] = {{"at", report.verify.at},
+                 {"pixel_tolerance", report.verify.pixel_tolerance},
+                 {"max_differing", report.verify.max_differing},
+                 {"max_rms", report.verify.max_rms},
+                 {"rel_tolerance", report.verify.rel_tolerance},
+                 {"abs_tolerance", report.verify.abs_tolerance}};
+  return j;
+}
+
+nlohmann::json check_error_json(const std::string& message) {
+  static const std::regex located(R"(^(.*):([0-9]+):([0-9]+): error: ([\s\S]*)$)");
+  std::smatch m;
+  nlohmann::json e;
+  if (std::regex_match(message, m, located)) {
+    e["file"] = m[1].str();
+    e["line"] = std::stol(m[2].str());
+    e["column"] = std::stol(m[3].str());
+    e["message"] = m[4].str();
+  } else {
+    e["message"] = message.rfind("error: ", 0) == 0 ? message.substr(7) : message;
+  }
+  return nlohmann::json{{"ok", false}, {"errors", nlohmann::json::array({e})}};
+}
+
+}  // namespace stiction::services

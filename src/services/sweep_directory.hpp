@@ -1,0 +1,39 @@
+// A sweep's directory (docs/sweeps.md): sweep.plan.json, the table (sweep.csv, or one
+// sweep.shard-K.csv per shard, resumed after an interruption), the report, and the merge of
+// the shards.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "services/sweep.hpp"
+
+namespace stiction::services {
+
+// The plan a directory already holds must be this one: shards of one sweep share it.
+// scene::InputError when it describes another sweep.
+void write_or_check_plan(const SweepPlan& plan, const std::filesystem::path& out);
+
+// The table at `path` as far as a previous run of this sweep got: the rows `shard` owns
+// whose values are the plan's (with `force_step`, less the points the guard refused before),
+// rewritten so that a row cut short by an interruption is dropped. scene::InputError when
+// the file has other columns.
+SweepTable resume_sweep_table(const SweepPlan& plan, const std::filesystem::path& path,
+                              const Shard& shard, bool force_step);
+
+// Writes a whole sweep into `dir`: sweep.plan.json, sweep.csv and the report (sweep.md, and
+// sweep.png and sweep.svg when there is something to plot; false when not).
+bool write_sweep(const SweepPlan& plan, const SweepTable& table, const std::filesystem::path& dir);
+
+struct SweepMerge {
+  std::size_t shards = 0, points = 0, missing = 0, duplicated = 0;
+  std::vector<std::string> problems;  // empty: merged, sweep.csv and the report written
+};
+
+// Merges dir's sweep.shard-K.csv into sweep.csv and the report, when every point of
+// sweep.plan.json is in exactly one shard. io::IoError for no shard or columns that differ.
+SweepMerge merge_sweep_shards(const std::filesystem::path& dir);
+
+}  // namespace stiction::services
