@@ -2,13 +2,15 @@
 modular RK4 architecture; the command line's services from Python (docs/python.md).
 
     import stiction
-    scene = stiction.Scene("sphere_roll").set("ground.mu", 0.2)
+    scene = stiction.Scene("sphere_roll").set("impedances.ground.mu", 0.2)
     result = stiction.run(scene)
     result.t, result["sphere.v.x"]          # NumPy arrays, SI units (result.units)
     result.summary["events"]["ground"]      # the same dict as summary.json
 
-Scenes: Scene, scenes(). Runs: run, Result. Errors: Error, SceneError, UnstableError,
-StepRefused, Interrupted, OutputError.
+Scenes: Scene, scenes(). Runs: run, Result. Tools: check, study, sweep, compare. Pictures:
+frame, frames, Result.write_video, Result.write_plots. Elements in Python: Scene.set_source,
+Impedance, Scene.set_element. Errors: Error, SceneError, UnstableError, StepRefused,
+Interrupted, OutputError.
 """
 
 import os as _os

@@ -14,6 +14,7 @@ nbclient = pytest.importorskip("nbclient")
 def test_roll_to_slip_notebook_runs(tmp_path):
     path = SOURCE_DIR / "examples" / "notebooks" / "roll_to_slip.ipynb"
     notebook = nbformat.read(path, as_version=4)
+    os.environ.setdefault("PYDEVD_DISABLE_FILE_VALIDATION", "1")  # the kernel's debugger notice
     client = nbclient.NotebookClient(notebook, timeout=600, kernel_name="python3",
                                      resources={"metadata": {"path": str(tmp_path)}})
     client.execute()  # raises CellExecutionError on any failing cell
