@@ -16,6 +16,7 @@ from pathlib import Path as _Path
 
 from . import _stiction
 from ._result import Result
+from ._pictures import frame, frames
 from ._run import run
 from ._scene import Scene, scenes
 from .errors import Error, Interrupted, OutputError, SceneError, StepRefused, UnstableError
@@ -33,5 +34,5 @@ def _locate_install():
 
 _locate_install()
 
-__all__ = ["Scene", "scenes", "run", "Result", "Error", "SceneError", "UnstableError",
+__all__ = ["Scene", "scenes", "run", "Result", "frame", "frames", "Error", "SceneError", "UnstableError",
            "StepRefused", "Interrupted", "OutputError"]
