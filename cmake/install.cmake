@@ -1,12 +1,16 @@
 # Installs the library side of stiction for other projects: the static libraries core,
-# components, scene, io (and sys, which io uses), their headers under include/stiction/, and a
-# CMake package (find_package(stiction) -> stiction::stiction). The command-line program and
-# its data (scenes, assets) are installed by their own directories; the binary finds the data
-# relative to itself (src/sys/data_dirs.hpp), so the prefix can be moved.
+# components, scene, io (and sys, which io uses), the services under the command line (run,
+# check, study, sweep, compare, verify; with what they link: plot, image, text and the render
+# settings), their headers under include/stiction/, and a CMake package (find_package(stiction)
+# -> stiction::stiction, stiction::services). The command-line program, the render plugin and
+# the data (scenes, assets) are installed by their own directories; the binary and the Python
+# module find them relative to themselves (src/sys/data_dirs.hpp), so the prefix can be moved.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(STICTION_EXPORTED stiction_sys stiction_core stiction_components stiction_scene stiction_io)
+set(STICTION_EXPORTED stiction_sys stiction_core stiction_components stiction_scene stiction_io
+                      stiction_image stiction_text stiction_plot stiction_render_settings
+                      stiction_services)
 foreach(target ${STICTION_EXPORTED})
   string(REPLACE "stiction_" "" short ${target})
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${short})
@@ -22,7 +26,7 @@ install(TARGETS ${STICTION_EXPORTED} stiction_all stiction_warnings
         EXPORT stictionTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stiction)
-foreach(dir core components scene io sys)
+foreach(dir core components scene io sys image text plot render services)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/${dir} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stiction
           FILES_MATCHING PATTERN "*.hpp")
 endforeach()

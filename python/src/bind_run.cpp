@@ -10,6 +10,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "bindings.hpp"
+#include "run_handle.hpp"
 #include "io/csv_writer.hpp"
 #include "io/summary.hpp"
 #include "services/interrupted_run.hpp"
@@ -21,14 +22,6 @@
 namespace stiction::python {
 
 namespace {
-
-// One run: its prepared scene (pictures render from it), result and summary.
-struct RunHandle {
-  std::shared_ptr<services::PreparedRun> prepared;
-  core::RunResult result;
-  nlohmann::ordered_json summary;
-  std::string status;  // "ok", "unstable", "interrupted"
-};
 
 bool on_main_thread() {
   py::module_ threading = py::module_::import("threading");

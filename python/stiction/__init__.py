@@ -19,6 +19,7 @@ from pathlib import Path as _Path
 from . import _stiction
 from ._elements import Impedance, State
 from ._result import Result
+from ._pictures import frame, frames
 from ._run import run
 from ._scene import Scene, scenes
 from ._tools import Comparison, Study, Sweep, check, compare, study, sweep
@@ -26,17 +27,23 @@ from .errors import Error, Interrupted, OutputError, SceneError, StepRefused, Un
 
 
 def _locate_install():
-    # Installed as <prefix>/lib/python3.X/dist-packages/stiction/: the render plugin and the
-    # bundled scenes are under the same prefix, wherever it was moved.
-    prefix = _Path(__file__).resolve().parents[3]
-    if (prefix / "share" / "stiction" / "scenes").is_dir():
-        _stiction._set_install_root(str(prefix))
-        # The render plugin is a library of its own: it finds fonts and scenes through this.
-        _os.environ.setdefault("STICTION_DATA_DIR", str(prefix / "share" / "stiction"))
+    # Installed as <prefix>/lib/python3.X/dist-packages/stiction/ (python/CMakeLists.txt):
+    # the bundled scenes, the font and the render plugin are under the same prefix, wherever
+    # it was moved. From the build tree (build/python/stiction/) no ancestor is such a prefix
+    # and the compiled-in places apply (sys/data_dirs.hpp).
+    package = _Path(__file__).resolve().parent
+    for prefix in list(package.parents)[:4]:
+        if (package.relative_to(prefix).parts[0] == "lib"
+                and (prefix / "share" / "stiction" / "scenes").is_dir()):
+            _stiction._set_install_root(str(prefix))
+            # The render plugin (dlopen'ed with its own copy of the libraries) does not see the
+            # root set above: it finds the font through the environment.
+            _os.environ.setdefault("STICTION_DATA_DIR", str(prefix / "share" / "stiction"))
+            return
 
 
 _locate_install()
 
 __all__ = ["Scene", "scenes", "run", "Result", "check", "study", "Study", "sweep", "Sweep",
-           "compare", "Comparison", "Impedance", "State", "Error", "SceneError", "UnstableError",
-           "StepRefused", "Interrupted", "OutputError"]
+           "compare", "Comparison", "frame", "frames", "Impedance", "State", "Error", "SceneError",
+           "UnstableError", "StepRefused", "Interrupted", "OutputError"]

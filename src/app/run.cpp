@@ -4,22 +4,11 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "app/event_lines.hpp"
-#include "services/interrupted_run.hpp"
-#include "services/output_dir.hpp"
-#include "services/plot_outputs.hpp"
-#include "services/progress.hpp"
-#include "services/render_loader.hpp"
-#include "services/run_service.hpp"
-#include "services/run_support.hpp"
-#include "services/step_guard.hpp"
-#include "services/streamed_rows.hpp"
-#include "services/verify_settings.hpp"
 #include "core/column_info.hpp"
 #include "core/simulation.hpp"
 #include "image/image.hpp"
@@ -30,42 +19,23 @@
 #include "render/gl.hpp"
 #include "render/render_outputs.hpp"
 #include "render/render_settings.hpp"
-#include "render/scene_view.hpp"
 #include "render/video_encoder.hpp"
 #include "scene/scene.hpp"
+#include "services/interrupted_run.hpp"
+#include "services/output_dir.hpp"
+#include "services/plot_outputs.hpp"
+#include "services/run_outputs.hpp"
+#include "services/run_service.hpp"
+#include "services/run_support.hpp"
+#include "services/step_guard.hpp"
+#include "services/streamed_rows.hpp"
+#include "services/verify_settings.hpp"
 #include "sys/interrupt.hpp"
 #include "text/font.hpp"
 
 namespace stiction::app {
 using namespace services;
 namespace fs = std::filesystem;
-namespace {
-
-render::RenderResult write_video(const scene::Scene& scene, const core::RunResult& result,
-                                 const core::Trajectory& rows,
-                                 const render::RenderSettings& settings, const fs::path& out,
-                                 bool video, bool frames, bool progress) {
-  std::unique_ptr<ProgressBar> bar;
-  render::RenderRequest request;
-  request.out_dir = out;
-  request.video = video;
-  request.frames = frames;
-  request.cancel = &sys::interrupt_flag();
-  for (const core::SlipHistory& h : result.slip_events) {  // time-warp around events
-    for (const core::SlipEvent& e : h.monitor.events()) request.event_times.push_back(e.time);
-  }
-  if (progress) {
-    bar = std::make_unique<ProgressBar>(video ? "render video" : "render frames");
-    request.progress = [&bar](const render::RenderProgress& p) {
-      bar->frames(p.frames_done, p.frame_count, p.frames_per_second, p.eta_seconds);
-    };
-  }
-  render::RenderResult rendered = render_outputs_on_demand(scene, rows, settings, request);
-  if (bar && !rendered.interrupted) bar->finish(std::to_string(rendered.frames) + " frames");
-  return rendered;
-}
-
-}  // namespace
 
 int run_command(const RunArguments& args) {
   RunRequest request;
@@ -150,8 +120,8 @@ int run_command(const RunArguments& args) {
 
   if (!args.no_plots) {
     try {
-      const std::vector<fs::path> plots =
-          write_run_plots(prepared.plot_specs, result, rows.for_plots(), out / "plots", args.plot_format);
+      const std::vector<fs::path> plots = write_run_plots(
+          prepared.plot_specs, result, rows.for_plots(), out / "plots", args.plot_format);
       for (const fs::path& p : plots) out.wrote(p);
       if (sys::interrupted()) {
         write_summary("plots");
@@ -176,8 +146,13 @@ int run_command(const RunArguments& args) {
   if (!args.no_video || args.frames) {
     render::RenderResult rendered;
     try {
-      rendered = write_video(scene, result, rows.for_video(), render_settings, out.path(),
-                             !args.no_video, args.frames, progress);
+      VideoRequest video;
+      video.out_dir = out.path();
+      video.video = !args.no_video;
+      video.frames = args.frames;
+      video.progress = progress;
+      video.cancel = &sys::interrupt_flag();
+      rendered = write_run_video(scene, result, rows.for_video(), render_settings, video);
     } catch (const scene::InputError&) {
       throw;  // exit 2, message already located
     } catch (const render::GlError& e) {

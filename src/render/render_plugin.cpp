@@ -55,7 +55,7 @@ extern "C" __attribute__((visibility("default"))) void stiction_render_outputs_v
   });
 }
 
-extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v1(
+extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v2(
     stiction::render::FramesCall* call) {
   namespace render = stiction::render;
   guarded(call, [call] {
@@ -67,6 +67,9 @@ extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v1
                             call->settings->fps, call->settings->slow_motion);
     call->times = call->choose(clock);
     call->images.clear();
-    for (double t : call->times) call->images.push_back(renderer.render(t));
+    for (std::size_t i = 0; i < call->times.size(); ++i) {
+      const double speed = i < call->speeds.size() ? call->speeds[i] : 1.0;
+      call->images.push_back(renderer.render(call->times[i], speed));
+    }
   });
 }

@@ -37,6 +37,9 @@ struct FramesCall {
   const core::Trajectory* trajectory = nullptr;
   const RenderSettings* settings = nullptr;
   std::function<std::vector<double>(const FrameClock&)> choose;
+  // The playback speed of each chosen time (FrameTime::speed; the overlay and the motion blur
+  // show it as the video does); empty: 1.
+  std::vector<double> speeds;
   std::vector<double> times;
   std::vector<image::Image> images;
   PluginError error = PluginError::none;
@@ -46,7 +49,7 @@ struct FramesCall {
 // Bumped whenever PluginCall, FramesCall or the types they point to change.
 inline constexpr const char* kRenderPluginSymbol = "stiction_render_outputs_v1";
 using RenderPluginEntry = void (*)(PluginCall*);
-inline constexpr const char* kRenderFramesSymbol = "stiction_render_frames_v1";
+inline constexpr const char* kRenderFramesSymbol = "stiction_render_frames_v2";
 using RenderFramesEntry = void (*)(FramesCall*);
 
 }  // namespace stiction::render

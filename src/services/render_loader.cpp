@@ -1,11 +1,11 @@
 #include "services/render_loader.hpp"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <dlfcn.h>
 
 #include "image/image.hpp"
 #include "render/gl.hpp"
@@ -24,11 +24,14 @@ std::vector<fs::path> plugin_candidates() {
     return {fs::path(env)};  // an explicit choice: nothing else
   }
   if (!sys::install_root().empty()) {
-    paths.push_back(sys::install_root() / STICTION_PLUGIN_RELATIVE_DIR / "libstiction_render_plugin.so");
+    paths.push_back(sys::install_root() / STICTION_PLUGIN_RELATIVE_DIR /
+                    "libstiction_render_plugin.so");
   }
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) paths.push_back(exe.parent_path() / ".." / STICTION_PLUGIN_RELATIVE_DIR / "libstiction_render_plugin.so");
+  if (!ec)
+    paths.push_back(exe.parent_path() / ".." / STICTION_PLUGIN_RELATIVE_DIR /
+                    "libstiction_render_plugin.so");
   paths.emplace_back(STICTION_RENDER_PLUGIN_BUILD_PATH);
   return paths;
 }
@@ -72,21 +75,30 @@ Entry entry_point(const char* symbol) {
 // Throws on the application's side what the plugin caught on its side.
 void rethrow(render::PluginError error, const std::string& message) {
   switch (error) {
-    case render::PluginError::none: return;
-    case render::PluginError::gl: throw render::GlError(message);
-    case render::PluginError::video: throw render::VideoError(message);
-    case render::PluginError::render: throw render::RenderError(message);
-    case render::PluginError::image: throw image::ImageError(message);
-    case render::PluginError::font: throw text::FontError(message);
-    case render::PluginError::input: throw scene::InputError(message);
-    case render::PluginError::other: break;
+    case render::PluginError::none:
+      return;
+    case render::PluginError::gl:
+      throw render::GlError(message);
+    case render::PluginError::video:
+      throw render::VideoError(message);
+    case render::PluginError::render:
+      throw render::RenderError(message);
+    case render::PluginError::image:
+      throw image::ImageError(message);
+    case render::PluginError::font:
+      throw text::FontError(message);
+    case render::PluginError::input:
+      throw scene::InputError(message);
+    case render::PluginError::other:
+      break;
   }
   throw render::RenderError(message);
 }
 
 }  // namespace
 
-render::RenderResult render_outputs_on_demand(const scene::Scene& scene, const core::Trajectory& trajectory,
+render::RenderResult render_outputs_on_demand(const scene::Scene& scene,
+                                              const core::Trajectory& trajectory,
                                               const render::RenderSettings& settings,
                                               const render::RenderRequest& request) {
   const auto entry = entry_point<render::RenderPluginEntry>(render::kRenderPluginSymbol);
@@ -115,6 +127,26 @@ RenderedFrames render_frames_on_demand(
   entry(&call);
   rethrow(call.error, call.message);
   return {std::move(call.times), std::move(call.images)};
+}
+
+std::vector<image::Image> render_frames_at(const scene::Scene& scene,
+                                           const core::Trajectory& trajectory,
+                                           const render::RenderSettings& settings,
+                                           const std::vector<render::FrameTime>& times) {
+  const auto entry = entry_point<render::RenderFramesEntry>(render::kRenderFramesSymbol);
+  render::FramesCall call;
+  call.scene = &scene;
+  call.trajectory = &trajectory;
+  call.settings = &settings;
+  std::vector<double> chosen;
+  for (const render::FrameTime& f : times) {
+    chosen.push_back(f.t);
+    call.speeds.push_back(f.speed);
+  }
+  call.choose = [&chosen](const render::FrameClock&) { return chosen; };
+  entry(&call);
+  rethrow(call.error, call.message);
+  return std::move(call.images);
 }
 
 }  // namespace stiction::services

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "image/image.hpp"
-
 #include "render/render_outputs.hpp"
 #include "render/render_settings.hpp"
+#include "render/time_warp.hpp"
 #include "scene/scene.hpp"
 
 namespace stiction::services {
@@ -19,7 +19,8 @@ namespace stiction::services {
 // render::render_outputs through the plugin. Throws what render_outputs throws
 // (render::GlError, VideoError, RenderError, image::ImageError, text::FontError,
 // scene::InputError); render::RenderError when the plugin cannot be loaded.
-render::RenderResult render_outputs_on_demand(const scene::Scene& scene, const core::Trajectory& trajectory,
+render::RenderResult render_outputs_on_demand(const scene::Scene& scene,
+                                              const core::Trajectory& trajectory,
                                               const render::RenderSettings& settings,
                                               const render::RenderRequest& request);
 
@@ -33,5 +34,13 @@ RenderedFrames render_frames_on_demand(
     const scene::Scene& scene, const core::Trajectory& trajectory,
     const render::RenderSettings& settings,
     const std::function<std::vector<double>(const render::FrameClock&)>& choose_times);
+
+// The frames of one run at the given times, each drawn at its playback speed as the video
+// draws it (the Python module's stiction.frame; services/run_outputs.hpp gives the video's
+// frame times). One GL context for all of them.
+std::vector<image::Image> render_frames_at(const scene::Scene& scene,
+                                           const core::Trajectory& trajectory,
+                                           const render::RenderSettings& settings,
+                                           const std::vector<render::FrameTime>& times);
 
 }  // namespace stiction::services
