@@ -27,6 +27,9 @@ const std::set<std::string> kKikuuweTypes{"kikuuwe_contact", "kikuuwe_friction",
 const std::set<std::string> kOtherFrictionTypes{"lugre", "dahl"};
 // No friction at all.
 const std::set<std::string> kFrictionlessTypes{"spring_damper", "torque_source", "force_source"};
+// The element comes from the program that loads the scene (scene/external_elements.hpp): its
+// law, friction or not, is the program's; its regimes come from its own slip velocity.
+const std::set<std::string> kSuppliedInCodeTypes{"external"};
 
 scene::Scene from_text(const std::string& text) {
   return scene::build_scene(toml::parse(std::string_view(text), std::string_view("gen.toml")),
@@ -210,7 +213,8 @@ TEST_CASE("friction regimes: every registered impedance type is classified") {
                  "ClampedFriction and get a spin-down case here");
     const int classes = static_cast<int>(kKikuuweTypes.contains(type)) +
                         static_cast<int>(kOtherFrictionTypes.contains(type)) +
-                        static_cast<int>(kFrictionlessTypes.contains(type));
+                        static_cast<int>(kFrictionlessTypes.contains(type)) +
+                        static_cast<int>(kSuppliedInCodeTypes.contains(type));
     CHECK(classes == 1);
     // A name that says friction, contact or joint is never filed as frictionless.
     const bool sounds_frictional = type.find("friction") != std::string::npos ||
@@ -218,7 +222,8 @@ TEST_CASE("friction regimes: every registered impedance type is classified") {
                                    type.find("joint") != std::string::npos;
     if (sounds_frictional) CHECK_FALSE(kFrictionlessTypes.contains(type));
   }
-  for (const auto* known : {&kKikuuweTypes, &kOtherFrictionTypes, &kFrictionlessTypes}) {
+  for (const auto* known :
+       {&kKikuuweTypes, &kOtherFrictionTypes, &kFrictionlessTypes, &kSuppliedInCodeTypes}) {
     for (const std::string& type : *known) {
       INFO(type);
       CHECK(std::find(types.begin(), types.end(), type) != types.end());
