@@ -49,17 +49,19 @@ std::shared_ptr<RunHandle> run(const SceneHandle& handle, std::optional<std::str
   request.stop = &sys::interrupt_flag();
 
   auto h = std::make_shared<RunHandle>();
+  // The scene as it is now: another thread may set() on it while this one simulates.
+  const SceneHandle scene = handle;
   // Ctrl-C stops the run and keeps its rows: only the main thread receives SIGINT.
   std::optional<sys::ScopedInterrupt> interrupt;
   if (on_main_thread()) interrupt.emplace();
-  bool interrupted = false;
   {
     py::gil_scoped_release release;
     h->prepared = std::make_shared<services::PreparedRun>(
-        services::prepare_run(handle.fresh(), request));
+        services::prepare_run(scene.fresh(), request));
     services::guard_run(*h->prepared, request);
     if (!h->prepared->guard.refusal) {
       services::RunOutcome outcome = services::simulate_run(*h->prepared, request);
+      services::estimate_run_accuracy(*h->prepared, request, outcome);
       h->result = std::move(outcome.result);
       h->summary = std::move(outcome.summary);
       if (outcome.accuracy_interrupted) {
@@ -68,7 +70,6 @@ std::shared_ptr<RunHandle> run(const SceneHandle& handle, std::optional<std::str
         services::mark_interrupted(h->summary, "simulate", outcome.time_reached);
       }
     }
-    interrupted = sys::interrupted();
   }
   interrupt.reset();
   if (h->prepared->guard.refusal) {
@@ -79,7 +80,6 @@ std::shared_ptr<RunHandle> run(const SceneHandle& handle, std::optional<std::str
     throw py::error_already_set();
   }
   h->status = h->summary.value("status", std::string("ok"));
-  if (interrupted && h->status == "ok") h->status = "interrupted";
   return h;
 }
 

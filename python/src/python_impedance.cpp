@@ -64,7 +64,9 @@ class PythonImpedance : public core::Impedance {
         throw std::invalid_argument(where + " defines signals() but not write_signals()");
       }
       held_->write_signals = element.attr("write_signals");
-      for (const auto& item : signals()) {
+      // A method signals() or a plain list, as state_labels is.
+      const py::object listed = PyCallable_Check(signals.ptr()) ? signals() : signals;
+      for (const auto& item : listed) {
         core::SignalInfo s;
         if (py::isinstance<py::str>(item)) {
           s.name = py::str(item);
@@ -156,7 +158,10 @@ class PythonImpedance : public core::Impedance {
     copy_in(x_hat, core::Vec());
     const py::object v = held_->slip(held_->x);
     core::Vec3 out = core::Vec3::Zero();
-    const bool scalar = PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr());
+    // One number (a Python or NumPy scalar, or a 1-entry array) for a joint, else 3.
+    const bool scalar = py::isinstance<py::array>(v)
+                            ? py::reinterpret_borrow<py::array>(v).size() == 1
+                            : PySequence_Check(v.ptr()) == 0 || py::len(v) == 1;
     read_values(v, out.data(), scalar ? 1 : 3, what_ + ": slip_velocity() returned");
     return out;
   }

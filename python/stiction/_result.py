@@ -94,12 +94,14 @@ class Result:
 
     # --- conversions and files
     def to_dataframe(self):
-        """A pandas DataFrame indexed by time (pandas must be installed: python3-pandas)."""
+        """A pandas DataFrame indexed by time, a copy of the rows (pandas must be installed:
+        python3-pandas)."""
         try:
             import pandas as pd
         except ImportError as e:
             raise ImportError("to_dataframe() needs pandas (Debian: apt-get install python3-pandas)") from e
-        frame = pd.DataFrame(self._rows[:, 1:], columns=self.columns[1:], index=pd.Index(self.t, name="t"))
+        # A copy: the rows themselves are read-only, a DataFrame is for editing too.
+        frame = pd.DataFrame(self._rows[:, 1:].copy(), columns=self.columns[1:], index=pd.Index(self.t, name="t"))
         frame.attrs["units"] = dict(self.units)
         return frame
 
@@ -109,8 +111,8 @@ class Result:
         return self._handle.save(os.fspath(directory))
 
     def summary_json(self):
-        """summary.json's text as this run would write it (without ``files``)."""
-        return json.dumps(self.summary, indent=2)
+        """The summary as JSON text (without ``files``; ``save`` writes summary.json itself)."""
+        return json.dumps(self.summary, indent=2, ensure_ascii=False) + "\n"
 
     def __repr__(self):
         s = self.summary

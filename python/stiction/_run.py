@@ -26,10 +26,11 @@ def run(scene, integrator=None, dt=None, duration=None, tolerance=None, accuracy
     simulated), :class:`SceneError` for bad options.
     """
     scene = as_scene(scene)
+    ran = scene.copy()  # the scene as run: later set() calls on `scene` do not change it
     handle = _stiction._run(scene._handle, integrator=integrator, dt=dt, duration=duration,
                             tolerance=tolerance, accuracy=accuracy, force_step=force_step,
                             progress=progress)
-    result = Result(handle, scene)
+    result = Result(handle, ran)
     if result.status == "interrupted":
         raise Interrupted(f"{scene.name}: interrupted at t = {result.t[-1] if len(result) else 0:g} s; "
                           "the rows so far are in .result", result=result)

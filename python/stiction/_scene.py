@@ -48,8 +48,8 @@ class Scene:
                              elements=elements)
 
     def set(self, key_or_dict=None, value=None, **keys):
-        """Sets keys as ``--set KEY=VALUE`` does: ``scene.set("ground.mu", 0.2)``,
-        ``scene.set({"ground.mu": 0.2, "simulation.dt": 1e-5})``. Values are Python values
+        """Sets keys as ``--set KEY=VALUE`` does: ``scene.set("impedances.ground.mu", 0.2)``,
+        ``scene.set({"impedances.ground.mu": 0.2, "simulation.dt": 1e-5})``. Values are Python values
         (numbers, strings, bools, lists, dicts). Returns the scene, so calls chain."""
         if isinstance(key_or_dict, str):
             keys = {key_or_dict: value, **keys}

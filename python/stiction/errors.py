@@ -1,6 +1,7 @@
 """The exceptions of stiction.
 
-Every error the package raises derives from :class:`Error`. A scene that cannot be read or
+Every error the package raises derives from :class:`Error`, except :class:`Interrupted`
+(Ctrl-C), a ``KeyboardInterrupt``. A scene that cannot be read or
 built raises :class:`SceneError` (also a ``ValueError``) with the place it names: ``file``,
 ``line``, ``column`` and ``key``, as the command line prints them (exit code 2 there).
 """
@@ -74,8 +75,11 @@ class StepRefused(UnstableError):
     step_check = None
 
 
-class Interrupted(Error, KeyboardInterrupt):
-    """Ctrl-C stopped the run; ``result`` holds what was simulated up to then."""
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C stopped the run; ``result`` holds what was simulated up to then.
+
+    A KeyboardInterrupt and not an :class:`Error` (nor an ``Exception``), so that
+    ``except Exception`` in a loop of runs does not swallow Ctrl-C."""
 
     def __init__(self, text, result=None):
         super().__init__(text)

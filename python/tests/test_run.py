@@ -122,6 +122,7 @@ def test_ctrl_c_stops_the_run_and_keeps_its_rows():
         timer.join()
         e = stopped.value
         assert isinstance(e, stiction.Interrupted)
+        assert not isinstance(e, Exception)  # `except Exception` in a loop of runs lets it through
         if e.result is not None:
             break
     assert e.result.status == "interrupted"
@@ -143,3 +144,19 @@ def test_runs_on_threads_in_parallel():
     for t in threads:
         t.join()
     assert np.array_equal(results[0].rows, results[1].rows)
+
+
+def test_a_result_keeps_the_scene_it_ran():
+    scene = stiction.Scene("sphere_roll").set("simulation.duration", 0.1)
+    first = stiction.run(scene, accuracy=False)
+    scene.set("impedances.ground.mu", 0.3)
+    assert first.scene.overrides == ["simulation.duration=0.1"]
+    assert first.summary["scene"] == "sphere_roll"
+
+
+def test_dataframe_is_a_copy_to_edit():
+    pytest.importorskip("pandas")
+    result = stiction.run("slope_slide", duration=0.2, accuracy=False)
+    frame = result.to_dataframe()
+    frame.iloc[0, 0] = 123.0
+    assert result.rows[0, 1] != 123.0

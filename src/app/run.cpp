@@ -88,6 +88,9 @@ int run_command(const RunArguments& args) {
     summary["files"] = out.files();
     io::write_summary(summary, out / "summary.json");
   };
+  // The run's error estimate (docs/accuracy.md): a companion run, for finished runs only,
+  // after the rows are safe on disk.
+  estimate_run_accuracy(prepared, request, outcome);
   if (outcome.accuracy_interrupted) {
     write_summary("accuracy");
     return interrupted_exit(args.quiet, "accuracy", out.files(), time_reached);

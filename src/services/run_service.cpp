@@ -54,24 +54,26 @@ RunOutcome simulate_run(PreparedRun& p, const RunRequest& request, core::RowSink
   o.time_reached = result.trajectory.row_count() > 0
                        ? result.trajectory.at(result.trajectory.row_count() - 1, 0)
                        : 0.0;
-  // The run's error estimate (docs/accuracy.md): a companion run, for finished runs only.
-  if (!result.instability && !result.interrupted) {
-    AccuracySettings settings;
-    if (request.accuracy) settings.mode = *request.accuracy ? AccuracyMode::on : AccuracyMode::off;
-    PredictedStepLimits limits;
-    if (p.guard.check.applies) {
-      limits.chatter_limit = p.guard.check.chatter_limit;
-      if (!p.guard.check.unbounded) limits.instability_limit = p.guard.check.instability_limit;
-    }
-    o.accuracy = estimate_accuracy(scene, result, limits, settings);
-    o.summary["accuracy"] = accuracy_json(o.accuracy);
-    o.accuracy_interrupted = o.accuracy.interrupted;
-  } else {
+  if (result.instability || result.interrupted) {
     o.summary["accuracy"] = {
         {"method", "off"},
         {"reason", result.instability ? "the run was unstable" : "the run was interrupted"}};
   }
   return o;
+}
+
+void estimate_run_accuracy(PreparedRun& p, const RunRequest& request, RunOutcome& o) {
+  if (o.result.instability || o.result.interrupted) return;
+  AccuracySettings settings;
+  if (request.accuracy) settings.mode = *request.accuracy ? AccuracyMode::on : AccuracyMode::off;
+  PredictedStepLimits limits;
+  if (p.guard.check.applies) {
+    limits.chatter_limit = p.guard.check.chatter_limit;
+    if (!p.guard.check.unbounded) limits.instability_limit = p.guard.check.instability_limit;
+  }
+  o.accuracy = estimate_accuracy(p.scene, o.result, limits, settings);
+  o.summary["accuracy"] = accuracy_json(o.accuracy);
+  o.accuracy_interrupted = o.accuracy.interrupted;
 }
 
 }  // namespace stiction::services

@@ -2,7 +2,7 @@
 // (the command line and the Python module share it). In two steps so that a caller can act
 // between them: prepare_run loads the settings the outputs need and applies the step guard
 // (a refusal is returned, not printed), simulate_run simulates, estimates the accuracy and
-// builds summary.json's content.
+// builds summary.json's content, then estimate_run_accuracy runs the companion.
 #pragma once
 
 #include <atomic>
@@ -61,9 +61,13 @@ struct RunOutcome {
   bool accuracy_interrupted = false;         // the signal came during the companion run
 };
 
-// Simulates (rows also to `sink` when given), then the accuracy estimate of a finished run
-// and the summary. An interrupted or unstable run keeps its rows; see result.interrupted
-// and result.instability.
+// Simulates (rows also to `sink` when given) and builds the summary. An interrupted or
+// unstable run keeps its rows (see result.interrupted and result.instability); its summary's
+// `accuracy` says why there is no estimate.
 RunOutcome simulate_run(PreparedRun& run, const RunRequest& request, core::RowSink* sink = nullptr);
+// The error estimate of a finished run (docs/accuracy.md: a companion run), into the summary;
+// nothing for an unstable or interrupted one. A step of its own so that a caller can first
+// keep the rows (the command commits trajectory.csv before the companion runs).
+void estimate_run_accuracy(PreparedRun& run, const RunRequest& request, RunOutcome& outcome);
 
 }  // namespace stiction::services

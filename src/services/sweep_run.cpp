@@ -125,7 +125,10 @@ class PointRunner {
       return {};  // a signal during the step check or a suggestion's trials: no row
     } catch (const std::exception& e) {
       row[base] = "error";  // scene::InputError and anything else: the point's message
-      row[base + 4] = e.what();
+      // Its first line: the table is one line per point (a Python law's error carries a
+      // traceback on the lines after).
+      const std::string message = e.what();
+      row[base + 4] = message.substr(0, message.find('\n'));
     }
     return row;
   }
