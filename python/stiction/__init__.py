@@ -23,7 +23,8 @@ from ._pictures import frame, frames
 from ._run import run
 from ._scene import Scene, scenes
 from ._tools import Comparison, Study, Sweep, check, compare, study, sweep
-from .errors import Error, Interrupted, OutputError, SceneError, StepRefused, UnstableError
+from .errors import (AccuracyWarning, Error, Interrupted, OutputError, SceneError, SceneWarning,
+                     StepRefused, UnstableError)
 
 
 def _locate_install():
@@ -46,4 +47,5 @@ _locate_install()
 
 __all__ = ["Scene", "scenes", "run", "Result", "check", "study", "Study", "sweep", "Sweep",
            "compare", "Comparison", "frame", "frames", "Impedance", "State", "Error", "SceneError",
-           "UnstableError", "StepRefused", "Interrupted", "OutputError"]
+           "UnstableError", "StepRefused", "Interrupted", "OutputError", "SceneWarning",
+           "AccuracyWarning"]

@@ -1,9 +1,11 @@
 """stiction.run: `stiction run` from Python."""
 
+import warnings
+
 from . import _stiction
 from ._result import Result
 from ._scene import as_scene
-from .errors import Interrupted, UnstableError
+from .errors import AccuracyWarning, Interrupted, SceneWarning, UnstableError
 
 
 def run(scene, integrator=None, dt=None, duration=None, tolerance=None, accuracy=None,
@@ -20,6 +22,10 @@ def run(scene, integrator=None, dt=None, duration=None, tolerance=None, accuracy
     force_step  simulate even when the step guard predicts the step unstable
     progress    print progress to stderr
 
+    Says what the command says on stderr as Python warnings: the scene's plausibility
+    warnings and the step guard's (:class:`SceneWarning`) and an inaccurate run
+    (:class:`AccuracyWarning`); the ``warnings`` module filters them as usual.
+
     Raises :class:`StepRefused` when the step guard refuses the step (nothing simulated),
     :class:`UnstableError` when the run becomes unstable (``.result`` holds the rows up to
     then), :class:`Interrupted` (a KeyboardInterrupt) on Ctrl-C (``.result`` holds what was
@@ -31,6 +37,7 @@ def run(scene, integrator=None, dt=None, duration=None, tolerance=None, accuracy
                             tolerance=tolerance, accuracy=accuracy, force_step=force_step,
                             progress=progress)
     result = Result(handle, ran)
+    _warn(result)
     if result.status == "interrupted":
         raise Interrupted(f"{scene.name}: interrupted at t = {result.t[-1] if len(result) else 0:g} s; "
                           "the rows so far are in .result", result=result)
@@ -45,3 +52,19 @@ def run(scene, integrator=None, dt=None, duration=None, tolerance=None, accuracy
         raise UnstableError(text, time=instability["time"], component=instability["component"],
                             reason=instability["reason"], suggested_dt=suggested, result=result)
     return result
+
+
+def _warn(result):
+    summary = result.summary
+    for w in summary.get("warnings", []):
+        warnings.warn(f"{w['file']}:{w['line']}:{w['column']}: {w['text']}", SceneWarning, stacklevel=3)
+    accuracy = summary.get("accuracy") or {}
+    if accuracy.get("verdict") == "inaccurate":
+        setting = (f"tolerance {summary.get('tolerance'):g}" if summary["integrator"] == "rk4_adaptive"
+                   else f"dt = {summary['dt']:g} s")
+        reasons = accuracy.get("reasons", [])
+        text = (f"{summary['scene']}: the run is inaccurate with {summary['integrator']}, {setting}: "
+                + "; ".join(reasons[:3]) + (f"; ... ({len(reasons) - 3} more in result.accuracy['reasons'])"
+                                            if len(reasons) > 3 else "")
+                + " (stiction.study measures the largest accurate step; docs/accuracy.md)")
+        warnings.warn(text, AccuracyWarning, stacklevel=3)

@@ -84,3 +84,14 @@ class Interrupted(KeyboardInterrupt):
     def __init__(self, text, result=None):
         super().__init__(text)
         self.result = result
+
+
+class SceneWarning(UserWarning):
+    """A plausibility warning of the scene or the step guard's warning (summary.json's
+    ``warnings``: a value that is valid but looks like a mistake, a step above the chatter
+    limit), issued by :func:`stiction.run` as the command prints it on stderr."""
+
+
+class AccuracyWarning(UserWarning):
+    """The run's error estimate found it inaccurate (summary.json's ``accuracy.verdict``;
+    ``result.accuracy["reasons"]`` says why; docs/accuracy.md)."""

@@ -160,3 +160,19 @@ def test_dataframe_is_a_copy_to_edit():
     frame = result.to_dataframe()
     frame.iloc[0, 0] = 123.0
     assert result.rows[0, 1] != 123.0
+
+
+def test_what_the_command_warns_of_is_a_python_warning():
+    with pytest.warns(stiction.AccuracyWarning, match="sphere_roll: the run is inaccurate with rk4"):
+        stiction.run("sphere_roll", accuracy=True)
+    block = {
+        "name": "slippery",
+        "simulation": {"dt": 1e-4, "duration": 0.1},
+        "bodies": {"block": {"type": "point_mass", "mass": 1.0, "position": [0.0, 0.0, -9.8e-6]}},
+        "impedances": {"floor": {"type": "kikuuwe_contact", "body": "block", "normal": [0.0, 0.0, 1.0],
+                                 "stiffness": 1e6, "damping": 2000.0, "mu": 20.0}},
+    }
+    scene = stiction.Scene.from_dict(block, name="slippery.toml")
+    assert scene.warnings, "mu = 20 is a plausibility warning"
+    with pytest.warns(stiction.SceneWarning, match=r"slippery.toml:\d+:\d+: impedances.floor.mu"):
+        stiction.run(scene, accuracy=False)
