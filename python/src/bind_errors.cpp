@@ -1,4 +1,5 @@
-// The services' exceptions as the package's (python/stiction/errors.py): a scene error with
+// What every binding shares: the services' exceptions as the package's
+// (python/stiction/errors.py), JSON as Python objects, the main-thread test. A scene error with
 // its file, line, column and key; an I/O error; anything else as RuntimeError.
 #include <exception>
 
@@ -38,6 +39,11 @@ py::object json_to_python(const Json& value) {
 
 py::object to_python(const nlohmann::ordered_json& value) { return json_to_python(value); }
 py::object to_python(const nlohmann::json& value) { return json_to_python(value); }
+
+bool on_main_thread() {
+  py::module_ threading = py::module_::import("threading");
+  return threading.attr("current_thread")().is(threading.attr("main_thread")());
+}
 
 py::object error_class(const char* name) {
   return py::module_::import("stiction.errors").attr(name);

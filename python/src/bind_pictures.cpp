@@ -30,11 +30,6 @@ namespace stiction::python {
 
 namespace {
 
-bool on_main_thread() {
-  py::module_ threading = py::module_::import("threading");
-  return threading.attr("current_thread")().is(threading.attr("main_thread")());
-}
-
 [[noreturn]] void raise(const char* error, const std::string& message) {
   py::object e = error_class(error)(message);
   PyErr_SetObject(e.get_type().ptr(), e.ptr());

@@ -23,11 +23,6 @@ namespace stiction::python {
 
 namespace {
 
-bool on_main_thread() {
-  py::module_ threading = py::module_::import("threading");
-  return threading.attr("current_thread")().is(threading.attr("main_thread")());
-}
-
 std::string refusal_text(const services::PreparedRun& p) {
   const services::StepGuard& g = p.guard;
   char dt[32];

@@ -23,11 +23,6 @@ namespace stiction::python {
 
 namespace {
 
-bool on_main_thread() {
-  py::module_ threading = py::module_::import("threading");
-  return threading.attr("current_thread")().is(threading.attr("main_thread")());
-}
-
 // Runs `work` with the GIL released and SIGINT caught (on the main thread, the only one that
 // receives it); a service that gave up on the signal (sys::Interrupted) becomes
 // stiction.Interrupted. Returns whether a signal arrived.

@@ -33,6 +33,10 @@ struct SceneHandle {
 py::object to_python(const nlohmann::ordered_json& value);
 py::object to_python(const nlohmann::json& value);
 
+// True on Python's main thread, the one SIGINT reaches: only there may a call install
+// sys::ScopedInterrupt for Ctrl-C.
+bool on_main_thread();
+
 // The class `name` of stiction.errors.
 py::object error_class(const char* name);
 
