@@ -250,25 +250,27 @@ void ComponentBuilder::wire_sources() {
       });
       for (std::size_t k = 1; k < spec.entries.size(); ++k)
         profiles.emplace_back([values, k](double, const double*) { return (*values)[k]; });
-    }
-    for (std::size_t k = 0; k < spec.entries.size() && spec.external == nullptr; ++k) {
-      const auto& e = expressions[i][k];
-      if (!e) {
-        profiles.emplace_back([v = spec.entries[k].constant](double, const double*) { return v; });
-        continue;
+    } else {
+      for (std::size_t k = 0; k < spec.entries.size(); ++k) {
+        const auto& e = expressions[i][k];
+        if (!e) {
+          profiles.emplace_back(
+              [v = spec.entries[k].constant](double, const double*) { return v; });
+          continue;
+        }
+        // Where the expression's values sit among the observed ones; gathered into a buffer
+        // sized here, so a stage evaluation does not allocate.
+        std::vector<int> index;
+        for (const auto& s : e->used_signals()) {
+          index.push_back(static_cast<int>(std::find(observed[i].begin(), observed[i].end(), s) -
+                                           observed[i].begin()));
+        }
+        auto buffer = std::make_shared<std::vector<double>>(index.size());
+        profiles.emplace_back([expression = e, index, buffer](double t, const double* values) {
+          for (std::size_t n = 0; n < index.size(); ++n) (*buffer)[n] = values[index[n]];
+          return expression->evaluate(t, buffer->data());
+        });
       }
-      // Where the expression's values sit among the observed ones; gathered into a buffer
-      // sized here, so a stage evaluation does not allocate.
-      std::vector<int> index;
-      for (const auto& s : e->used_signals()) {
-        index.push_back(static_cast<int>(std::find(observed[i].begin(), observed[i].end(), s) -
-                                         observed[i].begin()));
-      }
-      auto buffer = std::make_shared<std::vector<double>>(index.size());
-      profiles.emplace_back([expression = e, index, buffer](double t, const double* values) {
-        for (std::size_t n = 0; n < index.size(); ++n) (*buffer)[n] = values[index[n]];
-        return expression->evaluate(t, buffer->data());
-      });
     }
     std::unique_ptr<core::CoordinateMap> map = std::move(spec.map);
     int raw = 0;
