@@ -34,7 +34,10 @@ py::array_t<double> input_array(int n, double*& data) {
   return a;
 }
 
-class PythonImpedance : public core::Impedance {
+// Always an EnergyStore: an element without stored_energy() holds none (0 J), as a bundled
+// element without the capability; with it, the energy monitor sees what a spring in Python
+// holds, instead of taking its release for an instability.
+class PythonImpedance : public core::Impedance, public core::EnergyStore {
  public:
   PythonImpedance(const std::string& name, py::object element)
       : Impedance(name), held_(std::make_unique<Held>()) {
@@ -93,6 +96,10 @@ class PythonImpedance : public core::Impedance {
       signals_.push_back(std::move(u));
     }
     if (py::hasattr(element, "slip_velocity")) held_->slip = element.attr("slip_velocity");
+    // None (a subclass switching it off) counts as not defined.
+    if (const py::object energy = py::getattr(element, "stored_energy", py::none());
+        !energy.is_none())
+      held_->energy = energy;
     held_->x = input_array(in_, x_);
     held_->y = input_array(state_, y_);
     held_->u = input_array(out_, u_);
@@ -152,6 +159,17 @@ class PythonImpedance : public core::Impedance {
                 static_cast<int>(signals_.size()), what_ + ": write_signals() returned");
   }
 
+  // The Python stored_energy(x_hat, y) in J; 0 without one.
+  double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override {
+    if (!held_->energy) return 0.0;
+    py::gil_scoped_acquire gil;
+    copy_in(x_hat, y);
+    double energy = 0.0;
+    read_values(held_->energy(held_->x, held_->y), &energy, 1,
+                what_ + ": stored_energy() returned");
+    return energy;
+  }
+
   // The Python slip_velocity(x_hat): a number (a joint's rate) or 3 numbers.
   core::Vec3 slip(core::ConstVecRef x_hat) const {
     py::gil_scoped_acquire gil;
@@ -174,7 +192,7 @@ class PythonImpedance : public core::Impedance {
   }
 
   struct Held {
-    py::object element, evaluate, write_signals, slip;
+    py::object element, evaluate, write_signals, slip, energy;
     py::array_t<double> x, y, u;
   };
   std::unique_ptr<Held> held_;

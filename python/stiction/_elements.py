@@ -54,6 +54,9 @@ class Impedance:
         events as the bundled friction elements (a joint returns x_hat[1]).
     stiffness (optional, N/m or N·m/rad): the largest stiffness it puts between its ports,
         for the step guard's and ``stiction.check``'s advice.
+    stored_energy(x_hat, y) -> J (optional): the energy it holds (a spring's 1/2 k x^2). The
+        energy monitor stops a run whose energy rises past what the sources put in; without
+        this, an element that stores energy and gives it back looks like such a rise.
     """
 
     input_size = 2

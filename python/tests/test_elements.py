@@ -288,3 +288,56 @@ def test_the_accuracy_companion_runs_the_python_law_too():
     result = stiction.run(scene, duration=0.2, accuracy=True, force_step=True)
     assert "verdict" in result.summary["accuracy"]
     assert calls["n"] > alone  # the companion (dt/2, its own scene load) called the law too
+
+
+SPRING_SCENE = """
+name = "py_spring"
+gravity = [0.0, 0.0, 0.0]
+[simulation]
+dt = 1e-4
+duration = 0.05
+[bodies.m]
+type = "point_mass"
+mass = {mass}
+position = [{x0}, 0.0, 0.0]
+[impedances.spring]
+type = "external"
+body = "m"
+"""
+
+
+class StoringSpring(stiction.Impedance):
+    """u = k x at a point: a spring to the origin, with the energy it holds."""
+
+    input_size, output_size, state_size = 6, 3, 0
+
+    def __init__(self, k):
+        self.k = k
+
+    def evaluate(self, t, x_hat, y, tau):
+        return self.k * x_hat[:3], None
+
+    def stored_energy(self, x_hat, y):
+        return 0.5 * self.k * float(x_hat[:3] @ x_hat[:3])
+
+
+class HiddenSpring(StoringSpring):
+    stored_energy = None
+
+
+def test_a_python_spring_that_says_its_energy_oscillates_as_the_closed_form():
+    rng = random.Random(7)
+    for _ in range(3):
+        k, mass, x0 = rng.uniform(1e4, 1e6), rng.uniform(0.2, 3.0), rng.uniform(0.001, 0.02)
+        scene = stiction.Scene.from_toml(SPRING_SCENE.format(mass=mass, x0=x0), elements={"spring": StoringSpring(k)})
+        result = stiction.run(scene, accuracy=False)
+        omega = math.sqrt(k / mass)
+        # RK4's phase error at omega dt <= 0.23 over the run: well under 1e-3 of the amplitude.
+        assert np.allclose(result["m.p.x"], x0 * np.cos(omega * result.t), atol=1e-3 * x0)
+
+
+def test_a_python_spring_that_hides_its_energy_is_stopped_by_the_energy_monitor():
+    scene = stiction.Scene.from_toml(SPRING_SCENE.format(mass=1.0, x0=0.01),
+                                     elements={"spring": HiddenSpring(1e6)})
+    with pytest.raises(stiction.UnstableError, match="energy grew"):
+        stiction.run(scene, accuracy=False, force_step=True)
