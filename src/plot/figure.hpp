@@ -79,6 +79,9 @@ struct EventMarker {
   double x = 0.0;
   std::string label;   // printed above the top panel
   std::string kind{};  // "stick" (dashed grey), "slip" (dash-dot red) or "" (dashed grey)
+  // Important events are labelled at their marks (without overlapping each other); the rest
+  // are drawn as unlabelled ticks (issue 21).
+  bool labelled = true;
 };
 
 struct Figure {
@@ -90,6 +93,16 @@ struct Figure {
   std::optional<double> x_min, x_max;  // default: the range of the data
   int width = 1600;
   int height = 1000;
+  // Physical size and type size (issue 21; the drawing code gives them their meaning): when
+  // set, the figure is laid out for a page of width_mm x height_mm with text of font_pt
+  // points, and its pixel size is that page at `dpi`.
+  struct Print {
+    double width_mm = 88.0;  // a one-column journal figure
+    double height_mm = 66.0;
+    double font_pt = 8.0;
+    double dpi = 300.0;
+  };
+  std::optional<Print> print;
 };
 
 // Output formats of a figure file.
