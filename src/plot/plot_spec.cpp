@@ -9,6 +9,7 @@
 #include "image/png.hpp"
 #include "scene/toml_reader.hpp"
 #include "text/font.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::plot {
 namespace {
@@ -92,7 +93,8 @@ PanelSpec read_panel(scene::TableReader& table, const std::string& file,
       table.fail("colors", "expected \"#rrggbb\" colours, got \"" + c + "\"");
     }
     const auto channel = [&](int at) {
-      return static_cast<std::uint8_t>(std::stoi(c.substr(static_cast<std::size_t>(at), 2), nullptr, 16));
+      return static_cast<std::uint8_t>(
+          std::stoi(c.substr(static_cast<std::size_t>(at), 2), nullptr, 16));
     };
     panel.colors.push_back({channel(1), channel(3), channel(5), 255});
   }
@@ -110,6 +112,104 @@ PanelSpec read_panel(scene::TableReader& table, const std::string& file,
   }
   table.finish();
   return panel;
+}
+
+// The components of a run ("ground" of "ground.slip.x"): what an event selector may name.
+std::vector<std::string> components_of(const std::vector<std::string>& columns) {
+  std::vector<std::string> out;
+  for (const std::string& c : signal_columns(columns)) {
+    const std::string component = c.substr(0, c.find('.'));
+    if (!has_column(out, component)) out.push_back(component);
+  }
+  return out;
+}
+
+// A list of event selectors (`events` or `labels`), each checked: a known event word after
+// the element, and an element that is a component of the run.
+std::vector<std::string> read_selectors(scene::TableReader& table, const std::string& key,
+                                        const std::string& file,
+                                        const std::vector<std::string>& columns) {
+  const std::vector<std::string> selectors = table.strings(key);
+  const toml::array& array = *table.node(key)->as_array();
+  const std::vector<std::string> components = components_of(columns);
+  for (std::size_t i = 0; i < selectors.size(); ++i) {
+    const std::string where = table.path() + "." + key + "[" + std::to_string(i) + "]: ";
+    std::string why;
+    const std::optional<EventSelector> selector = parse_event_selector(selectors[i], why);
+    if (!selector) throw error_at(array[i], file, where + why);
+    if (!has_column(components, selector->element)) {
+      throw error_at(array[i], file,
+                     where + "'" + selector->element +
+                         "' is not a component of the run; it has: " + join(components));
+    }
+  }
+  return selectors;
+}
+
+// A length on paper: a number of millimetres, or a string "88 mm", "8.8 cm", "3.5 in".
+double read_length_mm(scene::TableReader& table, const std::string& key) {
+  const toml::node* node = table.node(key);
+  const std::string expected =
+      "expected a length such as \"88 mm\", \"8.8 cm\", \"3.5 in\" or a "
+      "number of millimetres";
+  double mm = 0.0;
+  if (node->is_number()) {
+    mm = scene::finite_number(*node, table.path() + "." + key);
+  } else if (node->is_string()) {
+    const std::string text = node->as_string()->get();
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(text, &used);
+    } catch (const std::exception&) {
+      table.fail(key, expected + ", got \"" + text + "\"");
+    }
+    std::string unit = text.substr(used);
+    unit.erase(0, unit.find_first_not_of(' '));
+    if (unit == "mm") {
+      mm = value;
+    } else if (unit == "cm") {
+      mm = 10.0 * value;
+    } else if (unit == "in") {
+      mm = 25.4 * value;
+    } else {
+      table.fail(key, expected + " (unit mm, cm or in), got \"" + text + "\"");
+    }
+  } else {
+    table.fail(key, expected);
+  }
+  if (!(mm >= 20.0 && mm <= 1000.0)) {
+    table.fail(key, "expected 20 mm .. 1000 mm, got " + text::shortest(mm) + " mm");
+  }
+  return mm;
+}
+
+// `font_size`: points, a number or a string "8 pt".
+double read_font_pt(scene::TableReader& table) {
+  const toml::node* node = table.node("font_size");
+  double pt = 0.0;
+  if (node->is_number()) {
+    pt = scene::finite_number(*node, table.path() + ".font_size");
+  } else if (node->is_string()) {
+    const std::string text = node->as_string()->get();
+    std::size_t used = 0;
+    try {
+      pt = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    std::string unit = text.substr(used);
+    unit.erase(0, unit.find_first_not_of(' '));
+    if (used == 0 || unit != "pt") {
+      table.fail("font_size", "expected a size in points: 8 or \"8 pt\", got \"" + text + "\"");
+    }
+  } else {
+    table.fail("font_size", "expected a size in points: 8 or \"8 pt\"");
+  }
+  if (!(pt >= 4.0 && pt <= 72.0)) {
+    table.fail("font_size", "expected 4 .. 72 pt, got " + text::shortest(pt) + " pt");
+  }
+  return pt;
 }
 
 PlotSpec read_plot(scene::TableReader& table, std::size_t index, const std::string& file,
@@ -148,6 +248,13 @@ PlotSpec read_plot(scene::TableReader& table, std::size_t index, const std::stri
   }
   spec.title = table.string("title", "");
   if (table.has("size")) {
+    for (const char* key : {"width", "height", "font_size"}) {
+      if (table.has(key)) {
+        table.fail("size", std::string("size (pixels, text scaling with them) excludes ") + key +
+                               " (a print size): give one or the other");
+      }
+    }
+    spec.print.reset();
     const std::vector<double> size = table.numbers("size");
     if (size.size() != 2 || size[0] != std::floor(size[0]) || size[1] != std::floor(size[1]) ||
         size[0] < 200 || size[1] < 150 || size[0] > 16384 || size[1] > 16384) {
@@ -158,6 +265,9 @@ PlotSpec read_plot(scene::TableReader& table, std::size_t index, const std::stri
     spec.width = static_cast<int>(size[0]);
     spec.height = static_cast<int>(size[1]);
   }
+  if (table.has("width")) spec.print->width_mm = read_length_mm(table, "width");
+  if (table.has("height")) spec.print->height_mm = read_length_mm(table, "height");
+  if (table.has("font_size")) spec.print->font_pt = read_font_pt(table);
   if (table.has("time")) {
     const std::vector<double> time = table.numbers("time");
     if (time.size() != 2 || !(time[1] > time[0])) {
@@ -170,16 +280,49 @@ PlotSpec read_plot(scene::TableReader& table, std::size_t index, const std::stri
     if (events->is_boolean()) {
       spec.mark_events = events->as_boolean()->get();
     } else if (events->is_array()) {
-      spec.only_events = table.strings("events");
+      spec.only_events = read_selectors(table, "events", file, columns);
       spec.mark_events = !spec.only_events.empty();
     } else {
-      table.fail("events", "expected true, false or a list of event names");
+      table.fail("events", "expected true, false or a list of event selectors");
+    }
+  }
+  if (const toml::node* labels = table.node("labels")) {
+    const std::string expected =
+        "expected \"important\", \"all\", \"none\" or a list of event selectors";
+    if (labels->is_string()) {
+      const std::string mode = labels->as_string()->get();
+      if (mode == "important") {
+        spec.labels.mode = EventLabels::Mode::important;
+      } else if (mode == "all") {
+        spec.labels.mode = EventLabels::Mode::all;
+      } else if (mode == "none") {
+        spec.labels.mode = EventLabels::Mode::none;
+      } else {
+        table.fail("labels", expected + ", got \"" + mode + "\"");
+      }
+    } else if (labels->is_array()) {
+      spec.labels.mode = EventLabels::Mode::listed;
+      spec.labels.selectors = read_selectors(table, "labels", file, columns);
+    } else {
+      table.fail("labels", expected);
     }
   }
   for (scene::TableReader& panel : table.array_of_tables("panels")) {
     spec.panels.push_back(read_panel(panel, file, columns));
   }
   if (spec.panels.empty()) table.fail("panels", "missing (at least one [[plots.panels]] table)");
+  if (spec.print) {
+    // The pixels the drawing needs: 200 x 150 .. 16384 x 16384 (plot::draw).
+    const double w = spec.print->width_mm / 25.4 * spec.dpi;
+    const double h =
+        spec.print->height_mm.value_or(default_height_mm(spec.panels.size())) / 25.4 * spec.dpi;
+    if (w < 200.0 || h < 150.0 || w > 16384.0 || h > 16384.0) {
+      const std::string key = table.has("dpi") ? "dpi" : table.has("width") ? "width" : "height";
+      table.fail(key, "the figure would be " + text::significant(w, 4) + " x " +
+                          text::significant(h, 4) + " pixels at " + text::shortest(spec.dpi) +
+                          " dpi; a figure has 200 x 150 to 16384 x 16384 (change dpi or the size)");
+    }
+  }
   table.finish();
   return spec;
 }
@@ -231,7 +374,47 @@ Figure figure_frame(const PlotSpec& spec) {
   figure.height = spec.height;
   figure.x_min = spec.t_min;
   figure.x_max = spec.t_max;
+  if (spec.print) {
+    figure.print = Figure::Print{
+        spec.print->width_mm, spec.print->height_mm.value_or(default_height_mm(spec.panels.size())),
+        spec.print->font_pt, spec.dpi};
+  }
   return figure;
+}
+
+// Whether a column is exactly zero in every row (a component of motion the scene never has).
+bool all_zero(const core::Trajectory& trajectory, int column) {
+  for (int r = 0; r < trajectory.row_count(); ++r) {
+    if (trajectory.at(r, column) != 0.0) return false;
+  }
+  return true;
+}
+
+// The signals of a panel to draw: all of them, or, for a panel that omits zero signals, those
+// not zero in every one of `runs` (all of them when every one is zero). The names left out
+// are added to the caption: "sphere.v: velocity (y = z = 0, not drawn)".
+std::vector<std::size_t> drawn_signals(const PanelSpec& spec,
+                                       const std::vector<const core::Trajectory*>& runs,
+                                       std::string& caption) {
+  std::vector<std::size_t> drawn, zero;
+  for (std::size_t i = 0; i < spec.signals.size(); ++i) {
+    const bool is_zero =
+        spec.omit_zero_signals && std::all_of(runs.begin(), runs.end(), [&](const auto* run) {
+          return all_zero(*run, *run->find(spec.signals[i]));
+        });
+    (is_zero ? zero : drawn).push_back(i);
+  }
+  caption = spec.caption;
+  if (drawn.empty()) {
+    drawn.swap(zero);
+  } else if (!zero.empty()) {
+    std::string names;
+    for (std::size_t i : zero) {
+      names += (spec.legend.empty() ? spec.signals[i] : spec.legend[i]) + " = ";
+    }
+    caption += (caption.empty() ? "" : " ") + std::string("(") + names + "0, not drawn)";
+  }
+  return drawn;
 }
 
 Panel panel_frame(const PanelSpec& spec) {
@@ -394,6 +577,7 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& co
       const std::size_t axis = description.rfind(", component ");
       if (axis != std::string::npos) description.resize(axis);
       panel.caption = description.empty() ? group : group + ": " + description;
+      panel.omit_zero_signals = true;
       panels.push_back(panel);
     }
     PanelSpec& panel = panels[it->second];
@@ -427,27 +611,35 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns
   return default_plot_specs(infos);
 }
 
-std::string event_label(const std::string& name, double time) {
-  std::string words;
-  for (char c : name) words += (c == '.' || c == '_') ? ' ' : c;
-  const std::string suffix = " time";
-  if (words.size() > suffix.size() &&
-      words.compare(words.size() - suffix.size(), suffix.size(), suffix) == 0) {
-    words.resize(words.size() - suffix.size());
-  }
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.3f", time);
-  return words + ": t = " + buffer + " s";
+double default_height_mm(std::size_t panels) {
+  return std::min(230.0, 28.0 + 26.0 * static_cast<double>(std::max<std::size_t>(panels, 1)));
 }
 
 namespace {
 
-bool wanted(const PlotSpec& spec, const PlotEvent& e, bool first_of_kind) {
-  if (!spec.mark_events) return false;
-  if (spec.only_events.empty()) return true;
-  for (const std::string& name : spec.only_events) {
-    if (name == e.element || name == e.element + "." + e.kind) return true;
-    if (first_of_kind && name == e.element + "." + e.kind + "_time") return true;
+bool any_selects(const std::vector<std::string>& selectors, const ClassifiedEvent& event) {
+  for (const std::string& text : selectors) {
+    std::string why;
+    const std::optional<EventSelector> selector = parse_event_selector(text, why);
+    if (selector && selects(*selector, event)) return true;
+  }
+  return false;
+}
+
+bool marked(const PlotSpec& spec, const ClassifiedEvent& event) {
+  return spec.mark_events && (spec.only_events.empty() || any_selects(spec.only_events, event));
+}
+
+bool labelled(const EventLabels& labels, const ClassifiedEvent& event) {
+  switch (labels.mode) {
+    case EventLabels::Mode::important:
+      return event.roles.important;
+    case EventLabels::Mode::all:
+      return true;
+    case EventLabels::Mode::none:
+      return false;
+    case EventLabels::Mode::listed:
+      return any_selects(labels.selectors, event);
   }
   return false;
 }
@@ -473,7 +665,7 @@ Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
   Figure figure = figure_frame(spec);
   for (const PanelSpec* ps : panels_of(spec)) {
     Panel panel = panel_frame(*ps);
-    for (std::size_t i = 0; i < ps->signals.size(); ++i) {
+    for (const std::size_t i : drawn_signals(*ps, {&trajectory}, panel.caption)) {
       Series series;
       series.label = ps->legend.empty() ? signal_label(ps->signals[i]) : ps->legend[i];
       if (!ps->colors.empty()) {
@@ -487,20 +679,17 @@ Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
     }
     figure.panels.push_back(std::move(panel));
   }
-  // Sticks and slips only (a contact opening or touching down is not a friction event), in
-  // time order; "first" is per element and kind, for the "<element>.stick_time" filter.
-  std::vector<PlotEvent> sorted;
-  for (const PlotEvent& e : events) {
-    if ((e.kind == "stick" || e.kind == "slip") && std::isfinite(e.time)) sorted.push_back(e);
+  // The marked events in time order, each labelled or a tick as the spec says; the element's
+  // name goes into the labels when the figure marks events of several elements.
+  std::vector<ClassifiedEvent> shown;
+  for (const ClassifiedEvent& e : classify_events(events)) {
+    if (marked(spec, e)) shown.push_back(e);
   }
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const PlotEvent& a, const PlotEvent& b) { return a.time < b.time; });
-  std::set<std::string> seen;
-  for (const PlotEvent& e : sorted) {
-    const bool first = seen.insert(e.element + "." + e.kind).second;
-    if (!wanted(spec, e, first)) continue;
-    const std::string name = e.element.empty() ? e.kind : e.element + "." + e.kind;
-    figure.events.push_back({e.time, event_label(name, e.time), e.kind});
+  std::set<std::string> elements;
+  for (const ClassifiedEvent& e : shown) elements.insert(e.event.element);
+  for (const ClassifiedEvent& e : shown) {
+    figure.events.push_back({e.event.time, event_label(e, elements.size() > 1), e.event.kind,
+                             labelled(spec.labels, e)});
   }
   return figure;
 }
@@ -538,10 +727,12 @@ Figure make_comparison_figure(const PlotSpec& spec, const std::vector<Run>& runs
       figure.title += (r ? " vs " : "") + runs[r].name;
     }
   }
+  std::vector<const core::Trajectory*> trajectories;
+  for (const Run& run : runs) trajectories.push_back(run.trajectory);
   for (const PanelSpec* ps : panels_of(spec)) {
     Panel panel = panel_frame(*ps);
     const int n_runs = static_cast<int>(runs.size());
-    for (std::size_t i = 0; i < ps->signals.size(); ++i) {
+    for (const std::size_t i : drawn_signals(*ps, trajectories, panel.caption)) {
       for (int r = 0; r < n_runs; ++r) {
         const Run& run = runs[r];
         Series series;

@@ -7,13 +7,20 @@
 //   name = "fig4"                      # file stem: plots/fig4.png (default "plot<N>"); with an
 //                                     # extension (.png, .svg, .pdf) it also picks the format
 //   format = "pdf"                     # png (default), svg or pdf; --plot-format overrides it
-//   dpi = 300                          # resolution: PNG pHYs, PDF page size (default 200)
+//   width = "88 mm"                    # print width: "88 mm", "3.5 in", "8.8 cm" or a number
+//                                     # of mm (default 88 mm, a one-column journal figure)
+//   height = "70 mm"                  # default: by panel count (default_height_mm)
+//   font_size = 8                      # text size in pt (default 8)
+//   dpi = 300                          # pixels per inch of a PNG (default 300)
 //   title = "Simulation I: ..."       # default: none
-//   size = [1600, 1000]               # pixels, each 200..16384 (default 1600x1000)
+//   size = [1600, 1000]               # legacy: pixels, each 200..16384, text scaling with them
+//                                     # (excludes width, height and font_size)
 //   time = [0.0, 1.5]                 # time range (default: the whole run)
 //   events = true                     # mark the run's events (default true); or a list of
-//                                     # events to mark: "ground" (all of an element),
-//                                     # "ground.stick", "ground.slip", "ground.stick_time" (first)
+//                                     # event selectors (plot/event_selection.hpp): "ground",
+//                                     # "ground.stick", "ground.first_stick", "box.tip", ...
+//   labels = "important"              # which marked events are labelled: "important"
+//                                     # (default), "all", "none" or a list of selectors
 //     [[plots.panels]]
 //     signals = ["sphere.v.x", "ground.slip.x"]   # trajectory columns
 //     legend = ["centre", "contact point"]        # default: the signal names
@@ -38,6 +45,7 @@
 
 #include "core/column_info.hpp"
 #include "core/trajectory.hpp"
+#include "plot/event_selection.hpp"
 #include "plot/figure.hpp"
 
 namespace stiction::plot {
@@ -52,19 +60,44 @@ struct PanelSpec {
   std::optional<double> relative_to;
   std::vector<ReferenceLine> references;
   std::string caption;  // drawn above the panel (the default figures: group and description)
+  // Leave out the signals that are exactly zero over the whole run (the default figures: a
+  // sphere rolling along x has v.y = v.z = 0), naming them in the caption. A panel whose
+  // signals are all zero keeps them.
+  bool omit_zero_signals = false;
 };
+
+// Which marked events a figure labels (the rest are unlabelled ticks).
+struct EventLabels {
+  enum class Mode { important, all, none, listed };
+  Mode mode = Mode::important;
+  std::vector<std::string> selectors;  // Mode::listed
+};
+
+// The size of a figure as printed (Figure::Print): a one-column journal figure by default.
+struct PrintSize {
+  double width_mm = 88.0;
+  std::optional<double> height_mm;  // default: default_height_mm(panel count)
+  double font_pt = 8.0;
+};
+// A height that suits `panels` panels stacked in a figure 88 mm wide: 28 mm for the title,
+// the event labels and the time axis, plus 26 mm per panel (54 mm for one, 80 for two, 132
+// for four), at most 230 mm (a journal page).
+double default_height_mm(std::size_t panels);
 
 struct PlotSpec {
   std::string name;              // file stem, without extension
   std::optional<Format> format;  // from the name's extension or `format`; default PNG
-  double dpi = 200.0;
+  double dpi = 300.0;
   std::string title;
   std::vector<PanelSpec> panels;
-  int width = 1600;
+  // The size on paper; nullopt for the legacy `size` key (pixels, text scaling with them).
+  std::optional<PrintSize> print = PrintSize{};
+  int width = 1600;  // pixels of a figure without `print`
   int height = 1000;
   std::optional<double> t_min, t_max;
   bool mark_events = true;
-  std::vector<std::string> only_events;  // empty: every event given to write_plot
+  std::vector<std::string> only_events;  // selectors; empty: every event given to write_plot
+  EventLabels labels;
 };
 
 // Reads the document's [[plots]] (none: an empty vector). `file` is used in messages when the
@@ -105,21 +138,14 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& co
 // The same with units guessed from the signal names (core::guess_unit).
 std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns);
 
-// An event to mark: a stick or slip of an element (core::SlipEvent kinds; other kinds, such
-// as a contact opening, are not marked).
-struct PlotEvent {
-  std::string element;
-  std::string kind;  // "stick" or "slip"
-  double time = 0.0;
-};
-
-// "ground.stick_time" at 0.5831 -> "ground stick: t = 0.583 s".
-std::string event_label(const std::string& name, double time);
-
-// The figure of one run, its events marked as the spec says.
+// The figure of one run, its events marked and labelled as the spec says (`only_events`,
+// `labels`; plot/event_selection.hpp): each marker's `labelled` set, its label "stick
+// 0.5843 s", with the element's name in front when the figure marks events of several
+// elements ("joint1_friction stop 4.651 s"). The print size and dpi go to Figure::print.
 Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
                    const std::vector<PlotEvent>& events);
 // Events by name -> time, "<element>.<kind>_time" ("ground.stick_time" is a stick).
+// Without the run's lift-offs, no event of these is known to be a touch-down.
 Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
                    const std::map<std::string, double>& event_times);
 // make_figure, written atomically in `format` (PNG when the spec and the caller name none).

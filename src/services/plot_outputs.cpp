@@ -7,8 +7,15 @@ namespace stiction::services {
 std::vector<plot::PlotEvent> plot_events(const core::RunResult& result) {
   std::vector<plot::PlotEvent> events;
   for (const core::SlipHistory& h : result.slip_events) {
-    for (const core::SlipEvent& e : h.monitor.events())
-      events.push_back({h.component, e.kind, e.time});
+    // Lift-offs ("open") go along: the stick or slip after one is a touch-down, a tick on the
+    // figures. An element that starts in the air touches down at its first event.
+    bool airborne = h.monitor.initial_state() == "open";
+    for (const core::SlipEvent& e : h.monitor.events()) {
+      plot::PlotEvent event{h.component, e.kind, e.time};
+      event.touch_down = airborne && e.kind != "open";
+      airborne = false;
+      events.push_back(event);
+    }
   }
   return events;
 }

@@ -11,7 +11,8 @@
 
 namespace stiction::services {
 
-// Every stick and slip of every element with a slip speed, for plot::make_figure.
+// Every event of every element with a slip speed (stick, slip and the lift-offs that make
+// the next event a touch-down), for plot::make_figure.
 std::vector<plot::PlotEvent> plot_events(const core::RunResult& result);
 
 // Writes every spec into `dir`, drawing `rows` (the run's rows, possibly thinned) and

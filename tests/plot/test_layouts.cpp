@@ -109,6 +109,7 @@ void check_scene(const SceneRun& run, bool vector_formats) {
   const std::vector<plot::PlotSpec> specs = plot::default_plot_specs(run.columns);
   REQUIRE(!specs.empty());
   std::set<std::string> drawn;
+  std::string captions;
   const std::vector<plot::PlotEvent> events = events_of(run.result);
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const plot::PlotSpec& spec = specs[i];
@@ -118,6 +119,7 @@ void check_scene(const SceneRun& run, bool vector_formats) {
     const image::Image png = plot::render(figure, &layout);
     check_layout(layout, run.name + "/" + spec.name);
     drawn.insert(layout.series.begin(), layout.series.end());
+    for (const plot::Panel& p : figure.panels) captions += p.caption + "\n";
     const fs::path dir = kOut / run.name;
     fs::create_directories(dir);
     image::write_png(dir / (spec.name + ".png"), png, image::PngSpeed::fast);
@@ -148,11 +150,14 @@ void check_scene(const SceneRun& run, bool vector_formats) {
       CHECK(r.matches);
     }
   }
-  // Every signal of the scene is in some figure.
+  // Every signal of the scene is in some figure, or zero throughout and said so in a caption.
+  const core::Trajectory& rows = run.result.trajectory;
   for (const core::ColumnInfo& c : run.columns) {
-    if (c.name == "t") continue;
+    if (c.name == "t" || drawn.count(c.name) == 1) continue;
     INFO(run.name << ": " << c.name);
-    CHECK(drawn.count(c.name) == 1);
+    const int column = *rows.find(c.name);
+    for (int r = 0; r < rows.row_count(); ++r) REQUIRE(rows.at(r, column) == 0.0);
+    CHECK(captions.find(" = 0, not drawn)") != std::string::npos);
   }
 }
 

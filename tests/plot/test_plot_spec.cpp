@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
-#include <set>
 #include <cmath>
+#include <random>
+#include <set>
 
 #include "plot/plot_spec.hpp"
 #include "scene/toml_reader.hpp"
@@ -72,6 +73,12 @@ events = ["ground.stick_time"]
   CHECK(specs[1].name == "plot2");
   CHECK(specs[1].width == 1600);
   CHECK(specs[1].mark_events);
+  CHECK(specs[1].labels.mode == plot::EventLabels::Mode::important);
+  CHECK_FALSE(a.print);  // `size` in pixels: the legacy figure, text scaling with it
+  REQUIRE(specs[1].print);
+  CHECK(specs[1].print->width_mm == 88.0);
+  CHECK(specs[1].print->font_pt == 8.0);
+  CHECK(specs[1].dpi == 300.0);
   CHECK(read("[simulation]\nduration = 1.0\n").empty());
 }
 
@@ -119,8 +126,7 @@ TEST_CASE("bad plot specs are input errors at their position", "[plot][spec]") {
   CHECK_THAT(error_of("plots = 3\n"), Catch::Contains("array of tables"));
 }
 
-TEST_CASE("the paper figures come first among the defaults, then every signal",
-          "[plot][spec]") {
+TEST_CASE("the paper figures come first among the defaults, then every signal", "[plot][spec]") {
   auto all_signals = [](const std::vector<plot::PlotSpec>& specs) {
     std::set<std::string> drawn;
     for (const plot::PlotSpec& spec : specs) {
@@ -174,8 +180,10 @@ TEST_CASE("figures from a run: series, events and relative signals", "[plot][spe
   CHECK(figure.panels[0].series.size() == 2);
   CHECK(figure.panels[0].series[0].x.size() == static_cast<std::size_t>(run.row_count()));
   REQUIRE(figure.events.size() == 2);
-  CHECK(figure.events[0].label == "ground slip: t = 0.010 s");
-  CHECK(figure.events[1].label == "ground stick: t = 0.603 s");
+  CHECK(figure.events[0].label == "slip 0.01 s");
+  CHECK(figure.events[0].labelled);  // the break-away from the start
+  CHECK(figure.events[1].label == "stick 0.6033 s");
+  CHECK(figure.events[1].labelled);
   spec.only_events = {"ground.stick_time"};
   CHECK(plot::make_figure(spec, run, events).events.size() == 1);
   spec.mark_events = false;
@@ -248,7 +256,8 @@ TEST_CASE("a plot's format comes from its name's extension or `format`, dpi from
   CHECK(svg.name == "block");
   CHECK(svg.format == plot::Format::svg);
   CHECK(plot::plot_path(svg, "plots") == std::filesystem::path("plots/block.svg"));
-  CHECK(plot::plot_path(svg, "plots", plot::Format::pdf) == std::filesystem::path("plots/block.pdf"));
+  CHECK(plot::plot_path(svg, "plots", plot::Format::pdf) ==
+        std::filesystem::path("plots/block.pdf"));
   const plot::PlotSpec pdf = one("name = \"b\"\nformat = \"PDF\"\ndpi = 300\n");
   CHECK(pdf.format == plot::Format::pdf);
   CHECK(pdf.dpi == 300.0);
@@ -262,8 +271,7 @@ TEST_CASE("a plot's format comes from its name's extension or `format`, dpi from
   CHECK_THAT(error_of(with("dpi = 5\n")), Catch::Contains("dpi"));
 }
 
-TEST_CASE("a panel without label or unit takes them from the columns it shows",
-          "[plot][spec]") {
+TEST_CASE("a panel without label or unit takes them from the columns it shows", "[plot][spec]") {
   // Generated names of every length: the label is the signal name for one signal, the names
   // for a short list, nothing for a long one (the legend names them); the unit is the one the
   // components declare when the signals share it, none when they differ.
@@ -276,9 +284,9 @@ TEST_CASE("a panel without label or unit takes them from the columns it shows",
                                                 {b + ".f.x", "N", "world", "force"},
                                                 {b + ".q.w", "", "", "quaternion"}};
     const std::string text = "[[plots]]\n  [[plots.panels]]\n  signals = [\"" + a +
-                             ".f.x\"]\n  [[plots.panels]]\n  signals = [\"" + a + ".f.x\", \"" +
-                             b + ".f.x\"]\n  [[plots.panels]]\n  signals = [\"" + a +
-                             ".f.x\", \"" + b + ".tau\"]\n  label = \"Mixed\"\n" +
+                             ".f.x\"]\n  [[plots.panels]]\n  signals = [\"" + a + ".f.x\", \"" + b +
+                             ".f.x\"]\n  [[plots.panels]]\n  signals = [\"" + a + ".f.x\", \"" + b +
+                             ".tau\"]\n  label = \"Mixed\"\n" +
                              "  [[plots.panels]]\n  signals = [\"" + b +
                              ".q.w\"]\n  unit = \"-\"\n";
     const toml::table doc = toml::parse(std::string_view(text), std::string_view("gen.toml"));
@@ -296,4 +304,145 @@ TEST_CASE("a panel without label or unit takes them from the columns it shows",
     CHECK(p[3].label == b + ".q.w");
     CHECK(p[3].unit == "-");  // given: kept
   }
+}
+
+TEST_CASE("print size keys: width, height, font_size, dpi fill Figure::print", "[plot][spec]") {
+  const std::string panel = "  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n";
+  auto with = [&](const std::string& keys, int panels = 1) {
+    std::string text = "[[plots]]\n" + keys;
+    for (int i = 0; i < panels; ++i) text += panel;
+    return text;
+  };
+  const core::Trajectory run = plot::testing::sphere_run(0.1);
+  // Defaults: a one-column figure, 88 mm wide, 8 pt text, 300 dpi, its height by panel count.
+  for (int panels = 1; panels <= 5; ++panels) {
+    const plot::PlotSpec spec = read(with("", panels)).at(0);
+    const plot::Figure figure = plot::make_figure(spec, run, std::vector<plot::PlotEvent>{});
+    REQUIRE(figure.print);
+    CHECK(figure.print->width_mm == 88.0);
+    CHECK(figure.print->height_mm == plot::default_height_mm(static_cast<std::size_t>(panels)));
+    CHECK(figure.print->font_pt == 8.0);
+    CHECK(figure.print->dpi == 300.0);
+  }
+  CHECK(plot::default_height_mm(1) == 54.0);
+  CHECK(plot::default_height_mm(2) == 80.0);
+  CHECK(plot::default_height_mm(100) == 230.0);
+  // Units: mm, cm, in, or a bare number of mm; font size in pt.
+  const struct {
+    std::string keys;
+    double width, height, font;
+  } cases[] = {{"width = \"3.5 in\"\nheight = \"7 cm\"\n", 88.9, 70.0, 8.0},
+               {"width = 120\nfont_size = 9.5\n", 120.0, 54.0, 9.5},
+               {"width = \"180mm\"\nheight = 100.5\nfont_size = \"10 pt\"\n", 180.0, 100.5, 10.0}};
+  for (const auto& c : cases) {
+    INFO(c.keys);
+    const plot::Figure figure =
+        plot::make_figure(read(with(c.keys)).at(0), run, std::vector<plot::PlotEvent>{});
+    REQUIRE(figure.print);
+    CHECK(figure.print->width_mm == Approx(c.width));
+    CHECK(figure.print->height_mm == Approx(c.height));
+    CHECK(figure.print->font_pt == c.font);
+  }
+  const plot::PlotSpec dpi = read(with("dpi = 600\n")).at(0);
+  CHECK(plot::make_figure(dpi, run, std::vector<plot::PlotEvent>{}).print->dpi == 600.0);
+  // The legacy pixel size: no print size.
+  CHECK_FALSE(plot::make_figure(read(with("size = [800, 600]\n")).at(0), run,
+                                std::vector<plot::PlotEvent>{})
+                  .print.has_value());
+  // Errors at the key: bad units, ranges, both kinds of size, too many pixels.
+  CHECK_THAT(error_of(with("width = \"88 px\"\n")), Catch::StartsWith("scenes/test.toml:2:9:") &&
+                                                        Catch::Contains("plots[0].width") &&
+                                                        Catch::Contains("mm, cm or in"));
+  CHECK_THAT(error_of(with("height = \"tall\"\n")),
+             Catch::StartsWith("scenes/test.toml:2:") && Catch::Contains("plots[0].height"));
+  CHECK_THAT(error_of(with("width = 5\n")), Catch::Contains("20 mm .. 1000 mm"));
+  CHECK_THAT(error_of(with("width = \"2 in\"\nheight = \"1 in\"\n")), Catch::Contains("no error"));
+  CHECK_THAT(error_of(with("font_size = 2\n")),
+             Catch::Contains("plots[0].font_size") && Catch::Contains("4 .. 72 pt"));
+  CHECK_THAT(error_of(with("font_size = \"8 px\"\n")), Catch::Contains("points"));
+  CHECK_THAT(error_of(with("width = true\n")), Catch::Contains("plots[0].width"));
+  CHECK_THAT(error_of(with("size = [800, 600]\nwidth = 88\n")),
+             Catch::StartsWith("scenes/test.toml:2:") && Catch::Contains("plots[0].size") &&
+                 Catch::Contains("excludes width"));
+  CHECK_THAT(error_of(with("size = [800, 600]\nfont_size = 8\n")),
+             Catch::Contains("excludes font_size"));
+  CHECK_THAT(error_of(with("width = \"30 cm\"\ndpi = 2000\n")),
+             Catch::StartsWith("scenes/test.toml:3:") && Catch::Contains("plots[0].dpi") &&
+                 Catch::Contains("pixels"));
+}
+
+TEST_CASE("`labels` and `events` take event selectors, checked against the run's components",
+          "[plot][spec]") {
+  const std::string panel = "  [[plots.panels]]\n  signals = [\"sphere.p.z\"]\n";
+  auto with = [&](const std::string& keys) { return "[[plots]]\n" + keys + panel; };
+  using Mode = plot::EventLabels::Mode;
+  CHECK(read(with("labels = \"all\"\n")).at(0).labels.mode == Mode::all);
+  CHECK(read(with("labels = \"none\"\n")).at(0).labels.mode == Mode::none);
+  CHECK(read(with("labels = \"important\"\n")).at(0).labels.mode == Mode::important);
+  const plot::PlotSpec listed =
+      read(with("labels = [\"ground.first_stick\", \"sphere\", \"ground.final_stop\"]\n")).at(0);
+  CHECK(listed.labels.mode == Mode::listed);
+  CHECK(listed.labels.selectors.size() == 3);
+  CHECK(read(with("events = [\"ground.touch_down\", \"ground.slip_time\"]\n"))
+            .at(0)
+            .only_events.size() == 2);
+  CHECK_THAT(error_of(with("labels = \"some\"\n")), Catch::StartsWith("scenes/test.toml:2:") &&
+                                                        Catch::Contains("plots[0].labels") &&
+                                                        Catch::Contains("\"important\""));
+  CHECK_THAT(error_of(with("labels = 3\n")), Catch::Contains("plots[0].labels"));
+  CHECK_THAT(error_of(with("labels = [\"ground.stop\"]\n")),
+             Catch::StartsWith("scenes/test.toml:2:11:") && Catch::Contains("plots[0].labels[0]") &&
+                 Catch::Contains("unknown event 'stop'"));
+  CHECK_THAT(error_of(with("events = [\"ground\", \"floor.stick\"]\n")),
+             Catch::StartsWith("scenes/test.toml:2:21:") && Catch::Contains("plots[0].events[1]") &&
+                 Catch::Contains("'floor' is not a component") &&
+                 Catch::Contains("sphere, ground"));
+}
+
+TEST_CASE("default figures leave out signals that are zero throughout, and say so",
+          "[plot][spec]") {
+  // Generated runs: a body moving in a random subset of its axes; its velocity panel draws
+  // the moving axes and names the others in the caption.
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 12; ++trial) {
+    const int moving = std::uniform_int_distribution<int>(0, 7)(rng);  // bit per axis
+    core::Trajectory run({"t", "b.v.x", "b.v.y", "b.v.z"});
+    for (int i = 0; i < 50; ++i) {
+      const double t = 0.01 * i;
+      const double row[] = {t, (moving & 1) ? std::sin(t + 1) : 0.0,
+                            (moving & 2) ? 1e-300 * t : 0.0, (moving & 4) ? -t : 0.0};
+      run.append(row);
+    }
+    const auto specs = plot::default_plot_specs(run.columns());
+    REQUIRE(specs.size() == 1);
+    const plot::Figure figure = plot::make_figure(specs[0], run, std::vector<plot::PlotEvent>{});
+    REQUIRE(figure.panels.size() == 1);
+    std::set<std::string> drawn;
+    for (const plot::Series& s : figure.panels[0].series) drawn.insert(s.source);
+    INFO("moving axes " << moving << ", caption " << figure.panels[0].caption);
+    std::string omitted;
+    for (int axis = 0; axis < 3; ++axis) {
+      const std::string name = std::string("b.v.") + "xyz"[axis];
+      const bool moves = moving & (1 << axis);
+      CHECK(drawn.count(name) == (moves || moving == 0 ? 1u : 0u));
+      if (!moves && moving != 0) omitted += std::string(1, "xyz"[axis]) + " = ";
+    }
+    if (omitted.empty()) {
+      CHECK(figure.panels[0].caption.find("not drawn") == std::string::npos);
+    } else {
+      CHECK_THAT(figure.panels[0].caption, Catch::EndsWith("(" + omitted + "0, not drawn)"));
+    }
+  }
+  // A user's panel draws what it names, zero or not.
+  const core::Trajectory sphere = plot::testing::sphere_run(0.1);
+  plot::PlotSpec spec;
+  plot::PanelSpec p;
+  p.signals = {"sphere.v.x", "sphere.p.x"};
+  spec.panels.push_back(p);
+  core::Trajectory zero({"t", "sphere.v.x", "sphere.p.x"});
+  for (int i = 0; i < 3; ++i) {
+    const double row[] = {0.1 * i, 0.0, 0.1 * i};
+    zero.append(row);
+  }
+  CHECK(plot::make_figure(spec, zero, std::vector<plot::PlotEvent>{}).panels[0].series.size() == 2);
 }
