@@ -395,7 +395,8 @@ bool all_zero(const core::Trajectory& trajectory, int column) {
 // are added to the caption: "sphere.v: velocity (y = z = 0, not drawn)".
 std::vector<std::size_t> drawn_signals(const PanelSpec& spec,
                                        const std::vector<const core::Trajectory*>& runs,
-                                       std::string& caption) {
+                                       Panel& panel) {
+  std::string& caption = panel.caption;
   std::vector<std::size_t> drawn, zero;
   for (std::size_t i = 0; i < spec.signals.size(); ++i) {
     const bool is_zero =
@@ -413,6 +414,8 @@ std::vector<std::size_t> drawn_signals(const PanelSpec& spec,
       names += (spec.legend.empty() ? spec.signals[i] : spec.legend[i]) + " = ";
     }
     caption += (caption.empty() ? "" : " ") + std::string("(") + names + "0, not drawn)";
+    // One axis left: the axis label names it ("v.x"), as no legend will.
+    if (drawn.size() == 1 && !spec.legend.empty()) panel.label += "." + spec.legend[drawn[0]];
   }
   return drawn;
 }
@@ -585,7 +588,16 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& co
     panel.legend.push_back(second == std::string::npos ? c.name : c.name.substr(second + 1));
   }
   for (PanelSpec& panel : panels) {
-    if (panel.signals.size() == 1) panel.legend.clear();  // the axis label names it
+    if (panel.signals.size() != 1) continue;
+    // One signal: the axis label names it, its axis included ("v.x", not "v": `compare
+    // --signals ball.v.x`), and so does the caption.
+    const std::string& signal = panel.signals.front();
+    const std::string group = panel.caption.substr(0, panel.caption.find(": "));
+    if (signal != group && signal.rfind(group + ".", 0) == 0) {
+      panel.label += signal.substr(group.size());
+      panel.caption = signal + panel.caption.substr(group.size());
+    }
+    panel.legend.clear();
   }
   // No silent cap: as many figures as the groups need, the panels spread evenly.
   const std::size_t n = panels.size();
@@ -665,7 +677,7 @@ Figure make_figure(const PlotSpec& spec, const core::Trajectory& trajectory,
   Figure figure = figure_frame(spec);
   for (const PanelSpec* ps : panels_of(spec)) {
     Panel panel = panel_frame(*ps);
-    for (const std::size_t i : drawn_signals(*ps, {&trajectory}, panel.caption)) {
+    for (const std::size_t i : drawn_signals(*ps, {&trajectory}, panel)) {
       Series series;
       series.label = ps->legend.empty() ? signal_label(ps->signals[i]) : ps->legend[i];
       if (!ps->colors.empty()) {
@@ -732,7 +744,7 @@ Figure make_comparison_figure(const PlotSpec& spec, const std::vector<Run>& runs
   for (const PanelSpec* ps : panels_of(spec)) {
     Panel panel = panel_frame(*ps);
     const int n_runs = static_cast<int>(runs.size());
-    for (const std::size_t i : drawn_signals(*ps, trajectories, panel.caption)) {
+    for (const std::size_t i : drawn_signals(*ps, trajectories, panel)) {
       for (int r = 0; r < n_runs; ++r) {
         const Run& run = runs[r];
         Series series;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "plot/figure.hpp"
 #include "services/sweep_plan.hpp"
 #include "services/sweep_table.hpp"
 
@@ -25,6 +26,13 @@ struct SweepPlan {
   std::string to_json() const;
   static SweepPlan from_json(const std::string& text, const std::filesystem::path& origin);
 };
+
+// sweep.md's text: the table as Markdown, parameters as given, measured records with
+// text::kEventTimeDigits significant digits (sweep.csv keeps every digit).
+std::string sweep_markdown(const SweepPlan& plan, const SweepTable& table);
+// sweep.png's figure: the plotted records against the first key, a line per combination of
+// the other keys' values in their numeric order; one journal column (Figure::print).
+plot::Figure sweep_figure(const SweepPlan& plan, const SweepTable& table);
 
 // sweep.md, sweep.png and sweep.svg (the same figure as vectors) of a full table. The figure
 // shows the plan's columns that some finished point has a value of (at most four), else the

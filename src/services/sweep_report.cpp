@@ -1,16 +1,19 @@
 // sweep.md (the table as Markdown, with the status counts) and sweep.png / sweep.svg (the
 // chosen records against the first varied key, one line per combination of the other keys'
 // values; the same figure as a bitmap and as vectors).
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "services/sweep.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/figure.hpp"
+#include "plot/plot_spec.hpp"
 #include "scene/toml_reader.hpp"
+#include "services/sweep.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::services {
 namespace {
@@ -39,6 +42,30 @@ bool is_event_time(const std::string& column) {
   }
   return false;
 }
+
+// A measured value of the table (an event time, a final state) for sweep.md: stated
+// significant digits by the number rule (sweep.csv keeps every digit); text stays as it is.
+std::string reader_value(const std::string& cell) {
+  const double v = number(cell);
+  return std::isfinite(v) ? text::significant(v, text::kEventTimeDigits) : cell;
+}
+
+// The values of the other keys that tell a sweep figure's lines apart, ordered as numbers
+// where both are numbers (-40, -20, 0, 5; not "-20", "-40", "0", "5" as text).
+struct LineKey {
+  std::vector<std::string> values;
+  bool operator<(const LineKey& other) const {
+    for (std::size_t i = 0; i < values.size() && i < other.values.size(); ++i) {
+      const double a = number(values[i]), b = number(other.values[i]);
+      if (std::isfinite(a) && std::isfinite(b)) {
+        if (a != b) return a < b;
+      } else if (values[i] != other.values[i]) {
+        return values[i] < other.values[i];
+      }
+    }
+    return values.size() < other.values.size();
+  }
+};
 
 // The columns the figure shows: the plan's, less those no finished point has a value of (a
 // ball that only slips has no stick time), at most kPanels; when none is left, the first
@@ -99,11 +126,16 @@ std::string markdown(const SweepPlan& plan, const SweepTable& table) {
     rule += "---|";
   }
   md += head + "\n" + rule + "\n";
+  // The parameters as given (shortest round-trip), the records measured: stated digits.
+  const std::size_t first_record = plan.keys.size() + 4;  // after status, steps, wall_s
   std::size_t n = 0;
   for (const auto& [index, row] : table.rows) {
     if (++n > kMarkdownRows) break;
     md += "|";
-    for (int c : shown) md += " " + row[c] + " |";
+    for (std::size_t i = 0; i < shown.size(); ++i) {
+      const std::string& cell = row[shown[i]];
+      md += " " + (i >= first_record ? reader_value(cell) : cell) + " |";
+    }
     md += "\n";
   }
   if (table.rows.size() > kMarkdownRows) {
@@ -114,16 +146,11 @@ std::string markdown(const SweepPlan& plan, const SweepTable& table) {
 
 }  // namespace
 
-bool write_sweep_report(const SweepPlan& plan, const SweepTable& table,
-                        const std::filesystem::path& dir) {
-  io::write_file_atomically(dir / "sweep.md", markdown(plan, table));
-  if (plotted_columns(plan, table).empty()) {
-    // Nothing to draw: no figure of an earlier run of this sweep may stay as if it were this.
-    std::filesystem::remove(dir / "sweep.png");
-    std::filesystem::remove(dir / "sweep.svg");
-    return false;
-  }
+std::string sweep_markdown(const SweepPlan& plan, const SweepTable& table) {
+  return markdown(plan, table);
+}
 
+plot::Figure sweep_figure(const SweepPlan& plan, const SweepTable& table) {
   const int status = column_of(table.header, "status");
   plot::Figure figure;
   figure.title = "Sweep of " + plan.scene;
@@ -134,29 +161,52 @@ bool write_sweep_report(const SweepPlan& plan, const SweepTable& table,
     plot::Panel& panel = figure.panels.emplace_back();
     panel.label = record;
     if (is_event_time(record)) panel.unit = "s";
-    // One series per combination of the other keys' values, points in order of x.
-    std::map<std::string, std::map<double, double>> lines;
+    // One series per combination of the other keys' values, in numeric order of those values,
+    // points in order of x; a combination with no value of this record has no line (and no
+    // legend entry) in this panel.
+    std::map<LineKey, std::map<double, double>> lines;
     for (const auto& [index, row] : table.rows) {
       if (row[status] != "ok") continue;
       const double x = number(row[1]);
       if (!std::isfinite(x)) continue;
-      std::string label;
-      for (std::size_t k = 1; k < plan.keys.size(); ++k) {
-        label += (label.empty() ? "" : ", ") + plan.keys[k].key + " = " + row[1 + k];
-      }
-      lines[label][x] = number(row[c]);
+      LineKey key;
+      for (std::size_t k = 1; k < plan.keys.size(); ++k) key.values.push_back(row[1 + k]);
+      lines[key][x] = number(row[c]);
     }
-    for (const auto& [label, points] : lines) {
+    for (const auto& [key, points] : lines) {
+      if (std::none_of(points.begin(), points.end(),
+                       [](const auto& p) { return std::isfinite(p.second); })) {
+        continue;
+      }
       plot::Series& s = panel.series.emplace_back();
-      s.label = label;
+      for (std::size_t k = 0; k < key.values.size(); ++k) {
+        s.label += (k ? ", " : "") + plan.keys[k + 1].key + " = " + key.values[k];
+      }
       for (const auto& [x, y] : points) {
         s.x.push_back(x);
         s.y.push_back(y);
       }
     }
   }
-  plot::write_figure(figure, dir / "sweep.png", plot::Format::png);
-  plot::write_figure(figure, dir / "sweep.svg", plot::Format::svg);
+  // The print size of every figure: one journal column, its height by the panel count.
+  const plot::PrintSize print;
+  figure.print = plot::Figure::Print{print.width_mm, plot::default_height_mm(figure.panels.size()),
+                                     print.font_pt, 300.0};
+  return figure;
+}
+
+bool write_sweep_report(const SweepPlan& plan, const SweepTable& table,
+                        const std::filesystem::path& dir) {
+  io::write_file_atomically(dir / "sweep.md", markdown(plan, table));
+  if (plotted_columns(plan, table).empty()) {
+    // Nothing to draw: no figure of an earlier run of this sweep may stay as if it were this.
+    std::filesystem::remove(dir / "sweep.png");
+    std::filesystem::remove(dir / "sweep.svg");
+    return false;
+  }
+  const plot::Figure figure = sweep_figure(plan, table);
+  plot::write_figure(figure, dir / "sweep.png", plot::Format::png, figure.print->dpi);
+  plot::write_figure(figure, dir / "sweep.svg", plot::Format::svg, figure.print->dpi);
   return true;
 }
 

@@ -12,6 +12,7 @@
 #include "io/summary.hpp"
 #include "services/step_guard.hpp"
 #include "sys/interrupt.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::services {
 namespace fs = std::filesystem;
@@ -96,9 +97,10 @@ class PointRunner {
         const double dt = suggest_step(scene, guard.check, kSuggestionBudget).dt;
         row[base] = "unstable";
         row[base + 3] = number_text(dt);
-        row[base + 4] = "instability at t = " + number_text(result.instability->time) + " s in '" +
-                        result.instability->component + "' (" + result.instability->reason +
-                        "); try --dt " + number_text(dt);
+        row[base + 4] = "instability at t = " +
+                        text::significant(result.instability->time, text::kEventTimeDigits) +
+                        " s in '" + result.instability->component + "' (" +
+                        result.instability->reason + "); try --dt " + number_text(dt);
       } else {
         row[base] = "ok";
         if (guard.warning) row[base + 4] = "step check: " + *guard.warning;

@@ -446,3 +446,42 @@ TEST_CASE("default figures leave out signals that are zero throughout, and say s
   }
   CHECK(plot::make_figure(spec, zero, std::vector<plot::PlotEvent>{}).panels[0].series.size() == 2);
 }
+
+TEST_CASE("a comparison of one axis is titled by that signal, not its group", "[plot][spec]") {
+  // `stiction compare --signals ball.v.x`: the panel says "ball.v.x", its y label "v.x".
+  core::Trajectory a({"t", "ball.v.x", "ball.v.y", "ball.v.z"});
+  for (int i = 0; i < 20; ++i) {
+    const double t = 0.05 * i;
+    const double row[] = {t, 1.0 - t, 0.0, 0.5 * t};
+    a.append(row);
+  }
+  const core::Trajectory b = a;
+  const std::vector<plot::Run> runs{{"a", &a}, {"b", &b}};
+  const std::vector<core::ColumnInfo> columns{
+      {"ball.v.x", "m/s", "world", "velocity of the centre, component x"},
+      {"ball.v.y", "m/s", "world", "velocity of the centre, component y"},
+      {"ball.v.z", "m/s", "world", "velocity of the centre, component z"}};
+  plot::PlotSpec spec = plot::comparison_spec(runs, {"ball.v.x"}, columns);
+  REQUIRE(spec.panels.size() == 1);
+  CHECK(spec.panels[0].caption == "ball.v.x: velocity of the centre");
+  CHECK(spec.panels[0].label == "v.x");
+  CHECK(spec.panels[0].unit == "m/s");
+  // The whole group: titled by the group; y, zero in both runs, is left out and named.
+  spec = plot::comparison_spec(runs, {"ball.v"}, columns);
+  REQUIRE(spec.panels.size() == 1);
+  const plot::Figure figure = plot::make_comparison_figure(spec, runs);
+  CHECK(figure.panels[0].label == "v");
+  CHECK(figure.panels[0].caption == "ball.v: velocity of the centre (y = 0, not drawn)");
+  CHECK(figure.panels[0].series.size() == 4);  // x and z of both runs
+  // Only x moving: the one axis left names itself.
+  core::Trajectory c({"t", "ball.v.x", "ball.v.y", "ball.v.z"});
+  for (int i = 0; i < 20; ++i) {
+    const double row[] = {0.05 * i, 1.0, 0.0, 0.0};
+    c.append(row);
+  }
+  const std::vector<plot::Run> flat{{"a", &c}, {"c", &c}};
+  const plot::Figure one =
+      plot::make_comparison_figure(plot::comparison_spec(flat, {"ball.v"}, columns), flat);
+  CHECK(one.panels[0].label == "v.x");
+  CHECK(one.panels[0].caption == "ball.v: velocity of the centre (y = z = 0, not drawn)");
+}
