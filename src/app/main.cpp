@@ -1,15 +1,18 @@
 // `stiction`: the command line of DESIGN section 3. Typed exceptions from the libraries
 // become exit codes here and only here: 2 bad input, 3 instability (returned by run),
 // 1 anything else.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "app/cli_checks.hpp"
+#include "app/command_suggestion.hpp"
 #include "app/commands.hpp"
 #include "core/integrator.hpp"
 #include "io/atomic_file.hpp"
@@ -208,6 +211,16 @@ int dispatch(int argc, char** argv) {
   sweep->add_flag("--force-step", sweep_args.force_step,
                   "simulate points whose step is above the predicted instability limit");
 
+  // A first word that is no command is a typo or a missing command: say which was meant
+  // (`stiction rn`: did you mean 'run'?) instead of CLI11's "A subcommand is required".
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> commands;
+    for (const CLI::App* sub : cli.get_subcommands({})) commands.push_back(sub->get_name());
+    if (std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
+      std::fprintf(stderr, "%s\n", app::unknown_command_message(argv[1], commands).c_str());
+      return app::kExitBadInput;
+    }
+  }
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

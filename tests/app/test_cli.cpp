@@ -135,6 +135,24 @@ TEST_CASE("cli: --help, --version, no subcommand, unknown option") {
   CHECK_THAT(o.out, Contains("no_such_scene"));
 }
 
+TEST_CASE("cli: a mistyped command gets a suggestion, exit 2") {
+  const fs::path dir = scratch("typo");
+  const std::pair<const char*, const char*> typos[] = {
+      {"rn", "run"},         {"chek", "check"},   {"comapre", "compare"}, {"sweap", "sweep"},
+      {"verfy", "verify"},   {"studdy", "study"}, {"scnees", "scenes"},   {"sw", "sweep"}};
+  for (const auto& [typo, meant] : typos) {
+    const Outcome o = run_cli({typo, "sphere_roll"}, dir);
+    INFO(o.out);
+    CHECK(o.code == 2);
+    CHECK_THAT(o.out, Contains(std::string("unknown command '") + typo + "'; did you mean '" +
+                               meant + "'?"));
+  }
+  // Nothing near: the list of commands.
+  const Outcome o = run_cli({"simulate"}, dir);
+  CHECK(o.code == 2);
+  CHECK_THAT(o.out, Contains("unknown command 'simulate'; the commands are: run, check"));
+}
+
 TEST_CASE("cli: scenes lists the bundled scenes with descriptions") {
   const Outcome o = run_cli({"scenes"}, scratch("scenes"));
   CHECK(o.code == 0);
