@@ -13,6 +13,7 @@
 #include "services/check_report.hpp"
 #include "services/network_graph.hpp"
 #include "services/step_check.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::app {
 using namespace services;
@@ -39,7 +40,8 @@ void print_limit(const IntegratorLimit& l, const core::RunOptions& run) {
   std::printf("  %-17s unstable above %.3g s (limiting state at t = %.3g s)", name,
               l.limit.max_step, l.limit.limiting_time);
   if (l.integrator == run.integrator) {
-    std::printf("; scene dt %g s: %s", run.dt, run.dt < l.limit.max_step ? "ok" : "TOO LARGE");
+    std::printf("; scene dt %s s: %s", text::shortest(run.dt).c_str(),
+                run.dt < l.limit.max_step ? "ok" : "TOO LARGE");
   }
   std::printf("\n");
   if (l.limit.chatter_free_step < l.limit.max_step) {
@@ -59,10 +61,12 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
   if (!scene.description.empty()) std::printf("  %s\n", scene.description.c_str());
   for (const scene::Warning& w : scene.warnings)
     std::printf("%s\n", scene::format_warning(w).c_str());
-  std::printf("simulation: %s, dt = %g s, duration = %g s, %g rows/s\n", run.integrator.c_str(),
-              run.dt, run.duration, run.output_rate);
-  std::printf("render: %dx%d at %g fps; plots: %zu; verify: %s\n", report.render.width,
-              report.render.height, report.render.fps, report.plots.size(),
+  // The scene's own values shortest round-trip (as written), computed ones with stated digits.
+  std::printf("simulation: %s, dt = %s s, duration = %s s, %s rows/s\n", run.integrator.c_str(),
+              text::shortest(run.dt).c_str(), text::shortest(run.duration).c_str(),
+              text::shortest(run.output_rate).c_str());
+  std::printf("render: %dx%d at %s fps; plots: %zu; verify: %s\n", report.render.width,
+              report.render.height, text::shortest(report.render.fps).c_str(), report.plots.size(),
               report.verify.at.empty()
                   ? "first frame, each event, last frame"
                   : (std::to_string(report.verify.at.size()) + " frame times").c_str());
@@ -84,16 +88,16 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
       "initial state; the whole network's limits are below):\n");
   for (const StiffElement& s : report.stiff) {
     if (!s.wired) {
-      std::printf("  %s (%s): K = %g; no effective mass could be computed for its wiring\n",
-                  s.component.c_str(), s.type.c_str(), s.stiffness);
+      std::printf("  %s (%s): K = %s; no effective mass could be computed for its wiring\n",
+                  s.component.c_str(), s.type.c_str(), text::shortest(s.stiffness).c_str());
       continue;
     }
     std::printf(
-        "  %s (%s): K = %g against an effective mass/inertia %g: omega = %.5g rad/s, "
+        "  %s (%s): K = %s against an effective mass/inertia %.6g: omega = %.5g rad/s, "
         "damping ratio %.3g; alone, this undamped mode would make rk4 unstable above "
         "2.83 / omega = %.3g s\n",
-        s.component.c_str(), s.type.c_str(), s.stiffness, 1.0 / s.mobility, s.omega,
-        s.damping_ratio, 2.8284271247461903 / s.omega);
+        s.component.c_str(), s.type.c_str(), text::shortest(s.stiffness).c_str(), 1.0 / s.mobility,
+        s.omega, s.damping_ratio, 2.8284271247461903 / s.omega);
   }
   if (report.stiff.empty()) std::printf("  no stiff elements\n");
 
@@ -102,8 +106,9 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
       "states of each regime of a pilot run at the scene's settings (at most %zu in all)",
       kStatesPerRegime, core::kMaxSampledStates);
   if (report.pilot.shortened) {
-    std::printf(" over its first %g s of %g s, the part that fits its step budget (docs/limits.md)",
-                report.pilot.options.duration, run.duration);
+    std::printf(
+        " over its first %.3g s of %s s, the part that fits its step budget (docs/limits.md)",
+        report.pilot.options.duration, text::shortest(run.duration).c_str());
   }
   std::printf("; a mode growing > 5%% per step counts as unstable):\n");
   for (const IntegratorLimit& l : report.limits) print_limit(l, run);

@@ -16,6 +16,7 @@
 #include "services/run_support.hpp"
 #include "services/step_guard.hpp"
 #include "sys/interrupt.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::app {
 using namespace services;
@@ -114,10 +115,15 @@ int compare_command(const CompareArguments& args) {
       return kExitUnstable;
     }
     if (!args.quiet) {
-      std::printf("%s: %s, dt = %g s, %g s simulated in %.3f s", labels[i].c_str(),
-                  s.run.integrator.c_str(), s.run.dt, s.run.duration, r.wall_seconds);
+      // The user's values shortest round-trip, measured ones with stated digits (every event
+      // time, stick or slip, with the same count).
+      std::printf("%s: %s, dt = %s s, %s s simulated in %s s", labels[i].c_str(),
+                  s.run.integrator.c_str(), text::shortest(s.run.dt).c_str(),
+                  text::shortest(s.run.duration).c_str(),
+                  text::significant(r.wall_seconds, 3).c_str());
       for (const auto& [event, time] : event_times(r))
-        std::printf("; %s %.4g s", event.c_str(), time);
+        std::printf("; %s %s s", event.c_str(),
+                    text::significant(time, text::kEventTimeDigits).c_str());
       std::printf("\n");
       std::fflush(stdout);
     }

@@ -7,9 +7,10 @@
 #include <string>
 
 #include "app/commands.hpp"
+#include "scene/scene.hpp"
 #include "services/heartbeat.hpp"
 #include "services/study.hpp"
-#include "scene/scene.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::app {
 using namespace services;
@@ -38,16 +39,16 @@ int study_command(const StudyArguments& args) {
   }
   const StudyResult result = run_study(options, log);
   if (heartbeat) {
-    char done[96];
-    std::snprintf(done, sizeof done, "done in %.1f s (%zu runs)",
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                  result.rows.size());
-    heartbeat->line(done);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    heartbeat->line("done in " + text::significant(seconds, 3) + " s (" +
+                    std::to_string(result.rows.size()) + " runs)");
     heartbeat.reset();
   }
 
-  const std::filesystem::path out =
-      args.out.empty() ? std::filesystem::path("out") / result.scene / "study" : std::filesystem::path(args.out);
+  const std::filesystem::path out = args.out.empty()
+                                        ? std::filesystem::path("out") / result.scene / "study"
+                                        : std::filesystem::path(args.out);
   write_study(result, out);
   if (!args.quiet) {
     std::fputs(study_markdown(result).c_str(), stdout);

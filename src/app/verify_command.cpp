@@ -13,13 +13,14 @@
 #include <thread>
 
 #include "app/commands.hpp"
+#include "io/atomic_file.hpp"
+#include "scene/toml_reader.hpp"
 #include "services/progress.hpp"
 #include "services/run_support.hpp"
 #include "services/step_guard.hpp"
 #include "services/verify_report.hpp"
 #include "services/verify_scene.hpp"
-#include "io/atomic_file.hpp"
-#include "scene/toml_reader.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::app {
 using namespace services;
@@ -59,10 +60,9 @@ VerifyJob prepare(const std::string& name, const VerifyArguments& args) {
   job.settings = read_verify_settings(job.scene.document, job.scene.run.duration);
   for (double t : args.at) {
     if (t > job.scene.run.duration) {
-      char text[160];
-      std::snprintf(text, sizeof text, "error: --at %g: after the end of %s (duration %g s)", t,
-                    job.scene.name.c_str(), job.scene.run.duration);
-      throw scene::InputError(text);
+      throw scene::InputError("error: --at " + text::shortest(t) + ": after the end of " +
+                              job.scene.name + " (duration " +
+                              text::shortest(job.scene.run.duration) + " s)");
     }
   }
   job.at = args.at;

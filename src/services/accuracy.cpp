@@ -10,6 +10,7 @@
 
 #include "core/integrator.hpp"
 #include "core/row_sink.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::services {
 namespace {
@@ -170,9 +171,10 @@ AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& r
 
   const bool adaptive = run.integrator == "rk4_adaptive";
   const std::string run_setting =
-      adaptive ? format("tolerance %g", run.tolerance) : format("dt = %g s", run.dt);
+      adaptive ? "tolerance " + text::shortest(run.tolerance) : "dt = " + text::shortest(run.dt) + " s";
   const std::string companion_setting =
-      adaptive ? format("tolerance %g", companion.tolerance) : format("dt = %g s", companion.dt);
+      adaptive ? "tolerance " + text::shortest(companion.tolerance)
+               : "dt = " + text::shortest(companion.dt) + " s";
   bool events_differ = false;
   for (const core::SlipHistory& h : result.slip_events) {
     ElementEvents element{h.component, {}};
@@ -321,11 +323,11 @@ nlohmann::ordered_json accuracy_json(const AccuracyEstimate& e) {
 void print_inaccurate(const std::string& scene_name, const core::RunOptions& run,
                       const AccuracyEstimate& estimate) {
   if (run.integrator == "rk4_adaptive") {
-    std::fprintf(stderr, "warning: %s: the run is inaccurate with rk4_adaptive, tolerance %g:\n",
-                 scene_name.c_str(), run.tolerance);
+    std::fprintf(stderr, "warning: %s: the run is inaccurate with rk4_adaptive, tolerance %s:\n",
+                 scene_name.c_str(), text::shortest(run.tolerance).c_str());
   } else {
-    std::fprintf(stderr, "warning: %s: the run is inaccurate with %s, dt = %g s:\n",
-                 scene_name.c_str(), run.integrator.c_str(), run.dt);
+    std::fprintf(stderr, "warning: %s: the run is inaccurate with %s, dt = %s s:\n",
+                 scene_name.c_str(), run.integrator.c_str(), text::shortest(run.dt).c_str());
   }
   constexpr std::size_t kShown = 6;
   for (std::size_t i = 0; i < estimate.reasons.size() && i < kShown; ++i) {

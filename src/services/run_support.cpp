@@ -9,6 +9,7 @@
 #include "services/progress.hpp"
 #include "core/run_limits.hpp"
 #include "core/stability.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::services {
 
@@ -86,16 +87,17 @@ void print_instability(const std::string& scene_name, const core::RunOptions& ru
   if (run.integrator == "rk4_adaptive") {
     std::fprintf(stderr,
                  "error: %s: numerical instability at t = %.6g s in '%s' (%s) with rk4_adaptive, "
-                 "tolerance %g; try a smaller tolerance, e.g. --tolerance %g\n",
+                 "tolerance %s; try a smaller tolerance, e.g. --tolerance %g\n",
                  scene_name.c_str(), inst.time, inst.component.c_str(), inst.reason.c_str(),
-                 run.tolerance, run.tolerance / 10.0);
+                 text::shortest(run.tolerance).c_str(), run.tolerance / 10.0);
     return;
   }
   std::fprintf(stderr,
-               "error: %s: numerical instability at t = %.6g s in '%s' (%s) with %s, dt = %g s; "
+               "error: %s: numerical instability at t = %.6g s in '%s' (%s) with %s, dt = %s s; "
                "try a smaller step, e.g. --dt %g\n  (that step is %s)\n",
                scene_name.c_str(), inst.time, inst.component.c_str(), inst.reason.c_str(),
-               run.integrator.c_str(), run.dt, suggestion.dt, suggestion.how.c_str());
+               run.integrator.c_str(), text::shortest(run.dt).c_str(), suggestion.dt,
+               suggestion.how.c_str());
 }
 
 }  // namespace stiction::services

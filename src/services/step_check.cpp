@@ -9,6 +9,7 @@
 #include "services/step_check_cache.hpp"
 #include "core/stability.hpp"
 #include "sys/interrupt.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::services {
 namespace {
@@ -150,26 +151,27 @@ nlohmann::ordered_json step_check_json(const StepCheck& c) {
 std::string step_check_text(const StepCheck& c) {
   char text[400];
   const std::string verdict = c.verdict();
+  const std::string dt = text::shortest(c.dt);  // the scene's step, as given
   if (verdict == "unstable") {
     if (c.instability_limit > 0.0) {
       std::snprintf(text, sizeof text,
-                    "dt = %g s is above %s's predicted instability limit %.3g s on this scene "
+                    "dt = %s s is above %s's predicted instability limit %.3g s on this scene "
                     "(limiting state at t = %.3g s)",
-                    c.dt, c.integrator.c_str(), c.instability_limit, c.limiting_time);
+                    dt.c_str(), c.integrator.c_str(), c.instability_limit, c.limiting_time);
     } else {
       std::snprintf(text, sizeof text,
-                    "dt = %g s: %s is predicted unstable on this scene at every step down to "
+                    "dt = %s s: %s is predicted unstable on this scene at every step down to "
                     "%.3g s (limiting state at t = %.3g s)",
-                    c.dt, c.integrator.c_str(), c.lowest_step, c.limiting_time);
+                    dt.c_str(), c.integrator.c_str(), c.lowest_step, c.limiting_time);
     }
   } else if (verdict == "chatter") {
     std::snprintf(text, sizeof text,
-                  "dt = %g s is above the step %.3g s where stuck friction chatters under %s "
+                  "dt = %s s is above the step %.3g s where stuck friction chatters under %s "
                   "on this scene (stable up to %.3g s, but sticks may come late or not at all)",
-                  c.dt, c.chatter_limit, c.integrator.c_str(), c.instability_limit);
+                  dt.c_str(), c.chatter_limit, c.integrator.c_str(), c.instability_limit);
   } else if (verdict == "ok") {
-    std::snprintf(text, sizeof text, "dt = %g s is below %s's predicted limits on this scene", c.dt,
-                  c.integrator.c_str());
+    std::snprintf(text, sizeof text, "dt = %s s is below %s's predicted limits on this scene",
+                  dt.c_str(), c.integrator.c_str());
   } else {
     std::snprintf(text, sizeof text, "%s: no fixed step to check", c.integrator.c_str());
   }

@@ -10,6 +10,8 @@
 #include "image/png.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/figure.hpp"
+#include "plot/plot_spec.hpp"
+#include "text/number_text.hpp"
 
 namespace stiction::services {
 namespace {
@@ -20,6 +22,10 @@ std::string num(double value, int digits = 4) {
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
 }
+
+// A value the reader may give back (a step, a tolerance, the scene's settings): shortest
+// round-trip (text/number_text.hpp), not rounded to digits that would not reproduce it.
+std::string value(double v) { return std::isfinite(v) ? text::shortest(v) : ""; }
 
 // For Markdown cells: a dash where there is no value.
 std::string cell(double value, int digits = 3) {
@@ -57,7 +63,7 @@ std::string error_cell(double value) {
 }
 
 std::string step_cell(const StudyRow& row) {
-  return row.tolerance > 0.0 ? "tol " + num(row.tolerance, 3) : num(row.dt, 4);
+  return row.tolerance > 0.0 ? "tol " + value(row.tolerance) : value(row.dt);
 }
 
 std::string join(const std::vector<std::string>& items, const std::string& separator) {
@@ -116,10 +122,10 @@ std::string largest_steps_markdown(const StudyResult& r) {
       const double tol = largest_accurate_tolerance(r, row.integrator);
       const Recommendation* c = candidate_of(r, row.integrator);
       md += "\n" + row.integrator + ": largest tolerance within the target " +
-            (tol > 0.0 ? num(tol, 3) : std::string("none (no tolerance tried meets it)"));
+            (tol > 0.0 ? value(tol) : std::string("none (no tolerance tried meets it)"));
       if (c != nullptr) {
         md += " (with every tighter one); its cheapest run within the target, tolerance " +
-              num(c->tolerance, 3) + ": " + num(c->evaluations_per_second, 4) +
+              value(c->tolerance) + ": " + num(c->evaluations_per_second, 4) +
               " evaluations and " + num(c->cpu_per_second, 3) + " CPU s per simulated second";
       }
       md += ".\n";
@@ -132,7 +138,7 @@ std::string largest_steps_markdown(const StudyResult& r) {
 // The closing line: the cheapest run within the target.
 std::string recommendation_line(const StudyResult& r) {
   const Recommendation& rec = r.recommendation;
-  std::string md = "\n**Recommendation** (target " + num(r.target_error, 3) + "): ";
+  std::string md = "\n**Recommendation** (target " + value(r.target_error) + "): ";
   if (rec.integrator.empty()) {
     md +=
         "no run meets the target; try a smaller `--dts` or `--tolerances`, or a larger "
@@ -140,8 +146,8 @@ std::string recommendation_line(const StudyResult& r) {
     return md;
   }
   md += "`" + rec.integrator + "` at " +
-        (rec.tolerance > 0.0 ? "tolerance " + num(rec.tolerance, 3)
-                             : "dt = " + num(rec.dt, 4) + " s") +
+        (rec.tolerance > 0.0 ? "tolerance " + value(rec.tolerance)
+                             : "dt = " + value(rec.dt) + " s") +
         ", " + num(rec.cpu_per_second, 3) + " CPU s (median of " + std::to_string(rec.repeats) +
         ") and " + num(rec.evaluations_per_second, 4) + " network evaluations per simulated second";
   std::vector<std::string> errors;
@@ -175,7 +181,7 @@ std::string study_csv(const StudyResult& r) {
   out += '\n';
   for (const auto& row : r.rows) {
     out += csv_field(row.integrator);
-    out += ',' + num(row.dt, 10) + ',' + (row.tolerance > 0.0 ? num(row.tolerance, 10) : "");
+    out += ',' + value(row.dt) + ',' + (row.tolerance > 0.0 ? value(row.tolerance) : "");
     out += ',' + row.status;
     out += ',' + (row.instability ? num(row.instability->time, 10) : std::string());
     out += ',' + (row.instability ? csv_field(row.instability->component) : std::string());
@@ -199,9 +205,9 @@ std::string study_csv(const StudyResult& r) {
 
 std::string study_markdown(const StudyResult& r) {
   std::string md = "# `stiction study " + r.scene + "`\n\n";
-  md += "Scene dt " + num(r.scene_dt) + " s, duration " + num(r.duration) + " s, output " +
-        num(r.output_rate) + " rows/s. ";
-  md += "Reference: **" + r.reference_integrator + " at dt = " + num(r.reference_dt) + " s** (" +
+  md += "Scene dt " + value(r.scene_dt) + " s, duration " + value(r.duration) + " s, output " +
+        value(r.output_rate) + " rows/s. ";
+  md += "Reference: **" + r.reference_integrator + " at dt = " + value(r.reference_dt) + " s** (" +
         num(r.scene_dt / r.reference_dt, 3) + "x finer than the scene's), " +
         std::to_string(r.reference_steps) + " steps, " + num(r.reference_wall_seconds, 3) +
         " s. rk4 at twice that step differs from it by " + cell(r.reference_noise, 3) + " (key error)" +
@@ -224,11 +230,11 @@ std::string study_markdown(const StudyResult& r) {
     md += "Event error: none measured, the reference has no stick and no slip event. ";
   }
   md += "Wall time: the simulation alone, median of the repeats (rep).\n\n";
-  md += "Accuracy target " + num(r.target_error, 3) +
+  md += "Accuracy target " + value(r.target_error) +
         " (`--target-error`): a run meets it when every " +
         (r.event_names.empty()
              ? std::string()
-             : "event time (error divided by the duration, " + num(r.duration) + " s) and every ") +
+             : "event time (error divided by the duration, " + value(r.duration) + " s) and every ") +
         "final value of a key signal (error divided by the signal's scale) is within it of the "
         "reference's. The reference's own such error (rk4 at twice its step) is " +
         cell(r.reference_accuracy_noise, 3) + ".\n\n";
@@ -327,7 +333,7 @@ std::string study_markdown(const StudyResult& r) {
 image::Image work_precision_figure(const StudyResult& r, text::Font& font) {
   plot::Figure figure;
   figure.panels.reserve(2);  // `key` and `events` point into it
-  figure.title = "Work-precision: " + r.scene + " (reference rk4, dt = " + num(r.reference_dt, 3) + " s)";
+  figure.title = "Work-precision: " + r.scene + " (reference rk4, dt = " + value(r.reference_dt) + " s)";
   // The figure's horizontal axis is linear only: it carries log10 of the cost.
   figure.x_label = "Cost: log\u2081\u2080(wall time of the simulation / 1 s)";
   figure.x_unit = "";
@@ -368,6 +374,10 @@ image::Image work_precision_figure(const StudyResult& r, text::Font& font) {
     key.series.push_back(std::move(ks));
     if (events != nullptr) events->series.push_back(std::move(ss));
   }
+  // The print size of every figure: one journal column, its height by the panel count.
+  const plot::PrintSize print;
+  figure.print = plot::Figure::Print{print.width_mm, plot::default_height_mm(figure.panels.size()),
+                                     print.font_pt, 300.0};
   return plot::render(figure, font);
 }
 

@@ -14,6 +14,10 @@ TEST_CASE("shortest prints the shortest text that reads back as the value", "[te
   CHECK(text::shortest(0.15) == "0.15");
   CHECK(text::shortest(-20.0) == "-20");
   CHECK(text::shortest(1e-5) == "1e-05");
+  CHECK(text::shortest(1e-4) == "0.0001");  // printf's notation, not to_chars' 1e-04
+  CHECK(text::shortest(2.5e-5) == "2.5e-05");
+  CHECK(text::shortest(120000.0) == "120000");
+  CHECK(text::shortest(1e20) == "1e+20");
   std::mt19937_64 random(21);
   std::uniform_real_distribution<double> exponent(-300.0, 300.0), mantissa(-1.0, 1.0);
   for (int i = 0; i < 2000; ++i) {
