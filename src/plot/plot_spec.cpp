@@ -392,7 +392,7 @@ bool all_zero(const core::Trajectory& trajectory, int column) {
 
 // The signals of a panel to draw: all of them, or, for a panel that omits zero signals, those
 // not zero in every one of `runs` (all of them when every one is zero). The names left out
-// are added to the caption: "sphere.v: velocity (y = z = 0, not drawn)".
+// are added to the caption: "sphere.v: velocity (v.y = v.z = 0, not drawn)".
 std::vector<std::size_t> drawn_signals(const PanelSpec& spec,
                                        const std::vector<const core::Trajectory*>& runs,
                                        Panel& panel) {
@@ -410,8 +410,11 @@ std::vector<std::size_t> drawn_signals(const PanelSpec& spec,
     drawn.swap(zero);
   } else if (!zero.empty()) {
     std::string names;
+    // Named without the component the caption begins with ("v.y", "e.1"): an axis name
+    // alone reads as a value ("1 = 0").
     for (std::size_t i : zero) {
-      names += (spec.legend.empty() ? spec.signals[i] : spec.legend[i]) + " = ";
+      const std::string& signal = spec.signals[i];
+      names += signal.substr(signal.find('.') + 1) + " = ";
     }
     caption += (caption.empty() ? "" : " ") + std::string("(") + names + "0, not drawn)";
     // One axis left: the axis label names it ("v.x"), as no legend will.

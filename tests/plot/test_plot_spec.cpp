@@ -425,7 +425,7 @@ TEST_CASE("default figures leave out signals that are zero throughout, and say s
       const std::string name = std::string("b.v.") + "xyz"[axis];
       const bool moves = moving & (1 << axis);
       CHECK(drawn.count(name) == (moves || moving == 0 ? 1u : 0u));
-      if (!moves && moving != 0) omitted += std::string(1, "xyz"[axis]) + " = ";
+      if (!moves && moving != 0) omitted += std::string("v.") + "xyz"[axis] + " = ";
     }
     if (omitted.empty()) {
       CHECK(figure.panels[0].caption.find("not drawn") == std::string::npos);
@@ -471,7 +471,7 @@ TEST_CASE("a comparison of one axis is titled by that signal, not its group", "[
   REQUIRE(spec.panels.size() == 1);
   const plot::Figure figure = plot::make_comparison_figure(spec, runs);
   CHECK(figure.panels[0].label == "v");
-  CHECK(figure.panels[0].caption == "ball.v: velocity of the centre (y = 0, not drawn)");
+  CHECK(figure.panels[0].caption == "ball.v: velocity of the centre (v.y = 0, not drawn)");
   CHECK(figure.panels[0].series.size() == 4);  // x and z of both runs
   // Only x moving: the one axis left names itself.
   core::Trajectory c({"t", "ball.v.x", "ball.v.y", "ball.v.z"});
@@ -483,5 +483,5 @@ TEST_CASE("a comparison of one axis is titled by that signal, not its group", "[
   const plot::Figure one =
       plot::make_comparison_figure(plot::comparison_spec(flat, {"ball.v"}, columns), flat);
   CHECK(one.panels[0].label == "v.x");
-  CHECK(one.panels[0].caption == "ball.v: velocity of the centre (y = z = 0, not drawn)");
+  CHECK(one.panels[0].caption == "ball.v: velocity of the centre (v.y = v.z = 0, not drawn)");
 }
