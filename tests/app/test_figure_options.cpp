@@ -1,5 +1,6 @@
 // Figure options of `run` and `compare` (DESIGN section 3): --plot-format, a [[plots]] name
 // with an extension, and compare's per-run overrides, labels, --signals and --duration.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -44,6 +45,43 @@ TEST_CASE("run writes plots as SVG or PDF by --plot-format or by the plot's name
   CHECK(head(dir / "b/plots/force.png", 4) == "\x89PNG");
   o = stiction::testing::run_stiction({"run", path.string(), "--plot-format", "gif"}, dir);
   CHECK(o.code == 2);
+}
+
+TEST_CASE("run reads the print size and labels keys of [[plots]], errors at file:line:key",
+          "[app][figures]") {
+  const fs::path dir = stiction::testing::scratch_dir("stiction_test_figures_", "print");
+  const std::string base = stiction::testing::slope_to_floor_scene(0.2);
+  const auto with = [&](const std::string& keys) {
+    return base + "[[plots]]\nname = \"p.pdf\"\n" + keys +
+           "  [[plots.panels]]\n  signals = [\"block.v.x\"]\n";
+  };
+  auto path = stiction::testing::write_scene(
+      dir, "good",
+      with("width = \"3.5 in\"\nheight = \"6 cm\"\nfont_size = 9\n"
+           "labels = [\"floor.first_stick\", \"floor.touch_down\"]\n"));
+  auto o = stiction::testing::run_stiction({"run", path.string(), "--no-video", "--out", "a"}, dir);
+  INFO(o.out);
+  REQUIRE(o.code == 0);
+  CHECK(head(dir / "a/plots/p.pdf", 5) == "%PDF-");
+  // The line of the bad key in the scene file: the base scene's lines, then name, then it.
+  const int line = static_cast<int>(std::count(base.begin(), base.end(), '\n')) + 3;
+  const struct {
+    std::string keys, key, what;
+  } bad[] = {{"width = \"88 px\"\n", "plots[0].width", "mm, cm or in"},
+             {"font_size = 100\n", "plots[0].font_size", "4 .. 72 pt"},
+             {"size = [800, 600]\nwidth = 88\n", "plots[0].size", "excludes width"},
+             {"labels = \"most\"\n", "plots[0].labels", "\"important\""},
+             {"labels = [\"floor.stop\"]\n", "plots[0].labels[0]", "unknown event 'stop'"},
+             {"events = [\"ceiling\"]\n", "plots[0].events[0]", "'ceiling' is not a component"}};
+  for (const auto& b : bad) {
+    path = stiction::testing::write_scene(dir, "bad", with(b.keys));
+    o = stiction::testing::run_stiction({"run", path.string(), "--no-video", "--out", "b"}, dir);
+    INFO(o.out);
+    CHECK(o.code == 2);
+    CHECK_THAT(o.out, Contains("bad.toml:" + std::to_string(line) + ":") && Contains(b.key) &&
+                          Contains(b.what));
+    CHECK_FALSE(fs::exists(dir / "b/summary.json"));
+  }
 }
 
 TEST_CASE("compare labels runs of one scene by their overrides, with --signals and --duration",
