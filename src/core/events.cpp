@@ -183,7 +183,16 @@ void SlipMonitor::settle_pending_slip() {
       fitted_speed(slip_before_t_, t0, p, onset_.front().t, onset_.front().s, true) <= threshold_) {
     time = std::min(t0, slip_raw_);
   }
-  if (onset_low_ >= 0.0) time = std::clamp(time, onset_low_, std::max(onset_low_, onset_high_));
+  // The law's release bounds this onset only if the speed started growing there: the release
+  // lies no further before the onset than the onset lies before the threshold crossing (the
+  // fit's reach, at least the crossing step). A release long before it is a creep, the law
+  // saturated while other elements hold the body and the speed stays below the threshold:
+  // stuck by the model's definition, and no slip begins until the speed rises (a crate's
+  // unloaded back corners creep at 1 um/s for half a second before the crate slides).
+  const double reach = std::max(slip_raw_ - time, onset_.front().t - slip_before_t_);
+  const bool released_here = onset_high_ >= time - reach;
+  if (onset_low_ >= 0.0 && released_here)
+    time = std::clamp(time, onset_low_, std::max(onset_low_, onset_high_));
   onset_.clear();
   commit(State::slip, time);
 }
