@@ -30,15 +30,15 @@ struct Segment {
   double start;
 };
 
-// The stretches with the states shorter than `resolution` (but the last) left out and equal
+// The stretches with the states no longer than `resolution` (but the last) left out and equal
 // neighbours joined, as SlipMonitor drops short sticks: corners breaking loose a rounding
-// error apart do not make a partial slip of 1e-13 s. A left-out state's time goes to the
+// error or one step apart (each point's change is seen at a step) make no partial slip. A left-out state's time goes to the
 // state before it (every point slips, sticks, is open, or is off the edge only once the
 // last one is), but after `open` to the state after it (a landing is the first touch).
 std::vector<Segment> without_short_states(const std::vector<Segment>& segments, double resolution) {
   std::vector<Segment> out;
   for (Segment s : segments) {
-    if (!out.empty() && s.start - out.back().start < resolution) {
+    if (!out.empty() && s.start - out.back().start <= resolution * (1.0 + 1e-9)) {
       if (out.size() == 1) {  // at the start: the body is in `s` from the first moment
         out.back().state = s.state;
         continue;

@@ -19,7 +19,11 @@
 // kind in a row (a land's state excepted), and the state at t = 0 is `initial`, not an event.
 // Times are those of the point events that change the state (several at one time count as
 // one change): a slide comes when the last touching point starts to slip, a tip when the last
-// point off the edge opens, a land when the first point touches down.
+// point off the edge opens, a land when the first point touches down. A state that lasts no
+// longer than the points' resolution (one step by default; SlipMonitor) is not reported, as
+// a short stick is not: each point's change is seen at a step, so corners that break loose
+// together may be one step apart. Its time goes to the state before it, except after `open`
+// (a landing on a corner, then at once on the face, lands at the first touch).
 //
 // The geometry is the points' positions in the body frame (for a contact with a radius, the
 // contact point at t = 0: the body point moved by the radius along the normal), compared
