@@ -32,9 +32,10 @@ struct Segment {
 
 // The stretches with the states no longer than `resolution` (but the last) left out and equal
 // neighbours joined, as SlipMonitor drops short sticks: corners breaking loose a rounding
-// error or one step apart (each point's change is seen at a step) make no partial slip. A left-out state's time goes to the
-// state before it (every point slips, sticks, is open, or is off the edge only once the
-// last one is), but after `open` to the state after it (a landing is the first touch).
+// error or one step apart (each point's change is seen at a step) make no partial slip. A left-out
+// state's time goes to the state before it (every point slips, sticks, is open, or is off the edge
+// only once the last one is), but after `open` to the state after it (a landing is the first
+// touch).
 std::vector<Segment> without_short_states(const std::vector<Segment>& segments, double resolution) {
   std::vector<Segment> out;
   for (Segment s : segments) {
