@@ -115,6 +115,8 @@ int run_command(const RunArguments& args) {
                 result.wall_seconds);
     for (const std::string& line : event_lines(summary["events"], summary["accuracy"]))
       std::printf("  %s\n", line.c_str());
+    for (const std::string& line : body_event_lines(summary["bodies"]))
+      std::printf("  %s\n", line.c_str());
     std::printf("  wrote %s and %s\n", (out / "trajectory.csv").c_str(),
                 (out / "summary.json").c_str());
     std::fflush(stdout);

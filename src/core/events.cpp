@@ -137,6 +137,9 @@ void SlipMonitor::observe(double t, const Vec3& slip, bool open, Law law) {
       }
       break;
     case State::stick:
+      // Not rising: by less than 0.1% in a step (a creep's speed drifts slower than that; a
+      // break-away's rises by percents within a few steps).
+      if (now == State::stick && speed <= s1_ * (1.0 + 1e-3)) calm_ = t;
       if (now == State::slip && s1_ > threshold_) {
         // Released by its law while already faster than the threshold: no onset to fit.
         commit(State::slip, t);
@@ -154,6 +157,7 @@ void SlipMonitor::observe(double t, const Vec3& slip, bool open, Law law) {
         sliding_ = {{t, speed}};
       } else if (now == State::open) {
         commit(State::open, t);
+        calm_ = -1.0;
       }
       break;
     case State::open:
@@ -183,8 +187,25 @@ void SlipMonitor::settle_pending_slip() {
       fitted_speed(slip_before_t_, t0, p, onset_.front().t, onset_.front().s, true) <= threshold_) {
     time = std::min(t0, slip_raw_);
   }
-  if (onset_low_ >= 0.0) time = std::clamp(time, onset_low_, std::max(onset_low_, onset_high_));
+  // The law's release bounds this onset only if the speed started growing there: the release
+  // lies no further before the onset than the onset lies before the threshold crossing (the
+  // fit's reach, at least the crossing step). A release long before it is a creep, the law
+  // saturated while other elements hold the body and the speed stays below the threshold:
+  // stuck by the model's definition, and no slip begins until the speed rises (a crate's
+  // unloaded back corners creep at 1 um/s for half a second before the crate slides).
+  // A creep's onset is no earlier than the last step its speed did not rise: the fit through
+  // a speed that starts from the creep level, not from zero, and through the body's transient
+  // as other elements let go, reaches back too far (a crate's corners by 0.4 ms of a 16 ms
+  // reach, while the corners that held it are placed by their law within a step).
+  const double reach = std::max(slip_raw_ - time, onset_.front().t - slip_before_t_);
+  const bool released_here = onset_high_ >= time - reach;
+  if (onset_low_ >= 0.0 && released_here) {
+    time = std::clamp(time, onset_low_, std::max(onset_low_, onset_high_));
+  } else if (onset_low_ >= 0.0 && calm_ >= 0.0) {
+    time = std::clamp(time, calm_, std::max(calm_, slip_raw_));
+  }
   onset_.clear();
+  calm_ = -1.0;  // the next stuck stretch finds its own
   commit(State::slip, time);
 }
 

@@ -112,6 +112,7 @@ class SlipMonitor {
   double last_held_ = -1.0;      // last step the law held it while stuck (< 0: none)
   double first_release_ = -1.0;  // first step after that the law released it (< 0: none)
   double onset_low_ = -1.0, onset_high_ = -1.0;  // the pending onset's bounds (< 0: none)
+  double calm_ = -1.0;  // last step, while stuck, whose speed did not rise (< 0: none)
   std::vector<Sample> onset_;
 
   std::vector<SlipEvent> events_;

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "core/body_events.hpp"
 #include "core/events.hpp"
 #include "core/integrator.hpp"
 #include "core/network.hpp"
@@ -42,6 +43,10 @@ struct RunOptions {
 struct SlipHistory {
   std::string component;
   SlipMonitor monitor;
+  // A contact on one body: that body's name and the contact point in its frame at t = 0
+  // (body_events.hpp groups a body's points and reads their geometry); empty otherwise.
+  std::string body{};
+  Vec3 point = Vec3::Zero();
 };
 
 struct Instability {
@@ -60,6 +65,8 @@ struct RunResult {
   std::optional<Instability> instability;
   bool interrupted = false;              // stopped early through RunOptions::stop
   std::vector<SlipHistory> slip_events;  // one per impedance with a slip speed
+  // One per body with several contact points, from its points' slip_events (body_events.hpp).
+  std::vector<BodyEventHistory> body_events;
 };
 
 using ProgressCallback = std::function<void(double fraction_done)>;

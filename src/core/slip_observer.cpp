@@ -1,10 +1,41 @@
 #include "core/slip_observer.hpp"
 
+#include "core/body.hpp"
+#include "core/body_events.hpp"
+
 namespace stiction::core {
+namespace {
+
+// For a contact whose map moves exactly one body: that body's name and the contact point in
+// its frame at x0 (a contact's x_hat starts with the contact point's world position).
+void locate_on_body(Network& network, int impedance, const Vec& x0, SlipHistory& history) {
+  const Body* body = nullptr;
+  int slot = -1;
+  for (const Admittance* a : network.map_of(impedance).admittances()) {
+    const auto* b = dynamic_cast<const Body*>(a);
+    if (b == nullptr) continue;
+    if (body != nullptr) return;  // between two bodies: not a point of one
+    body = b;
+  }
+  if (body == nullptr) return;
+  const auto& admittances = network.admittances();
+  for (std::size_t k = 0; k < admittances.size(); ++k) {
+    if (admittances[k].get() == body) slot = static_cast<int>(k);
+  }
+  if (slot < 0) return;
+  const Slot s = network.admittance_slot(slot);
+  const BodyMotion m = body->motion(x0.segment(s.state_offset, s.state_size));
+  const ConstVecRef x_hat = network.impedance_input(impedance, x0);
+  if (x_hat.size() < 3) return;
+  history.body = body->name();
+  history.point = m.q.conjugate() * (Vec3(x_hat.head<3>()) - m.p);
+}
+
+}  // namespace
 
 SlipObserver::SlipObserver(Network& network, const RunOptions& options, const Stepper& stepper,
                            RunResult& result, const Vec& x0)
-    : network_(network), histories_(result.slip_events) {
+    : network_(network), result_(result), histories_(result.slip_events) {
   const double resolution = options.event_resolution >= 0.0 ? options.event_resolution : options.dt;
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
     const auto& imp = *network.impedances()[i];
@@ -15,6 +46,7 @@ SlipObserver::SlipObserver(Network& network, const RunOptions& options, const St
     slipping_.push_back(i);
     contacts_.push_back(network.capabilities(i).contact);
     histories_.push_back({imp.name(), SlipMonitor(threshold, resolution)});
+    if (contacts_.back() != nullptr) locate_on_body(network, i, x0, histories_.back());
     observe(slipping_.size() - 1, 0.0, x0, options.dt);
   }
   capture_ = !slipping_.empty() && stepper.evaluates_start_first();
@@ -92,6 +124,7 @@ Verdict SlipObserver::after_step(const StepTaken& step) {
 void SlipObserver::finish(const Vec& x) {
   settle(x);  // the state the run ends at (no step after it)
   for (auto& history : histories_) history.monitor.finish();
+  result_.body_events = body_events(histories_);
 }
 
 }  // namespace stiction::core

@@ -1,9 +1,10 @@
 // The run's stick/slip events: every element with a slip speed (a SlipElement) is observed
 // after every step by its SlipMonitor (core/events.hpp), which the result keeps
-// (RunResult::slip_events). Where the stepper evaluates the network first at the step's start
-// state, the slips of the state a step ends at are read from the next step's first evaluation
-// (Network::capture_slip_inputs_next, issue 13): one step later, with the same bits, and no
-// second evaluation of the maps.
+// (RunResult::slip_events), and at the end the events of every body with several contact
+// points (RunResult::body_events, core/body_events.hpp). Where the stepper evaluates the network
+// first at the step's start state, the slips of the state a step ends at are read from the next
+// step's first evaluation (Network::capture_slip_inputs_next, issue 13): one step later, with the
+// same bits, and no second evaluation of the maps.
 #pragma once
 
 #include <vector>
@@ -37,6 +38,7 @@ class SlipObserver final : public RunObserver {
   void settle(const Vec& state);
 
   Network& network_;
+  RunResult& result_;  // its body_events are made from the histories at the end
   std::vector<SlipHistory>& histories_;
   std::vector<int> slipping_;                   // impedance index of each history
   std::vector<const NormalContact*> contacts_;  // says when a contact is open, or nullptr

@@ -37,6 +37,26 @@ nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histori
   return events;
 }
 
+nlohmann::ordered_json body_events(const std::vector<core::BodyEventHistory>& bodies) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const core::BodyEventHistory& b : bodies) {
+    nlohmann::ordered_json entry;
+    entry["points"] = b.points;
+    entry["initial"] = b.initial;
+    entry["events"] = nlohmann::ordered_json::array();
+    for (const core::BodyEvent& e : b.events) {
+      entry["events"].push_back({{"kind", e.kind}, {"time", e.time}, {"state", e.state}});
+    }
+    entry["intervals"] = nlohmann::ordered_json::array();
+    for (const core::SlipInterval& i : b.intervals) {
+      entry["intervals"].push_back(
+          {{"kind", i.kind}, {"start", i.start}, {"end", i.end}, {"duration", i.duration()}});
+    }
+    out[b.body] = std::move(entry);
+  }
+  return out;
+}
+
 nlohmann::ordered_json column_table(const std::vector<core::ColumnInfo>& columns) {
   nlohmann::ordered_json table = nlohmann::ordered_json::array();
   for (const core::ColumnInfo& c : columns) {
@@ -69,6 +89,7 @@ nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunRe
   s["final"] = std::move(final_row);
   if (!run.columns.empty()) s["columns"] = column_table(run.columns);
   s["events"] = slip_events(result.slip_events);
+  s["bodies"] = body_events(result.body_events);
   if (result.instability) {
     nlohmann::ordered_json inst;
     inst["time"] = result.instability->time;

@@ -1,5 +1,5 @@
 // summary.json (DESIGN section 4): what was run, how it ended, the last row by column name
-// and the stick/slip events of every contact.
+// and the stick/slip events of every contact and of every body with several contact points.
 #pragma once
 
 #include <filesystem>
@@ -32,6 +32,13 @@ struct RunDescription {
 //                            "touch_down": true after an "open"}, ...],
 //                "intervals": [{"kind", "start", "end", "duration"}, ...]}}
 nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histories);
+
+// {"<body>": {"points": [its contact elements], "initial": state at t = 0,
+//             "events": [{"kind": "stick"|"slide"|"partial_slip"|"tip"|"lift_off"|"land",
+//                         "time": ..., "state": the state entered}, ...],
+//             "intervals": [{"kind", "start", "end", "duration"}, ...]}}
+// for every body with several contact points (core/body_events.hpp, docs/events.md).
+nlohmann::ordered_json body_events(const std::vector<core::BodyEventHistory>& bodies);
 
 // [{"name", "unit", "frame", "description"}, ...] in CSV column order.
 nlohmann::ordered_json column_table(const std::vector<core::ColumnInfo>& columns);

@@ -1,0 +1,179 @@
+#include "core/body_events.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "core/simulation.hpp"
+
+namespace stiction::core {
+namespace {
+
+// The touching points span no area (one point, or on one line within `tolerance`) while an
+// open point lies off that point or line: the body rests on a corner or an edge.
+bool on_edge(const std::vector<Vec3>& touching, const std::vector<Vec3>& open, double tolerance) {
+  const Vec3& a = touching.front();
+  const auto far_from_a = [&](const Vec3& p) { return (p - a).norm() > tolerance; };
+  const auto second = std::find_if(touching.begin(), touching.end(), far_from_a);
+  if (second == touching.end()) return std::any_of(open.begin(), open.end(), far_from_a);
+  const Vec3 direction = (*second - a).normalized();
+  const auto off_line = [&](const Vec3& p) {
+    const Vec3 d = p - a;
+    return (d - d.dot(direction) * direction).norm() > tolerance;
+  };
+  if (std::any_of(touching.begin(), touching.end(), off_line)) return false;  // an area
+  return std::any_of(open.begin(), open.end(), off_line);
+}
+
+// A stretch of one body state, from `start` to the next stretch's start.
+struct Segment {
+  BodyState state;
+  double start;
+};
+
+// The stretches with the states no longer than `resolution` (but the last) left out and equal
+// neighbours joined, as SlipMonitor drops short sticks: corners breaking loose a rounding
+// error or one step apart (each point's change is seen at a step) make no partial slip. A left-out
+// state's time goes to the state before it (every point slips, sticks, is open, or is off the edge
+// only once the last one is), but after `open` to the state after it (a landing is the first
+// touch).
+std::vector<Segment> without_short_states(const std::vector<Segment>& segments, double resolution) {
+  std::vector<Segment> out;
+  for (Segment s : segments) {
+    if (!out.empty() && s.start - out.back().start <= resolution * (1.0 + 1e-9)) {
+      if (out.size() == 1) {  // at the start: the body is in `s` from the first moment
+        out.back().state = s.state;
+        continue;
+      }
+      const Segment dropped = out.back();
+      out.pop_back();
+      if (out.back().state == BodyState::open) s.start = dropped.start;
+    }
+    if (!out.empty() && out.back().state == s.state) continue;
+    out.push_back(s);
+  }
+  return out;
+}
+
+struct Point {
+  const SlipHistory* history;
+  std::vector<SlipInterval> intervals;
+  std::size_t at = 0;  // the interval in force
+};
+
+}  // namespace
+
+const char* body_state_name(BodyState state) {
+  switch (state) {
+    case BodyState::open:
+      return "open";
+    case BodyState::stick:
+      return "stick";
+    case BodyState::slide:
+      return "slide";
+    case BodyState::partial_slip:
+      return "partial_slip";
+    case BodyState::tip:
+      return "tip";
+  }
+  return "open";
+}
+
+double BodyEventHistory::first(std::string_view kind) const {
+  for (const BodyEvent& e : events) {
+    if (e.kind == kind) return e.time;
+  }
+  return -1.0;
+}
+
+BodyState body_state(const std::vector<Vec3>& points, const std::vector<std::string>& states,
+                     double tolerance) {
+  std::vector<Vec3> touching, open;
+  bool any_stick = false, any_slip = false;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (states[i] == "open") {
+      open.push_back(points[i]);
+      continue;
+    }
+    touching.push_back(points[i]);
+    any_stick |= states[i] == "stick";
+    any_slip |= states[i] == "slip";
+  }
+  if (touching.empty()) return BodyState::open;
+  if (on_edge(touching, open, tolerance)) return BodyState::tip;
+  if (any_stick && any_slip) return BodyState::partial_slip;
+  return any_slip ? BodyState::slide : BodyState::stick;
+}
+
+std::vector<BodyEventHistory> body_events(const std::vector<SlipHistory>& histories) {
+  // The bodies' points, in the order of each body's first point.
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const SlipHistory*>> by_body;
+  for (const SlipHistory& h : histories) {
+    if (h.body.empty() || h.monitor.initial_state().empty()) continue;
+    auto& list = by_body[h.body];
+    if (list.empty()) order.push_back(h.body);
+    list.push_back(&h);
+  }
+  std::vector<BodyEventHistory> out;
+  for (const std::string& name : order) {
+    const std::vector<const SlipHistory*>& members = by_body[name];
+    if (members.size() < 2) continue;
+    BodyEventHistory body;
+    body.body = name;
+    std::vector<Point> points;
+    std::vector<Vec3> local;
+    for (const SlipHistory* h : members) {
+      body.points.push_back(h->component);
+      points.push_back({h, h->monitor.intervals()});
+      local.push_back(h->point);
+    }
+    double extent = 0.0;
+    for (const Vec3& p : local) extent = std::max(extent, (p - local.front()).norm());
+    const double tolerance = 1e-6 * extent;
+
+    // Every moment some point changes state, in order; the body's state after each.
+    std::vector<double> times;
+    for (const Point& p : points) {
+      for (std::size_t i = 1; i < p.intervals.size(); ++i) times.push_back(p.intervals[i].start);
+    }
+    std::sort(times.begin(), times.end());
+    times.erase(std::unique(times.begin(), times.end()), times.end());
+    std::vector<std::string> states(points.size());
+    const auto state_now = [&] {
+      for (std::size_t i = 0; i < points.size(); ++i)
+        states[i] = points[i].intervals[points[i].at].kind;
+      return body_state(local, states, tolerance);
+    };
+    std::vector<Segment> segments{{state_now(), points.front().intervals.front().start}};
+    for (double t : times) {
+      for (Point& p : points) {
+        while (p.at + 1 < p.intervals.size() && p.intervals[p.at + 1].start <= t) ++p.at;
+      }
+      segments.push_back({state_now(), t});
+    }
+    double end = segments.front().start;
+    double resolution = 0.0;
+    for (const Point& p : points) {
+      end = std::max(end, p.intervals.back().end);
+      resolution = std::max(resolution, p.history->monitor.resolution());
+    }
+    segments = without_short_states(segments, resolution);
+
+    body.initial = body_state_name(segments.front().state);
+    for (std::size_t k = 0; k < segments.size(); ++k) {
+      const Segment& s = segments[k];
+      const double until = k + 1 < segments.size() ? segments[k + 1].start : std::max(s.start, end);
+      body.intervals.push_back({body_state_name(s.state), s.start, until});
+      if (k == 0) continue;
+      const BodyState before = segments[k - 1].state;
+      const char* kind = s.state == BodyState::open  ? "lift_off"
+                         : before == BodyState::open ? "land"
+                                                     : body_state_name(s.state);
+      body.events.push_back({kind, s.start, body_state_name(s.state)});
+    }
+    out.push_back(std::move(body));
+  }
+  return out;
+}
+
+}  // namespace stiction::core
