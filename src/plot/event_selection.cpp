@@ -12,7 +12,10 @@ namespace {
 
 // The kinds a figure marks; "open" only shapes the roles of the events after it.
 const std::vector<std::string>& markable_kinds() {
-  static const std::vector<std::string> kinds{"stick", "slip", "slide", "lift_off", "land", "tip"};
+  // A body's "partial_slip" (some touching points slip, others stick) is marked as a tick: it
+  // is the way into a slide or a tip, which are labelled.
+  static const std::vector<std::string> kinds{"stick", "slip", "slide",       "lift_off",
+                                              "land",  "tip",  "partial_slip"};
   return kinds;
 }
 
@@ -91,6 +94,7 @@ std::string event_word(const ClassifiedEvent& event) {
   }
   if (kind == "stick" && event.roles.final_stop && !event.roles.first_stick) return "stop";
   if (kind == "lift_off") return "lift-off";
+  if (kind == "partial_slip") return "partial slip";
   return kind;
 }
 

@@ -20,7 +20,8 @@
 //
 // Selectors name events in a [[plots]] `events` or `labels` list:
 //   "<element>"              every event of an element or body ("ground", "arm", "box")
-//   "<element>.<kind>"       every event of a kind: stick, slip, slide, lift_off, land, tip
+//   "<element>.<kind>"       every event of a kind: stick, slip, slide, lift_off, land, tip,
+//                            partial_slip (a body: some touching points slip; a tick)
 //   "<element>.first_stick"  the first stick (above)      "<element>.final_stop"  the stop
 //   "<element>.touch_down"   every touch-down             "<element>.break_away"  slip onsets
 //   "<element>.<kind>_time"  the first event of a kind, touch-down or not ("ground.stick_time",

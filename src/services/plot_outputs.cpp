@@ -13,7 +13,17 @@ std::vector<plot::PlotEvent> plot_events(const core::RunResult& result) {
     for (const core::SlipEvent& e : h.monitor.events()) {
       plot::PlotEvent event{h.component, e.kind, e.time};
       event.touch_down = airborne && e.kind != "open";
+      event.body = h.body;
       airborne = false;
+      events.push_back(event);
+    }
+  }
+  // A body with several contact points: its own events (a tip, a slide) tell its story, and
+  // its points' events become ticks (event_selection.hpp).
+  for (const core::BodyEventHistory& body : result.body_events) {
+    for (const core::BodyEvent& e : body.events) {
+      plot::PlotEvent event{body.body, e.kind, e.time};
+      event.body_level = true;
       events.push_back(event);
     }
   }

@@ -136,3 +136,27 @@ TEST_CASE("two_link's fig7 labels each joint's final stop, with the joint's name
     CHECK(labelled_of("stop") == 1);
   }
 }
+
+TEST_CASE("a pushed box's figures label its tip or its slide, and its corners' events are ticks",
+          "[plot][events]") {
+  for (const auto& [scene, kind] :
+       {std::pair<std::string, std::string>{"box_push_tip", "tip"},
+        std::pair<std::string, std::string>{"box_push_slide", "slide"}}) {
+    const RealRun run = run_scene(scene);
+    const std::vector<plot::PlotEvent> events = services::plot_events(run.outcome.result);
+    REQUIRE_FALSE(run.outcome.result.body_events.empty());
+    const double body_time = run.outcome.result.body_events.front().first(kind);
+    REQUIRE(body_time > 0.0);
+    for (const plot::PlotSpec& spec : run.prepared.plot_specs) {
+      const plot::Figure figure = plot::make_figure(spec, run.outcome.result.trajectory, events);
+      const std::vector<plot::EventMarker> shown = labelled(figure);
+      INFO(scene << " " << spec.name << ": " << figure.events.size()
+                 << " markers, labelled:" << describe(shown));
+      // Figures that show the body's events label the body-level one, not each corner's.
+      if (figure.events.empty()) continue;
+      REQUIRE(shown.size() == 1);
+      CHECK(shown[0].x == body_time);
+      CHECK(shown[0].label.find(kind + " ") != std::string::npos);
+    }
+  }
+}
