@@ -1,0 +1,122 @@
+#include "plot/painter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stiction::plot {
+
+Painter::Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout)
+    : cr_(cr), layout_(layout) {
+  cairo_set_font_face(cr_, font.face());
+  cairo_font_options_t* options = cairo_font_options_create();
+  // Unhinted metrics: the same advances on every surface, so PNG, SVG and PDF lay out alike.
+  cairo_font_options_set_hint_metrics(options, CAIRO_HINT_METRICS_OFF);
+  cairo_font_options_set_hint_style(options, CAIRO_HINT_STYLE_SLIGHT);
+  cairo_font_options_set_antialias(options, CAIRO_ANTIALIAS_GRAY);
+  cairo_set_font_options(cr_, options);
+  cairo_font_options_destroy(options);
+  cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+}
+
+Extent Painter::measure(const std::string& text, double size) {
+  cairo_set_font_size(cr_, size);
+  cairo_font_extents_t font;
+  cairo_font_extents(cr_, &font);
+  cairo_text_extents_t ink;
+  cairo_text_extents(cr_, text.c_str(), &ink);
+  return {ink.x_advance, -ink.y_bearing, font.ascent, font.descent};
+}
+
+Rect Painter::text(const std::string& s, double x, double baseline, double size, image::Rgba colour,
+                   TextRole role, int panel, bool rotated) {
+  const Extent e = measure(s, size);
+  set_colour(colour);
+  cairo_save(cr_);
+  cairo_translate(cr_, x, baseline);
+  if (rotated) cairo_rotate(cr_, -0.5 * std::acos(-1.0));
+  cairo_move_to(cr_, 0.0, 0.0);
+  cairo_show_text(cr_, s.c_str());
+  cairo_new_path(cr_);
+  cairo_restore(cr_);
+  const Rect box = rotated
+                       ? Rect{x - e.line_ascent, baseline - e.width, x + e.line_descent, baseline}
+                       : Rect{x, baseline - e.line_ascent, x + e.width, baseline + e.line_descent};
+  layout_.texts.push_back({s, role, box, panel});
+  return box;
+}
+
+// Stroked in pieces of at most kPiece segments: cairo's stroker holds the polygon of the
+// whole path it strokes, and a dense series that swings across its panel (a quaternion
+// over a long run) took over 100 MB in one stroke. Each piece starts where the last one
+// ended, its dash pattern carried on (cairo restarts the pattern at every sub-path).
+void Painter::polyline(const std::vector<Point>& points, const Stroke& stroke) {
+  constexpr int kPiece = 512;
+  apply(stroke);
+  bool open = false;
+  int segments = 0;
+  double along = 0.0;  // length since the sub-path began, for the dash offset
+  Point last{};
+  for (const Point& p : points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+      open = false;
+      continue;
+    }
+    if (!open) {
+      cairo_move_to(cr_, p.x, p.y);
+      open = true;
+      along = 0.0;
+    } else {
+      cairo_line_to(cr_, p.x, p.y);
+      along += std::hypot(p.x - last.x, p.y - last.y);
+      if (++segments == kPiece) {
+        cairo_stroke(cr_);
+        segments = 0;
+        set_dash_offset(stroke, along);
+        cairo_move_to(cr_, p.x, p.y);
+      }
+    }
+    last = p;
+  }
+  cairo_stroke(cr_);
+}
+
+void Painter::fill_rect(const Rect& r, image::Rgba colour) {
+  cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+  set_colour(colour);
+  cairo_fill(cr_);
+}
+
+void Painter::stroke_rect(const Rect& r, const Stroke& stroke) {
+  cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+  apply(stroke);
+  cairo_stroke(cr_);
+}
+
+void Painter::clip(const Rect& r) {
+  cairo_save(cr_);
+  cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+  cairo_clip(cr_);
+}
+
+void Painter::unclip() { cairo_restore(cr_); }
+
+void Painter::set_colour(image::Rgba c) {
+  cairo_set_source_rgba(cr_, c.r / 255.0, c.g / 255.0, c.b / 255.0, c.a / 255.0);
+}
+
+void Painter::apply(const Stroke& stroke) {
+  set_colour(stroke.colour);
+  cairo_set_line_width(cr_, stroke.width);
+  set_dash_offset(stroke, 0.0);
+}
+
+void Painter::set_dash_offset(const Stroke& stroke, double offset) {
+  // A dot is an "on" length of zero with round caps; cairo drops such pieces between
+  // longer dashes, so they get a length too small to see.
+  std::vector<double> dash = stroke.dash;
+  for (std::size_t i = 0; i < dash.size(); i += 2) dash[i] = std::max(dash[i], 0.01);
+  cairo_set_dash(cr_, dash.empty() ? nullptr : dash.data(), static_cast<int>(dash.size()), offset);
+}
+
+}  // namespace stiction::plot
