@@ -56,13 +56,13 @@ void draw_event_lines(Painter& painter, const std::vector<EventMarker>& events, 
     const double px = x_axis.map(e.x);
     if (!std::isfinite(px) || px < f.x0 || px > f.x1) continue;
     if (rug) {
-      Stroke mark = event_stroke(e.kind, s);
+      Stroke mark = event_stroke(e.kind, m.line);
       mark.dash.clear();
       const double len = std::min(24 * s, 0.2 * f.height());
       painter.line({px, f.y0}, {px, f.y0 + len}, mark);
       painter.line({px, f.y1 - len}, {px, f.y1}, mark);
     } else {
-      painter.line({px, f.y0}, {px, f.y1}, event_stroke(e.kind, s));
+      painter.line({px, f.y0}, {px, f.y1}, event_stroke(e.kind, m.line));
     }
   }
 }

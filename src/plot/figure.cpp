@@ -39,18 +39,42 @@ const char* extension(Format format) {
   return ".png";
 }
 
-FigureLayout draw(const Figure& figure, cairo_t* cr) {
-  if (figure.width < 200 || figure.height < 150 || figure.width > 16384 || figure.height > 16384) {
-    throw std::invalid_argument("figure size must be between 200x150 and 16384x16384 pixels");
+PixelSize pixel_size(const Figure& figure) {
+  if (!figure.print) return {figure.width, figure.height};
+  auto pixels = [&](double mm) {
+    const double p = std::round(mm / 25.4 * figure.print->dpi);
+    return std::isfinite(p) ? static_cast<int>(std::clamp(p, 0.0, 1e6)) : 0;
+  };
+  return {pixels(figure.print->width_mm), pixels(figure.print->height_mm)};
+}
+
+namespace {
+
+void check_size(const Figure& figure) {
+  const PixelSize size = pixel_size(figure);
+  if (size.width < 200 || size.height < 150 || size.width > 16384 || size.height > 16384) {
+    throw std::invalid_argument("figure size must be between 200x150 and 16384x16384 pixels" +
+                                std::string(figure.print ? " (the print size at its dpi)" : ""));
   }
+  if (figure.print && !(figure.print->font_pt > 0.0 && figure.print->font_pt < 100.0)) {
+    throw std::invalid_argument("figure font size must be between 0 and 100 pt");
+  }
+}
+
+}  // namespace
+
+FigureLayout draw(const Figure& figure, cairo_t* cr) {
+  check_size(figure);
+  const PixelSize size = pixel_size(figure);
   FigureLayout layout;
-  layout.width = figure.width;
-  layout.height = figure.height;
+  layout.width = size.width;
+  layout.height = size.height;
+  if (figure.print) layout.dpi = figure.print->dpi;
   const CairoFont font = CairoFont::open_default();
   Painter painter(cr, font, layout);
-  painter.fill_rect(
-      Rect{0, 0, static_cast<double>(figure.width), static_cast<double>(figure.height)}, kWhite);
-  const Metrics m{std::min(figure.width / 1600.0, figure.height / 1000.0)};
+  painter.fill_rect(Rect{0, 0, static_cast<double>(size.width), static_cast<double>(size.height)},
+                    kWhite);
+  const Metrics m = figure_metrics(figure, size.width, size.height);
   const double s = m.s;
 
   // ---- The shared horizontal axis range.
@@ -73,21 +97,29 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   const Extent label_extent = painter.measure("Hg[]", m.label());
   const Extent event_extent = painter.measure("Hg", m.event());
   const double label_line = label_extent.line_ascent + label_extent.line_descent;
-  const double margin_width = figure.width - 2 * m.margin();
-  // The title: shrunk to 70% if need be, then shortened.
+  const double margin_width = size.width - 2 * m.margin();
+  // The title: in the pixel design shrunk to 70% if need be, then shortened; in print (where
+  // text keeps its size) wrapped onto two lines, then shortened.
   double title_size = m.title();
-  std::string title = figure.title;
-  while (!title.empty() && painter.measure(title, title_size).width > margin_width &&
-         title_size > 0.7 * m.title()) {
-    title_size *= 0.95;
+  std::vector<std::string> title_lines;
+  if (!figure.title.empty()) {
+    if (m.shrinks) {
+      while (painter.measure(figure.title, title_size).width > margin_width &&
+             title_size > 0.7 * m.title()) {
+        title_size *= 0.95;
+      }
+      title_lines = {fit(painter, figure.title, title_size, margin_width)};
+    } else {
+      title_lines = wrap(painter, figure.title, margin_width, title_size, 2);
+    }
   }
-  title = fit(painter, title, title_size, margin_width);
   const Extent title_extent = painter.measure("Hg", title_size);
+  const double title_line = title_extent.line_ascent + title_extent.line_descent;
   double top = m.margin();
-  double title_baseline = 0.0;
-  if (!title.empty()) {
-    title_baseline = top + title_extent.line_ascent;
-    top = title_baseline + title_extent.line_descent + 14 * s;
+  const double title_baseline = top + title_extent.line_ascent;
+  if (!title_lines.empty()) {
+    top =
+        title_baseline + (title_lines.size() - 1) * title_line + title_extent.line_descent + 14 * s;
   }
   const std::size_t event_count = figure.events.size();
   // Event labels, shortened in the middle to at most 45% of the width (long element names).
@@ -150,7 +182,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   for (int pass = 0; pass < 4; ++pass) {
     const double panels_top =
         top + event_rows * event_row + (event_rows ? 6 * s : 0.0) + caption_line;
-    const double panels_bottom = figure.height - bottom_reserved;
+    const double panels_bottom = size.height - bottom_reserved;
     const double panel_h = std::max(
         10.0, (panels_bottom - panels_top - gap * (n_panels - 1)) / static_cast<double>(n_panels));
     const int y_target = std::clamp(static_cast<int>(panel_h / (58 * s)), 2, 8);
@@ -166,7 +198,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
       }
       y_titles.push_back(fit_y_title(painter,
                                      axis_title(panel_at(p).label, panel_at(p).unit, y.exponent),
-                                     panel_h, m.label()));
+                                     panel_h, m.label(), m.shrinks));
       max_lines = std::max(max_lines, y_titles.back().lines.size());
       y_axes.push_back(std::move(y));
     }
@@ -177,7 +209,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     for (std::size_t p = 0; p < n_panels; ++p) {
       if (outside[p]) outside_width = std::max(outside_width, legends[p].width + 16 * s);
     }
-    for (int x_target = std::max(3, static_cast<int>(figure.width / (190 * s)));; --x_target) {
+    for (int x_target = std::max(3, static_cast<int>(size.width / (190 * s)));; --x_target) {
       const Ticks loose = nice_ticks(x_lo, x_hi, x_target);
       x_ticks = loose;
       x_ticks.values.clear();
@@ -188,7 +220,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
       x_ticks.lo = x_ticks.values.front();
       x_ticks.hi = x_ticks.values.back();
       x_labels = format_ticks(x_ticks);
-      right = figure.width - outside_width -
+      right = size.width - outside_width -
               std::max(m.margin() + 10 * s,
                        0.5 * painter.measure(x_labels.labels.back(), m.tick()).width + m.margin());
       const Axis probe{x_lo, x_hi, false, left, right};
@@ -234,8 +266,8 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
         }
       }
       if (outside[p]) {
-        const double room = figure.width - m.margin() - (f.x1 + 16 * s);
-        legends[p] = make_legend(panel_at(p), painter, m, std::max(room, 0.3 * figure.width),
+        const double room = size.width - m.margin() - (f.x1 + 16 * s);
+        legends[p] = make_legend(panel_at(p), painter, m, std::max(room, 0.3 * size.width),
                                  f.height() + gap - 4 * s);
         legends[p].outside = true;
       }
@@ -244,7 +276,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     // Event labels in rows; the key of the line styles when some label does not fit.
     auto place_events = [&](bool key) {
       const EventRows placed = place_event_rows(painter, figure.events, event_text, x_axis,
-                                                frames[0], m, figure.width, key ? key_width : 0.0);
+                                                frames[0], m, size.width, key ? key_width : 0.0);
       event_row_of = placed.row_of;
       return std::make_pair(placed.all, placed.rows);
     };
@@ -258,11 +290,11 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   const Axis x_axis{x_lo, x_hi, false, frames[0].x0, frames[0].x1};
 
   // ---- Title.
-  if (!title.empty()) {
-    const double w = painter.measure(title, title_size).width;
+  for (std::size_t k = 0; k < title_lines.size(); ++k) {
+    const double w = painter.measure(title_lines[k], title_size).width;
     const double cx = 0.5 * (frames[0].x0 + frames[0].x1);
-    painter.text(title, std::clamp(cx - 0.5 * w, m.margin(), figure.width - w - m.margin()),
-                 title_baseline, title_size, kText, TextRole::title, -1);
+    painter.text(title_lines[k], std::clamp(cx - 0.5 * w, m.margin(), size.width - w - m.margin()),
+                 title_baseline + k * title_line, title_size, kText, TextRole::title, -1);
   }
 
   const Stroke frame_stroke{kFrame, m.frame_width(), {}};
@@ -298,13 +330,13 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     }
     draw_event_lines(painter, figure.events, x_axis, f, event_rug, m);
     // Reference lines under the data.
-    const Stroke reference_stroke = make_stroke(reference_style(), s);
+    const Stroke reference_stroke = make_stroke(reference_style(), m.line);
     for (const ReferenceLine& r : panel.references) {
       const double py = y.axis.map(r.y);
       if (!std::isfinite(py) || py < f.y0 || py > f.y1) continue;
       painter.line({f.x0, py}, {f.x1, py}, reference_stroke);
     }
-    draw_series(painter, panel, lines[p], f, s, layout);
+    draw_series(painter, panel, lines[p], f, m.line, layout);
     // Frame and ticks.
     const Rect crisp{f.x0 + 0.5, f.y0 + 0.5, f.x1 - 0.5, f.y1 - 0.5};
     painter.stroke_rect(crisp, frame_stroke);
@@ -361,16 +393,16 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
     if (event_row_of[e] < 0) continue;
     const double w = painter.measure(event_text[e], m.event()).width;
     const double cx = x_axis.map(figure.events[e].x);
-    const double a = std::clamp(cx - 0.5 * w, m.margin(), figure.width - m.margin() - w);
+    const double a = std::clamp(cx - 0.5 * w, m.margin(), size.width - m.margin() - w);
     painter.text(event_text[e], a, row_baseline(event_row_of[e]), m.event(),
                  event_colour(figure.events[e].kind), TextRole::event_label, -1);
   }
   if (with_key) {
-    double x = figure.width - m.margin() - key_width;
+    double x = size.width - m.margin() - key_width;
     const double baseline = row_baseline(0);
     const double cy = baseline - 0.35 * event_extent.line_ascent;
     for (const std::string& k : kinds) {
-      Stroke sample = event_stroke(k, s);
+      Stroke sample = event_stroke(k, m.line);
       if (event_rug) sample.dash.clear();
       painter.line({x, cy}, {x + key_sample, cy}, sample);
       x += key_sample + 6 * s;

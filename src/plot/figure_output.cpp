@@ -3,6 +3,7 @@
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <ctime>
@@ -68,10 +69,11 @@ FigureLayout draw_vector(const Figure& figure, cairo_surface_t* surface, double 
 }  // namespace
 
 image::Image render(const Figure& figure, FigureLayout* layout) {
-  if (figure.width < 200 || figure.height < 150 || figure.width > 16384 || figure.height > 16384) {
+  const PixelSize size = pixel_size(figure);
+  if (size.width < 200 || size.height < 150 || size.width > 16384 || size.height > 16384) {
     throw std::invalid_argument("figure size must be between 200x150 and 16384x16384 pixels");
   }
-  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, figure.width, figure.height));
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, size.width, size.height));
   ContextPtr cr(cairo_create(surface.get()));
   FigureLayout drawn = draw(figure, cr.get());
   cr.reset();
@@ -84,6 +86,8 @@ image::Image render(const Figure& figure, text::Font& /*font*/) { return render(
 FigureLayout write_figure(const Figure& figure, const std::filesystem::path& path, Format format,
                           double dpi) {
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  if (figure.print) dpi = figure.print->dpi;
+  const PixelSize size = pixel_size(figure);
   if (format == Format::png) {
     FigureLayout layout;
     const image::Image img = render(figure, &layout);
@@ -95,14 +99,22 @@ FigureLayout write_figure(const Figure& figure, const std::filesystem::path& pat
   if (format == Format::svg) {
     // One user unit per pixel; the document says "px" so viewers show it at its pixel size.
     SurfacePtr surface(
-        cairo_svg_surface_create_for_stream(append_to_string, &bytes, figure.width, figure.height));
+        cairo_svg_surface_create_for_stream(append_to_string, &bytes, size.width, size.height));
     cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
     layout = draw_vector(figure, surface.get(), 1.0);
   } else {
-    // The page is the figure's size at `dpi`: 1600 px at 100 dpi is 16 in (1152 pt) wide.
-    const double scale = 72.0 / (dpi > 0.0 ? dpi : 100.0);
-    SurfacePtr surface(cairo_pdf_surface_create_for_stream(
-        append_to_string, &bytes, figure.width * scale, figure.height * scale));
+    // The page is the figure's size at `dpi`: 1600 px at 100 dpi is 16 in (1152 pt) wide. A
+    // print figure's page is its size in mm exactly; its pixels (rounded from the page) are
+    // scaled by one factor so the drawing fills the page within a fraction of a point.
+    double scale = 72.0 / (dpi > 0.0 ? dpi : 100.0);
+    double page_width = size.width * scale, page_height = size.height * scale;
+    if (figure.print) {
+      page_width = figure.print->width_mm / 25.4 * 72.0;
+      page_height = figure.print->height_mm / 25.4 * 72.0;
+      scale = std::min(page_width / size.width, page_height / size.height);
+    }
+    SurfacePtr surface(
+        cairo_pdf_surface_create_for_stream(append_to_string, &bytes, page_width, page_height));
     // Reproducible files: the creation date comes from SOURCE_DATE_EPOCH when it is set.
     if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH")) {
       const std::time_t t = static_cast<std::time_t>(std::strtoll(epoch, nullptr, 10));

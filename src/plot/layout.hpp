@@ -38,6 +38,7 @@ struct FigureLayout {
   std::vector<Rect> legends;         // legend boxes (their entries are in `texts`)
   std::vector<bool> legend_outside;  // per legend: placed beside the axes, not inside
   std::vector<std::string> series;   // Series::source (or label) of every series drawn
+  double dpi = 0.0;  // a print figure's pixels per inch (Figure::print); 0: a pixel design
 };
 
 // Everything wrong with a layout, one line each: two text boxes that overlap, a text or a

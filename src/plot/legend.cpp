@@ -30,7 +30,7 @@ Legend make_legend(const Panel& panel, Painter& painter, const Metrics& m, doubl
     const double fixed = L.pad * 1.4;
     const int fit_rows = std::max(1, static_cast<int>((max_height - fixed) / L.row));
     L.columns = (n + fit_rows - 1) / fit_rows;
-    if (L.columns == 1 || L.size < 0.76 * m.legend()) break;
+    if (L.columns == 1 || !m.shrinks || L.size < 0.76 * m.legend()) break;
   }
   L.rows = (n + L.columns - 1) / L.columns;
   const double text_room =
@@ -98,7 +98,7 @@ void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Re
   const double s = m.s;
   painter.fill_rect(box, kLegendBox);
   painter.stroke_rect(Rect{box.x0 + 0.5, box.y0 + 0.5, box.x1 - 0.5, box.y1 - 0.5},
-                      Stroke{kLegendFrame, std::max(1.0, 1.2 * s), {}});
+                      Stroke{kLegendFrame, std::max(1.0, 1.2 * m.line), {}});
   const Extent le = painter.measure("Hg", L.size);
   for (std::size_t k = 0; k < L.entries.size(); ++k) {
     const int entry = L.entries[k];
@@ -109,7 +109,7 @@ void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Re
     const int column = static_cast<int>(k) / L.rows, row = static_cast<int>(k) % L.rows;
     const double x0 = box.x0 + L.pad + column * L.column;
     const double cy = box.y0 + 0.8 * L.pad + row * L.row + 0.5 * L.row;
-    painter.line({x0, cy}, {x0 + L.sample, cy}, make_stroke(style, s));
+    painter.line({x0, cy}, {x0 + L.sample, cy}, make_stroke(style, m.line));
     painter.text(L.labels[k], x0 + L.sample + 12 * s,
                  cy + 0.5 * (le.line_ascent - le.line_descent) - 1 * s, L.size, kText,
                  TextRole::legend_entry, panel_index);

@@ -17,7 +17,7 @@ std::vector<Point> to_pixels(const Series& series, const Axis& x, const Axis& y)
 // Every series of the panel in its style (series_style(index) unless it has its own),
 // clipped to the frame; records each series drawn in the layout.
 void draw_series(Painter& painter, const Panel& panel,
-                 const std::vector<std::vector<Point>>& pixels, const Rect& frame, double s,
+                 const std::vector<std::vector<Point>>& pixels, const Rect& frame, double line,
                  FigureLayout& layout);
 
 }  // namespace stiction::plot

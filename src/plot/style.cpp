@@ -2,19 +2,42 @@
 
 namespace stiction::plot {
 
-Stroke make_stroke(const LineStyle& style, double s) {
+Metrics figure_metrics(const Figure& figure, int width, int height) {
+  Metrics m;
+  if (!figure.print) {
+    const double s = std::min(width / 1600.0, height / 1000.0);
+    m.s = m.line = s;
+    m.title_size = 32 * s;
+    m.label_size = 27 * s;
+    m.tick_size = 24 * s;
+    m.legend_size = 23 * s;
+    m.event_size = 22 * s;
+    return m;
+  }
+  const double pixels_per_point = figure.print->dpi / 72.0;
+  const double body = figure.print->font_pt * pixels_per_point;
+  m.s = body / 24.0;
+  m.line = 0.3 * pixels_per_point;
+  m.title_size = (figure.print->font_pt + 1.0) * pixels_per_point;
+  m.label_size = m.tick_size = m.legend_size = m.event_size = body;
+  m.shrinks = false;
+  return m;
+}
+
+Stroke make_stroke(const LineStyle& style, double line) {
   Stroke stroke;
   stroke.colour = style.colour;
-  stroke.width = style.width * s;
-  for (double d : style.dash) stroke.dash.push_back(d * s);
+  stroke.width = style.width * line;
+  for (double d : style.dash) stroke.dash.push_back(d * line);
   return stroke;
 }
 
 LineStyle reference_style() { return LineStyle{kEvent, {5, 4}, 2.0}; }
 
-Stroke event_stroke(const std::string& kind, double s) {
-  if (kind == "slip") return Stroke{kSlipEvent, 2.0 * s, {14 * s, 5 * s, 2 * s, 5 * s}};
-  return Stroke{kEvent, 2.0 * s, {9 * s, 6 * s}};
+Stroke event_stroke(const std::string& kind, double line) {
+  const double u = line;
+  if (kind == "slip") return Stroke{kSlipEvent, 2.0 * u, {14 * u, 5 * u, 2 * u, 5 * u}};
+  return Stroke{kEvent, 2.0 * u, {9 * u, 6 * u}};
 }
 
 image::Rgba event_colour(const std::string& kind) { return kind == "slip" ? kSlipEvent : kEvent; }

@@ -32,19 +32,34 @@ inline constexpr std::array<image::Rgba, 7> kPalette{{{0, 114, 178, 255},
                                                       {86, 180, 233, 255},
                                                       {0, 0, 0, 255}}};
 
-// Sizes of the figure's parts at scale s (1 at 1600x1000).
+// Sizes of the figure's parts in pixels. Two designs:
+//  - in pixels (no Figure::print): everything scales with s = min(width/1600, height/1000),
+//    fonts of 32 (title), 27, 24, 23 and 22 px at 1600x1000; a text that does not fit may
+//    shrink (to about 70%) before it is shortened;
+//  - in points (Figure::print): the page is width_mm x height_mm at dpi; every text but the
+//    title is font_pt (the title font_pt + 1), none shrinks (it wraps, takes columns or is
+//    shortened instead); layout lengths (margins, gaps, paddings, tick length) keep the
+//    proportions of the pixel design relative to the tick font, so s = font_pt / 24 pt;
+//    lines are in units of 0.3 pt: series 0.96 pt, frame 0.48 pt, grid 0.36 pt, events 0.6 pt.
 struct Metrics {
-  double s;
-  double title() const { return 32 * s; }
-  double label() const { return 27 * s; }
-  double tick() const { return 24 * s; }
-  double legend() const { return 23 * s; }
-  double event() const { return 22 * s; }
+  double s = 1.0;     // pixels per layout unit (a pixel of the 1600x1000 design)
+  double line = 1.0;  // pixels per line-width unit (LineStyle widths and dashes)
+  double title_size = 32, label_size = 27, tick_size = 24, legend_size = 23, event_size = 22;
+  bool shrinks = true;  // texts may shrink to fit (the pixel design only)
+
+  double title() const { return title_size; }
+  double label() const { return label_size; }
+  double tick() const { return tick_size; }
+  double legend() const { return legend_size; }
+  double event() const { return event_size; }
   double margin() const { return 22 * s; }
   double tick_length() const { return 9 * s; }
-  double frame_width() const { return std::max(1.0, 1.6 * s); }
-  double grid_width() const { return std::max(1.0, 1.2 * s); }
+  double frame_width() const { return std::max(1.0, 1.6 * line); }
+  double grid_width() const { return std::max(1.0, 1.2 * line); }
 };
+
+// The metrics of a figure drawn at width x height pixels (its pixel_size).
+Metrics figure_metrics(const Figure& figure, int width, int height);
 
 // A line as cairo strokes it, in pixels.
 struct Stroke {
@@ -53,14 +68,14 @@ struct Stroke {
   std::vector<double> dash;  // pixels; empty: solid
 };
 
-// A series' style (in units of the figure scale) as a stroke in pixels.
-Stroke make_stroke(const LineStyle& style, double s);
+// A series' style (in line units) as a stroke in pixels (`line`: pixels per line unit).
+Stroke make_stroke(const LineStyle& style, double line);
 
 // Horizontal reference lines: thin, grey, dashed.
 LineStyle reference_style();
 
 // Event lines: sticks dashed grey, slips dash-dot red; labels in the same colour.
-Stroke event_stroke(const std::string& kind, double s);
+Stroke event_stroke(const std::string& kind, double line);
 image::Rgba event_colour(const std::string& kind);
 
 }  // namespace stiction::plot

@@ -111,7 +111,7 @@ std::string axis_title(const std::string& label, const std::string& unit, int ex
 }
 
 YTitle fit_y_title(Painter& painter, const std::string& title, double panel_height,
-                   double full_size) {
+                   double full_size, bool may_shrink) {
   YTitle fitted;
   for (fitted.size = full_size;; fitted.size *= 0.9) {
     fitted.lines = wrap(painter, title, 0.96 * panel_height, fitted.size, 3);
@@ -119,7 +119,7 @@ YTitle fit_y_title(Painter& painter, const std::string& title, double panel_heig
         std::any_of(fitted.lines.begin(), fitted.lines.end(), [&](const std::string& l) {
           return l.find("\u2026") != std::string::npos && title.find("\u2026") == std::string::npos;
         });
-    if (!shortened || fitted.size < 0.72 * full_size) break;
+    if (!shortened || !may_shrink || fitted.size < 0.72 * full_size) break;
   }
   return fitted;
 }

@@ -52,7 +52,7 @@ struct YTitle {
   double size = 0.0;
 };
 YTitle fit_y_title(Painter& painter, const std::string& title, double panel_height,
-                   double full_size);
+                   double full_size, bool may_shrink);
 
 // Tick marks on both sides of the frame and labels on the left; a label that would touch one
 // in `taken` (the labels of every panel so far) is left out, its tick stays.
