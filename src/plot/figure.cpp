@@ -8,6 +8,7 @@
 
 #include "plot/cairo_font.hpp"
 #include "plot/event_marks.hpp"
+#include "plot/figure_drawing.hpp"
 #include "plot/legend.hpp"
 #include "plot/painter.hpp"
 #include "plot/series_strokes.hpp"
@@ -63,7 +64,9 @@ void check_size(const Figure& figure) {
 
 }  // namespace
 
-FigureLayout draw(const Figure& figure, cairo_t* cr) {
+FigureLayout draw(const Figure& figure, cairo_t* cr) { return draw_figure(figure, cr, nullptr); }
+
+FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedText>* texts) {
   check_size(figure);
   const PixelSize size = pixel_size(figure);
   FigureLayout layout;
@@ -71,7 +74,7 @@ FigureLayout draw(const Figure& figure, cairo_t* cr) {
   layout.height = size.height;
   if (figure.print) layout.dpi = figure.print->dpi;
   const CairoFont font = CairoFont::open_default();
-  Painter painter(cr, font, layout);
+  Painter painter(cr, font, layout, texts);
   painter.fill_rect(Rect{0, 0, static_cast<double>(size.width), static_cast<double>(size.height)},
                     kWhite);
   const Metrics m = figure_metrics(figure, size.width, size.height);

@@ -13,6 +13,8 @@
 #include "image/png.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/figure.hpp"
+#include "plot/figure_drawing.hpp"
+#include "plot/svg_text.hpp"
 
 namespace stiction::plot {
 
@@ -52,11 +54,13 @@ cairo_status_t append_to_string(void* closure, const unsigned char* data, unsign
   return CAIRO_STATUS_SUCCESS;
 }
 
-// Draws into a vector surface writing into `bytes`, scaled from pixels by `scale`.
-FigureLayout draw_vector(const Figure& figure, cairo_surface_t* surface, double scale) {
+// Draws into a vector surface writing into `bytes`, scaled from pixels by `scale`; with
+// `texts`, text is handed back there instead of drawn.
+FigureLayout draw_vector(const Figure& figure, cairo_surface_t* surface, double scale,
+                         std::vector<PlacedText>* texts = nullptr) {
   ContextPtr cr(cairo_create(surface));
   cairo_scale(cr.get(), scale, scale);
-  FigureLayout layout = draw(figure, cr.get());
+  FigureLayout layout = draw_figure(figure, cr.get(), texts);
   cr.reset();
   cairo_surface_finish(surface);
   if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
@@ -101,7 +105,12 @@ FigureLayout write_figure(const Figure& figure, const std::filesystem::path& pat
     SurfacePtr surface(
         cairo_svg_surface_create_for_stream(append_to_string, &bytes, size.width, size.height));
     cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
-    layout = draw_vector(figure, surface.get(), 1.0);
+    std::vector<PlacedText> texts;
+    layout = draw_vector(figure, surface.get(), 1.0, &texts);
+    surface.reset();
+    std::optional<PageSize> page;
+    if (figure.print) page = PageSize{figure.print->width_mm, figure.print->height_mm};
+    bytes = add_svg_text(bytes, texts, page);
   } else {
     // The page is the figure's size at `dpi`: 1600 px at 100 dpi is 16 in (1152 pt) wide. A
     // print figure's page is its size in mm exactly; its pixels (rounded from the page) are

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace stiction::plot {
 
-Painter::Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout)
-    : cr_(cr), layout_(layout) {
+Painter::Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout,
+                 std::vector<PlacedText>* deferred)
+    : cr_(cr), font_(font), layout_(layout), deferred_(deferred) {
   cairo_set_font_face(cr_, font.face());
   cairo_font_options_t* options = cairo_font_options_create();
   // Unhinted metrics: the same advances on every surface, so PNG, SVG and PDF lay out alike.
@@ -19,26 +21,75 @@ Painter::Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout)
   cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
 }
 
+struct Painter::Glyphs {
+  cairo_glyph_t* glyphs = nullptr;
+  int count = 0;
+  cairo_text_cluster_t* clusters = nullptr;  // for text extraction from a PDF
+  int cluster_count = 0;
+  cairo_text_cluster_flags_t flags{};
+  Glyphs() = default;
+  Glyphs(const Glyphs&) = delete;
+  Glyphs& operator=(const Glyphs&) = delete;
+  Glyphs(Glyphs&& o) noexcept { *this = std::move(o); }
+  Glyphs& operator=(Glyphs&& o) noexcept {
+    std::swap(glyphs, o.glyphs);
+    std::swap(count, o.count);
+    std::swap(clusters, o.clusters);
+    std::swap(cluster_count, o.cluster_count);
+    std::swap(flags, o.flags);
+    return *this;
+  }
+  ~Glyphs() {
+    cairo_glyph_free(glyphs);
+    cairo_text_cluster_free(clusters);
+  }
+};
+
+Painter::Glyphs Painter::shape(const std::string& text) {
+  Glyphs g;
+  cairo_scaled_font_t* font = cairo_get_scaled_font(cr_);
+  if (cairo_scaled_font_text_to_glyphs(font, 0.0, 0.0, text.c_str(), static_cast<int>(text.size()),
+                                       &g.glyphs, &g.count, &g.clusters, &g.cluster_count,
+                                       &g.flags) != CAIRO_STATUS_SUCCESS) {
+    return Glyphs{};
+  }
+  cairo_matrix_t matrix;
+  cairo_get_font_matrix(cr_, &matrix);
+  const double size = matrix.xx;  // no rotation or skew in the font matrix
+  double shift = 0.0;
+  for (int i = 1; i < g.count; ++i) {
+    shift += size * font_.kerning(g.glyphs[i - 1].index, g.glyphs[i].index);
+    g.glyphs[i].x += shift;
+  }
+  return g;
+}
+
 Extent Painter::measure(const std::string& text, double size) {
   cairo_set_font_size(cr_, size);
   cairo_font_extents_t font;
   cairo_font_extents(cr_, &font);
-  cairo_text_extents_t ink;
-  cairo_text_extents(cr_, text.c_str(), &ink);
+  const Glyphs g = shape(text);
+  cairo_text_extents_t ink{};
+  if (g.count > 0) cairo_glyph_extents(cr_, g.glyphs, g.count, &ink);
   return {ink.x_advance, -ink.y_bearing, font.ascent, font.descent};
 }
 
 Rect Painter::text(const std::string& s, double x, double baseline, double size, image::Rgba colour,
                    TextRole role, int panel, bool rotated) {
   const Extent e = measure(s, size);
-  set_colour(colour);
-  cairo_save(cr_);
-  cairo_translate(cr_, x, baseline);
-  if (rotated) cairo_rotate(cr_, -0.5 * std::acos(-1.0));
-  cairo_move_to(cr_, 0.0, 0.0);
-  cairo_show_text(cr_, s.c_str());
-  cairo_new_path(cr_);
-  cairo_restore(cr_);
+  if (deferred_) {
+    deferred_->push_back({s, x, baseline, size, colour, rotated});
+  } else {
+    set_colour(colour);
+    cairo_save(cr_);
+    cairo_translate(cr_, x, baseline);
+    if (rotated) cairo_rotate(cr_, -0.5 * std::acos(-1.0));
+    const Glyphs g = shape(s);
+    cairo_show_text_glyphs(cr_, s.c_str(), static_cast<int>(s.size()), g.glyphs, g.count,
+                           g.clusters, g.cluster_count, g.flags);
+    cairo_new_path(cr_);
+    cairo_restore(cr_);
+  }
   const Rect box = rotated
                        ? Rect{x - e.line_ascent, baseline - e.width, x + e.line_descent, baseline}
                        : Rect{x, baseline - e.line_ascent, x + e.width, baseline + e.line_descent};
