@@ -124,20 +124,23 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     top =
         title_baseline + (title_lines.size() - 1) * title_line + title_extent.line_descent + 14 * s;
   }
-  const std::size_t event_count = figure.events.size();
-  // Event labels, shortened in the middle to at most 45% of the width (long element names).
-  std::vector<std::string> event_text;
-  for (const EventMarker& e : figure.events) {
-    event_text.push_back(fit(painter, e.label, m.event(), 0.45 * margin_width));
-  }
-  // Many events: full-height lines would hide the data; they become marks along the top and
-  // bottom edge of each panel.
-  const bool event_rug = event_count > 12;
-  const double event_row = event_extent.line_ascent + event_extent.line_descent + 4 * s;
-  int event_rows = event_count == 0 ? 0 : 1;
+  // Many labelled events: full-height lines would hide the data; they become marks along the
+  // top and bottom edge of each panel.
+  const bool event_rug =
+      std::count_if(figure.events.begin(), figure.events.end(),
+                    [](const EventMarker& e) { return e.labelled; }) > kMaxEventLines;
+  int event_rows = std::any_of(figure.events.begin(), figure.events.end(),
+                               [](const EventMarker& e) { return e.labelled; })
+                       ? 1
+                       : 0;
+  // The key of the event marks' styles, when some event is drawn without a label: beside the
+  // time axis title, or on a line of its own under it when there is no room beside it.
+  const EventKey key = event_key(painter, figure.events, m);
+  bool key_below = false;
+  const double event_line = event_extent.line_ascent + event_extent.line_descent;
 
-  const double bottom_reserved = m.margin() + label_line + 8 * s + tick_extent.line_ascent +
-                                 tick_extent.line_descent + m.tick_length() + 4 * s;
+  const double bottom_base = m.margin() + label_line + 8 * s + tick_extent.line_ascent +
+                             tick_extent.line_descent + m.tick_length() + 4 * s;
   const std::size_t n_panels = std::max<std::size_t>(1, figure.panels.size());
   // Captions sit above their panel, in a taller gap.
   const bool captions = std::any_of(figure.panels.begin(), figure.panels.end(),
@@ -156,35 +159,23 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     return p < figure.panels.size() ? figure.panels[p] : empty_panel;
   };
 
-  // Event kinds and the key that explains their line styles (used when not every event gets
-  // a label).
-  std::vector<std::string> kinds;
-  for (const EventMarker& e : figure.events) {
-    const std::string kind = e.kind.empty() ? "event" : e.kind;
-    if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) kinds.push_back(kind);
-  }
-  const double key_sample = 30 * s;
-  double key_width = 0.0;
-  for (const std::string& k : kinds) {
-    key_width += key_sample + 6 * s + painter.measure(k, m.event()).width + 16 * s;
-  }
-
   // Passes: the layout depends on itself (left margin <- tick labels <- panel height <- event
   // rows <- horizontal mapping <- margins; legends beside the axes move the right edge).
   double left = 0.0, right = 0.0;
   std::vector<Rect> frames;
   std::vector<YAxis> y_axes;
   std::vector<YTitle> y_titles;
-  std::vector<int> event_row_of(event_count, -1);  // -1: unlabelled
+  EventLabelPlan event_plan;
   bool with_key = false;
+  std::string x_title;
   std::vector<Legend> legends(n_panels);
   std::vector<bool> outside(n_panels, false);
   Ticks x_ticks;
   TickLabels x_labels;
   std::vector<std::vector<std::vector<Point>>> lines(n_panels);
   for (int pass = 0; pass < 4; ++pass) {
-    const double panels_top =
-        top + event_rows * event_row + (event_rows ? 6 * s : 0.0) + caption_line;
+    const double panels_top = top + caption_line + event_rows_height(painter, event_rows, m);
+    const double bottom_reserved = bottom_base + (key_below ? event_line + 6 * s : 0.0);
     const double panels_bottom = size.height - bottom_reserved;
     const double panel_h = std::max(
         10.0, (panels_bottom - panels_top - gap * (n_panels - 1)) / static_cast<double>(n_panels));
@@ -276,18 +267,27 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       }
     }
 
-    // Event labels in rows; the key of the line styles when some label does not fit.
-    auto place_events = [&](bool key) {
-      const EventRows placed = place_event_rows(painter, figure.events, event_text, x_axis,
-                                                frames[0], m, size.width, key ? key_width : 0.0);
-      event_row_of = placed.row_of;
-      return std::make_pair(placed.all, placed.rows);
-    };
-    auto [all_labelled, needed] = place_events(false);
-    with_key = !all_labelled;
-    if (with_key) needed = place_events(true).second;
-    if (needed == event_rows && !moved) break;
+    // Event labels at their marks; the key when some event is drawn without one.
+    // Not left of the top panel: its highest tick label reaches above the frame.
+    event_plan = place_event_labels(painter, figure.events, x_axis, frames[0], frames[0].x0,
+                                    size.width - m.margin(), m);
+    with_key =
+        !event_plan.all_placed ||
+        std::any_of(figure.events.begin(), figure.events.end(), [&](const EventMarker& e) {
+          const double px = x_axis.map(e.x);
+          return !e.labelled && std::isfinite(px) && px >= frames[0].x0 && px <= frames[0].x1;
+        });
+    x_title = fit(painter, axis_title(figure.x_label, figure.x_unit, x_labels.exponent), m.label(),
+                  frames.back().width());
+    const double x_title_half = 0.5 * painter.measure(x_title, m.label()).width;
+    const double centre = 0.5 * (frames.back().x0 + frames.back().x1);
+    const bool key_beside = size.width - m.margin() - key.width >= centre + x_title_half + 16 * s ||
+                            m.margin() + key.width <= centre - x_title_half - 16 * s;
+    const bool needs_below = with_key && !key_beside;
+    const int needed = std::max(event_plan.rows, event_rows > 0 ? 1 : 0);
+    if (needed == event_rows && !moved && needs_below == key_below) break;
     event_rows = needed;
+    key_below = needs_below;
   }
 
   const Axis x_axis{x_lo, x_hi, false, frames[0].x0, frames[0].x1};
@@ -331,7 +331,7 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       const double px = std::round(x_axis.map(v)) + 0.5;
       painter.line({px, f.y0}, {px, f.y1}, grid_stroke);
     }
-    draw_event_lines(painter, figure.events, x_axis, f, event_rug, m);
+    draw_event_marks(painter, figure.events, x_axis, f, event_rug, m);
     // Reference lines under the data.
     const Stroke reference_stroke = make_stroke(reference_style(), m.line);
     for (const ReferenceLine& r : panel.references) {
@@ -350,11 +350,12 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       painter.line({px, f.y0}, {px, f.y0 + m.tick_length()}, frame_stroke);
     }
     draw_y_title(painter, y_titles[p], f, m, pi);
-    // Caption, left-aligned above the frame.
+    // Caption, left-aligned above the frame (above the event labels on the top panel).
     if (!panel.caption.empty()) {
+      const double above = p == 0 ? event_rows_height(painter, event_rows, m) : 0.0;
       painter.text(fit(painter, panel.caption, m.event(), f.width()), f.x0,
-                   f.y0 - 5 * s - caption_extent.line_descent, m.event(), kText, TextRole::note,
-                   pi);
+                   f.y0 - above - 5 * s - caption_extent.line_descent, m.event(), kText,
+                   TextRole::note, pi);
     }
     // Legend.
     const Legend& L = legends[p];
@@ -379,38 +380,24 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     painter.text(x_labels.labels[i], px - 0.5 * w, tick_baseline, m.tick(), kText,
                  TextRole::tick_label, static_cast<int>(n_panels) - 1);
   }
-  const std::string x_title =
-      fit(painter, axis_title(figure.x_label, figure.x_unit, x_labels.exponent), m.label(),
-          bottom.width());
   const double xw = painter.measure(x_title, m.label()).width;
-  painter.text(x_title, 0.5 * (bottom.x0 + bottom.x1) - 0.5 * xw,
-               tick_baseline + tick_extent.line_descent + 8 * s + label_extent.line_ascent,
-               m.label(), kText, TextRole::axis_label, -1);
+  const double x_title_baseline =
+      tick_baseline + tick_extent.line_descent + 8 * s + label_extent.line_ascent;
+  const Rect x_title_box =
+      painter.text(x_title, 0.5 * (bottom.x0 + bottom.x1) - 0.5 * xw, x_title_baseline, m.label(),
+                   kText, TextRole::axis_label, -1);
 
-  // ---- Event labels above the top panel (row 0 right above it, later rows above that).
-  const double rows_bottom = frames[0].y0 - 6 * s - caption_line;
-  auto row_baseline = [&](int row) {
-    return rows_bottom - event_extent.line_descent - 2 * s - row * event_row;
-  };
-  for (std::size_t e = 0; e < event_count; ++e) {
-    if (event_row_of[e] < 0) continue;
-    const double w = painter.measure(event_text[e], m.event()).width;
-    const double cx = x_axis.map(figure.events[e].x);
-    const double a = std::clamp(cx - 0.5 * w, m.margin(), size.width - m.margin() - w);
-    painter.text(event_text[e], a, row_baseline(event_row_of[e]), m.event(),
-                 event_colour(figure.events[e].kind), TextRole::event_label, -1);
-  }
+  // ---- Event labels above the top panel, at their marks; the key beside the time axis title.
+  draw_event_labels(painter, event_plan, figure.events, frames[0], m, layout);
   if (with_key) {
-    double x = size.width - m.margin() - key_width;
-    const double baseline = row_baseline(0);
-    const double cy = baseline - 0.35 * event_extent.line_ascent;
-    for (const std::string& k : kinds) {
-      Stroke sample = event_stroke(k, m.line);
-      if (event_rug) sample.dash.clear();
-      painter.line({x, cy}, {x + key_sample, cy}, sample);
-      x += key_sample + 6 * s;
-      x = painter.text(k, x, baseline, m.event(), event_colour(k), TextRole::note, -1).x1 + 16 * s;
+    double key_x = size.width - m.margin() - key.width;
+    double key_baseline = x_title_baseline;
+    if (key_x < x_title_box.x1 + 16 * s) key_x = m.margin();
+    if (key_x + key.width > x_title_box.x0 - 16 * s && key_x == m.margin()) {
+      key_x = size.width - m.margin() - key.width;
+      key_baseline = x_title_box.y1 + 6 * s + event_extent.line_ascent;
     }
+    draw_event_key(painter, key, key_x, key_baseline, m);
   }
   return layout;
 }

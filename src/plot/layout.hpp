@@ -31,19 +31,32 @@ struct TextBox {
   int panel = -1;  // the panel it belongs to (-1: the figure)
 };
 
+// A labelled event: its mark (on the upper edge of the top panel), its label (an index into
+// FigureLayout::texts; -1 when there was no room for it, even shortened, in any row: reported
+// here, never dropped silently) and the leader drawn from the mark to a label that does not
+// sit over its mark (a polyline from `mark` to the label's edge; empty when there is none).
+struct EventLabelReport {
+  int event = -1;  // index in Figure::events
+  Point mark;
+  int text = -1;
+  std::vector<Point> leader;
+};
+
 struct FigureLayout {
   int width = 0, height = 0;
   std::vector<TextBox> texts;
-  std::vector<Rect> panels;          // axes frames
-  std::vector<Rect> legends;         // legend boxes (their entries are in `texts`)
-  std::vector<bool> legend_outside;  // per legend: placed beside the axes, not inside
-  std::vector<std::string> series;   // Series::source (or label) of every series drawn
+  std::vector<Rect> panels;                    // axes frames
+  std::vector<Rect> legends;                   // legend boxes (their entries are in `texts`)
+  std::vector<bool> legend_outside;            // per legend: placed beside the axes, not inside
+  std::vector<std::string> series;             // Series::source (or label) of every series drawn
+  std::vector<EventLabelReport> event_labels;  // every labelled event inside the time window
   double dpi = 0.0;  // a print figure's pixels per inch (Figure::print); 0: a pixel design
 };
 
 // Everything wrong with a layout, one line each: two text boxes that overlap, a text or a
 // legend that leaves the image, a legend over another legend, an event label over a legend
-// (legend entries may of course sit inside their own legend). Empty: a clean layout.
+// (legend entries may of course sit inside their own legend), an event's leader across a
+// text. Empty: a clean layout.
 std::vector<std::string> layout_problems(const FigureLayout& layout);
 
 }  // namespace stiction::plot

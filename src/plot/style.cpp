@@ -34,13 +34,48 @@ Stroke make_stroke(const LineStyle& style, double line) {
 
 LineStyle reference_style() { return LineStyle{kEvent, {5, 4}, 2.0}; }
 
+namespace {
+
+enum class EventClass { stick, slip, other };
+
+EventClass event_class(const std::string& kind) {
+  if (kind == "slip" || kind == "slide") return EventClass::slip;
+  if (kind == "stick" || kind == "event" || kind.empty()) return EventClass::stick;
+  return EventClass::other;
+}
+
+}  // namespace
+
 Stroke event_stroke(const std::string& kind, double line) {
   const double u = line;
-  if (kind == "slip") return Stroke{kSlipEvent, 2.0 * u, {14 * u, 5 * u, 2 * u, 5 * u}};
+  switch (event_class(kind)) {
+    case EventClass::slip:
+      return Stroke{kSlipEvent, 2.0 * u, {14 * u, 5 * u, 2 * u, 5 * u}};
+    case EventClass::other:
+      return Stroke{kOtherEvent, 2.0 * u, {12 * u, 4 * u, 2 * u, 4 * u, 2 * u, 4 * u}};
+    case EventClass::stick:
+      break;
+  }
   return Stroke{kEvent, 2.0 * u, {9 * u, 6 * u}};
 }
 
-image::Rgba event_colour(const std::string& kind) { return kind == "slip" ? kSlipEvent : kEvent; }
+image::Rgba event_colour(const std::string& kind) {
+  switch (event_class(kind)) {
+    case EventClass::slip:
+      return kSlipEvent;
+    case EventClass::other:
+      return kOtherEvent;
+    case EventClass::stick:
+      break;
+  }
+  return kEvent;
+}
+
+Stroke event_tick_stroke(const std::string& kind, double line) {
+  image::Rgba c = event_colour(kind);
+  c.a = 150;
+  return Stroke{c, 1.6 * line, {}};
+}
 
 LineStyle series_style(int index) {
   static const std::array<std::vector<double>, 5> dashes{{

@@ -20,6 +20,7 @@ inline constexpr image::Rgba kGrid{222, 222, 222, 255};
 inline constexpr image::Rgba kMinorGrid{240, 240, 240, 255};
 inline constexpr image::Rgba kEvent{80, 80, 80, 255};
 inline constexpr image::Rgba kSlipEvent{178, 34, 34, 255};
+inline constexpr image::Rgba kOtherEvent{150, 100, 0, 255};  // tip, lift-off, land, ...
 inline constexpr image::Rgba kLegendBox{255, 255, 255, 235};
 inline constexpr image::Rgba kLegendFrame{190, 190, 190, 255};
 
@@ -74,8 +75,11 @@ Stroke make_stroke(const LineStyle& style, double line);
 // Horizontal reference lines: thin, grey, dashed.
 LineStyle reference_style();
 
-// Event lines: sticks dashed grey, slips dash-dot red; labels in the same colour.
+// Event lines: sticks dashed grey, slips (and slides) dash-dot red, other kinds (a body's
+// tip, lift-off, landing) dash-dot-dot ochre; labels in the same colour.
 Stroke event_stroke(const std::string& kind, double line);
 image::Rgba event_colour(const std::string& kind);
+// The light tick of an event drawn without a label: solid, thin, in a lighter tint.
+Stroke event_tick_stroke(const std::string& kind, double line);
 
 }  // namespace stiction::plot
