@@ -339,7 +339,7 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       if (!std::isfinite(py) || py < f.y0 || py > f.y1) continue;
       painter.line({f.x0, py}, {f.x1, py}, reference_stroke);
     }
-    draw_series(painter, panel, lines[p], f, m.line, layout);
+    draw_series(painter, panel, lines[p], f, m.line, &layout);
     // Frame and ticks.
     const Rect crisp{f.x0 + 0.5, f.y0 + 0.5, f.x1 - 0.5, f.y1 - 0.5};
     painter.stroke_rect(crisp, frame_stroke);

@@ -138,6 +138,15 @@ void Painter::fill_rect(const Rect& r, image::Rgba colour) {
   cairo_fill(cr_);
 }
 
+void Painter::fill_polygon(const std::vector<Point>& points, image::Rgba colour) {
+  if (points.size() < 3) return;
+  cairo_move_to(cr_, points[0].x, points[0].y);
+  for (std::size_t i = 1; i < points.size(); ++i) cairo_line_to(cr_, points[i].x, points[i].y);
+  cairo_close_path(cr_);
+  set_colour(colour);
+  cairo_fill(cr_);
+}
+
 void Painter::stroke_rect(const Rect& r, const Stroke& stroke) {
   cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
   apply(stroke);

@@ -47,6 +47,7 @@ class Painter {
   void polyline(const std::vector<Point>& points, const Stroke& stroke);
   void line(Point a, Point b, const Stroke& stroke) { polyline({a, b}, stroke); }
   void fill_rect(const Rect& r, image::Rgba colour);
+  void fill_polygon(const std::vector<Point>& points, image::Rgba colour);
   void stroke_rect(const Rect& r, const Stroke& stroke);
   void clip(const Rect& r);
   void unclip();
