@@ -265,10 +265,10 @@ EventLabelPlan place_event_labels(Painter& painter, const std::vector<EventMarke
   }
   std::stable_sort(wanted.begin(), wanted.end(),
                    [](const Label& a, const Label& b) { return a.mark_x < b.mark_x; });
-  // Each label whole (at most 45% of the width), then shortened in the middle to half that.
+  // Each label whole (at most 80% of the row), then shortened in the middle to half that.
   std::vector<std::vector<std::string>> versions;
   for (const Label& l : wanted) {
-    const std::string full = fit(painter, events[l.event].label, m.event(), 0.45 * (right - left));
+    const std::string full = fit(painter, events[l.event].label, m.event(), 0.8 * (right - left));
     const std::string half =
         fit(painter, full, m.event(), 0.5 * painter.measure(full, m.event()).width);
     versions.push_back(half == full ? std::vector<std::string>{full}

@@ -169,16 +169,26 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   bool with_key = false;
   std::string x_title;
   std::vector<Legend> legends(n_panels);
-  std::vector<bool> outside(n_panels, false);
+  std::vector<Rect> legend_boxes(n_panels);  // inside places (chosen each pass)
+  // Where each legend goes; once a legend leaves the axes it stays out (the passes converge).
+  std::vector<LegendPlace> places(n_panels, LegendPlace::inside);
+  // Room reserved above each panel and beside the axes for legends there; like the places and
+  // the event rows it only grows from pass to pass, so the passes settle.
+  std::vector<double> above(n_panels, 0.0);
+  double outside_width = 0.0;
   Ticks x_ticks;
   TickLabels x_labels;
   std::vector<std::vector<std::vector<Point>>> lines(n_panels);
-  for (int pass = 0; pass < 4; ++pass) {
-    const double panels_top = top + caption_line + event_rows_height(painter, event_rows, m);
+  for (int pass = 0; pass < 8; ++pass) {
+    double above_total = 0.0;
+    for (double a : above) above_total += a;
+    const double panels_top = top + caption_line;
+    const double events_height = event_rows_height(painter, event_rows, m);
     const double bottom_reserved = bottom_base + (key_below ? event_line + 6 * s : 0.0);
     const double panels_bottom = size.height - bottom_reserved;
     const double panel_h = std::max(
-        10.0, (panels_bottom - panels_top - gap * (n_panels - 1)) / static_cast<double>(n_panels));
+        10.0, (panels_bottom - panels_top - events_height - above_total - gap * (n_panels - 1)) /
+                  static_cast<double>(n_panels));
     const int y_target = std::clamp(static_cast<int>(panel_h / (58 * s)), 2, 8);
     y_axes.clear();
     y_titles.clear();
@@ -199,10 +209,6 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     left = m.margin() + max_lines * label_line + 10 * s + tick_width + m.tick_length() + 2 * s;
 
     // Horizontal ticks: as many as fit without their labels touching.
-    double outside_width = 0.0;
-    for (std::size_t p = 0; p < n_panels; ++p) {
-      if (outside[p]) outside_width = std::max(outside_width, legends[p].width + 16 * s);
-    }
     for (int x_target = std::max(3, static_cast<int>(size.width / (190 * s)));; --x_target) {
       const Ticks loose = nice_ticks(x_lo, x_hi, x_target);
       x_ticks = loose;
@@ -230,14 +236,17 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     }
 
     frames.clear();
+    double y0 = panels_top + events_height;
     for (std::size_t p = 0; p < n_panels; ++p) {
-      const double y0 = panels_top + p * (panel_h + gap);
+      y0 += above[p];
       frames.push_back(
           Rect{std::round(left), std::round(y0), std::round(right), std::round(y0 + panel_h)});
+      y0 += panel_h + gap;
     }
     const Axis x_axis{x_lo, x_hi, false, frames[0].x0, frames[0].x1};
 
-    // Legends: inside where the least data is; beside the axes when data is everywhere.
+    // Legends: inside at a place with no data under it; else above the panel when its
+    // entries fit side by side in two rows, else beside the axes on the right.
     bool moved = false;
     for (std::size_t p = 0; p < n_panels; ++p) {
       const Rect& f = frames[p];
@@ -247,23 +256,54 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       lines[p].clear();
       for (const Series& series : panel_at(p).series)
         lines[p].push_back(to_pixels(series, x_axis, y.axis));
-      const double inside_width = 0.6 * f.width(), inside_height = f.height() - 28 * s;
-      if (!outside[p]) {
-        legends[p] = make_legend(panel_at(p), painter, m, inside_width, inside_height);
-        if (legends[p].entries.empty()) continue;
-        const Legend& L = legends[p];
-        const double best = emptiest_place(lines[p], f, L, s).occupancy;
-        const bool too_big = L.columns > 1 || L.height > inside_height;
-        if (best > 0.0 || too_big) {
-          outside[p] = true;
+      if (legend_entries(panel_at(p)).empty()) continue;
+      if (places[p] == LegendPlace::inside) {
+        const DataInk ink(panel_at(p), lines[p], y.axis, f, m, font);
+        if (const auto inside = free_place_inside(panel_at(p), painter, m, f, ink)) {
+          legends[p] = inside->legend;
+          legend_boxes[p] = inside->box;
+          continue;
+        }
+        // Outside: where it costs the data least room, as a fraction of the figure (beside
+        // the axes every panel narrows, unless a legend is there already), a legend with
+        // shortened labels counting as worse.
+        const Legend on_top = legend_above(panel_at(p), painter, m, f.width());
+        const Legend beside =
+            legend_beside(panel_at(p), painter, m, 0.4 * size.width, frames.back().y1 - f.y0);
+        // Not above when that would leave the panels too short to hold two tick labels.
+        const bool room_above =
+            panel_h - (on_top.height + 6 * s) / static_cast<double>(n_panels) > 3 * tick_line;
+        const double cost_above =
+            room_above ? (on_top.height + 6 * s) / size.height +
+                             (on_top.shortened || on_top.width > f.width() ? 0.15 : 0.0)
+                       : std::numeric_limits<double>::infinity();
+        const double cost_beside =
+            std::max(0.0, beside.width + 16 * s - outside_width) / size.width +
+            (beside.shortened ? 0.15 : 0.0);
+        places[p] = cost_above <= cost_beside ? LegendPlace::above : LegendPlace::right;
+        moved = true;
+      }
+      if (places[p] == LegendPlace::above) {
+        legends[p] = legend_above(panel_at(p), painter, m, f.width());
+        if (legends[p].height + 6 * s > above[p] + 0.5) {
+          above[p] = legends[p].height + 6 * s;
           moved = true;
         }
-      }
-      if (outside[p]) {
-        const double room = size.width - m.margin() - (f.x1 + 16 * s);
-        legends[p] = make_legend(panel_at(p), painter, m, std::max(room, 0.3 * size.width),
-                                 f.height() + gap - 4 * s);
-        legends[p].outside = true;
+      } else {
+        // Beside the axes the legend may hang down to the next panel with a legend there.
+        double column_bottom = frames.back().y1;
+        for (std::size_t q = p + 1; q < n_panels; ++q) {
+          if (places[q] == LegendPlace::right) {
+            column_bottom = frames[q].y0 - 10 * s;
+            break;
+          }
+        }
+        legends[p] = legend_beside(panel_at(p), painter, m, 0.4 * size.width,
+                                   std::max(f.height(), column_bottom - f.y0));
+        if (legends[p].width + 16 * s > outside_width + 0.5) {
+          outside_width = legends[p].width + 16 * s;
+          moved = true;
+        }
       }
     }
 
@@ -284,13 +324,14 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     const bool key_beside = size.width - m.margin() - key.width >= centre + x_title_half + 16 * s ||
                             m.margin() + key.width <= centre - x_title_half - 16 * s;
     const bool needs_below = with_key && !key_beside;
-    const int needed = std::max(event_plan.rows, event_rows > 0 ? 1 : 0);
-    if (needed == event_rows && !moved && needs_below == key_below) break;
+    const int needed = std::max(event_plan.rows, event_rows);
+    if (needed == event_rows && !moved && (!needs_below || key_below)) break;
     event_rows = needed;
-    key_below = needs_below;
+    key_below = key_below || needs_below;
   }
 
   const Axis x_axis{x_lo, x_hi, false, frames[0].x0, frames[0].x1};
+  layout.x_axis = AxisRange{x_lo, x_hi, false};
 
   // ---- Title.
   for (std::size_t k = 0; k < title_lines.size(); ++k) {
@@ -321,6 +362,9 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     const YAxis& y = y_axes[p];
     const int pi = static_cast<int>(p);
     layout.panels.push_back(f);
+    layout.y_axes.push_back(
+        y.axis.log ? AxisRange{std::pow(10.0, y.axis.lo), std::pow(10.0, y.axis.hi), true}
+                   : AxisRange{y.axis.lo, y.axis.hi, false});
 
     // Grid.
     for (const TickMark& t : y.ticks) {
@@ -350,25 +394,33 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       painter.line({px, f.y0}, {px, f.y0 + m.tick_length()}, frame_stroke);
     }
     draw_y_title(painter, y_titles[p], f, m, pi);
-    // Caption, left-aligned above the frame (above the event labels on the top panel).
+    // Caption, left-aligned above the frame (above the event labels on the top panel and a
+    // legend above the panel).
     if (!panel.caption.empty()) {
-      const double above = p == 0 ? event_rows_height(painter, event_rows, m) : 0.0;
+      const double above = (p == 0 ? event_rows_height(painter, event_rows, m) : 0.0) +
+                           (legends[p].place == LegendPlace::above && !legends[p].entries.empty()
+                                ? legends[p].height + 6 * s
+                                : 0.0);
       painter.text(fit(painter, panel.caption, m.event(), f.width()), f.x0,
                    f.y0 - above - 5 * s - caption_extent.line_descent, m.event(), kText,
                    TextRole::note, pi);
     }
-    // Legend.
+    // Legend: inside at its free place, above the panel (right-aligned, over the event
+    // labels of the top panel) or beside the axes.
     const Legend& L = legends[p];
     if (L.entries.empty()) continue;
-    Rect box;
-    if (L.outside) {
+    Rect box = legend_boxes[p];
+    if (L.place == LegendPlace::right) {
       box = Rect{f.x1 + 16 * s, f.y0, f.x1 + 16 * s + L.width, f.y0 + L.height};
-    } else {
-      box = emptiest_place(lines[p], f, L, s).box;
+    } else if (L.place == LegendPlace::above) {
+      const double bottom_edge =
+          f.y0 - (p == 0 ? event_rows_height(painter, event_rows, m) : 0.0) - 6 * s;
+      box = Rect{f.x1 - L.width, bottom_edge - L.height, f.x1, bottom_edge};
     }
     box = Rect{std::round(box.x0), std::round(box.y0), std::round(box.x1), std::round(box.y1)};
     layout.legends.push_back(box);
-    layout.legend_outside.push_back(L.outside);
+    layout.legend_outside.push_back(L.place != LegendPlace::inside);
+    layout.legend_panels.push_back(pi);
     draw_legend(painter, panel, L, box, pi, m);
   }
 

@@ -42,13 +42,23 @@ struct EventLabelReport {
   std::vector<Point> leader;
 };
 
+// An axis as drawn: the data values at the ends of a frame (lo at its left or bottom edge);
+// on a log axis the values are mapped by their logarithm.
+struct AxisRange {
+  double lo = 0.0, hi = 1.0;
+  bool log = false;
+};
+
 struct FigureLayout {
   int width = 0, height = 0;
   std::vector<TextBox> texts;
-  std::vector<Rect> panels;                    // axes frames
-  std::vector<Rect> legends;                   // legend boxes (their entries are in `texts`)
-  std::vector<bool> legend_outside;            // per legend: placed beside the axes, not inside
-  std::vector<std::string> series;             // Series::source (or label) of every series drawn
+  std::vector<Rect> panels;          // axes frames
+  std::vector<Rect> legends;         // legend boxes (their entries are in `texts`)
+  std::vector<bool> legend_outside;  // per legend: placed outside the axes (above or beside)
+  std::vector<int> legend_panels;    // per legend: the panel it belongs to
+  std::vector<AxisRange> y_axes;     // per panel: its vertical axis
+  AxisRange x_axis;                  // the shared horizontal axis
+  std::vector<std::string> series;   // Series::source (or label) of every series drawn
   std::vector<EventLabelReport> event_labels;  // every labelled event inside the time window
   double dpi = 0.0;  // a print figure's pixels per inch (Figure::print); 0: a pixel design
 };

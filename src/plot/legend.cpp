@@ -8,38 +8,38 @@
 
 namespace stiction::plot {
 
-Legend make_legend(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
-                   double max_height) {
-  Legend L;
+std::vector<int> legend_entries(const Panel& panel) {
+  std::vector<int> entries;
   for (std::size_t i = 0; i < panel.series.size(); ++i) {
-    if (!panel.series[i].label.empty()) L.entries.push_back(static_cast<int>(i));
+    if (!panel.series[i].label.empty()) entries.push_back(static_cast<int>(i));
   }
   for (std::size_t k = 0; k < panel.references.size(); ++k) {
-    if (!panel.references[k].label.empty()) L.entries.push_back(-1 - static_cast<int>(k));
+    if (!panel.references[k].label.empty()) entries.push_back(-1 - static_cast<int>(k));
   }
-  if (L.entries.size() < 2 && !(L.entries.size() == 1 && panel.label.empty())) {
-    L.entries.clear();  // one series: the axis label already names it
-    return L;
-  }
-  const int n = static_cast<int>(L.entries.size());
+  if (entries.size() < 2 && !(entries.size() == 1 && panel.label.empty())) entries.clear();
+  return entries;
+}
+
+Legend shape_legend(const Panel& panel, const std::vector<int>& entries, Painter& painter,
+                    const Metrics& m, int columns, double max_width, double size) {
+  Legend L;
+  L.entries = entries;
+  const int n = static_cast<int>(entries.size());
+  L.size = size;
   L.pad = 12 * m.s;
   L.sample = 56 * m.s;
-  // Shrink the font (to 75%) before adding columns.
-  for (L.size = m.legend();; L.size *= 0.9) {
-    L.row = 1.45 * L.size;
-    const double fixed = L.pad * 1.4;
-    const int fit_rows = std::max(1, static_cast<int>((max_height - fixed) / L.row));
-    L.columns = (n + fit_rows - 1) / fit_rows;
-    if (L.columns == 1 || !m.shrinks || L.size < 0.76 * m.legend()) break;
-  }
+  L.row = 1.45 * size;
+  L.columns = std::clamp(columns, 1, std::max(1, n));
   L.rows = (n + L.columns - 1) / L.columns;
+  L.by_rows = L.columns >= L.rows;
   const double text_room =
       std::max(40 * m.s, max_width / L.columns - L.pad - L.sample - 12 * m.s - L.pad);
   double text_width = 0.0;
-  for (int i : L.entries) {
+  for (int i : entries) {
     const std::string& label = i >= 0 ? panel.series[i].label : panel.references[-1 - i].label;
-    L.labels.push_back(fit(painter, label, L.size, text_room));
-    text_width = std::max(text_width, painter.measure(L.labels.back(), L.size).width);
+    L.labels.push_back(fit(painter, label, size, text_room));
+    L.shortened = L.shortened || L.labels.back() != label;
+    text_width = std::max(text_width, painter.measure(L.labels.back(), size).width);
   }
   L.column = L.sample + 12 * m.s + text_width + L.pad;
   L.width = L.pad + L.columns * L.column;
@@ -47,50 +47,73 @@ Legend make_legend(const Panel& panel, Painter& painter, const Metrics& m, doubl
   return L;
 }
 
-double occupancy(const std::vector<std::vector<Point>>& lines, const Rect& r) {
-  double count = 0.0;
-  for (const auto& pts : lines) {
-    for (std::size_t i = 1; i < pts.size(); ++i) {
-      const Point a = pts[i - 1], b = pts[i];
-      if (!std::isfinite(a.x + a.y + b.x + b.y)) continue;
-      if (std::max(a.x, b.x) < r.x0 || std::min(a.x, b.x) > r.x1 || std::max(a.y, b.y) < r.y0 ||
-          std::min(a.y, b.y) > r.y1) {
-        continue;
-      }
-      const double len = std::hypot(b.x - a.x, b.y - a.y);
-      const int steps = std::max(1, static_cast<int>(len / 2.0));
-      for (int k = 0; k < steps; ++k) {
-        const double t = static_cast<double>(k) / steps;
-        const double px = a.x + t * (b.x - a.x), py = a.y + t * (b.y - a.y);
-        if (px >= r.x0 && px <= r.x1 && py >= r.y0 && py <= r.y1) count += 1.0;
-      }
+Legend legend_beside(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
+                     double max_height) {
+  const std::vector<int> entries = legend_entries(panel);
+  const int n = static_cast<int>(entries.size());
+  // Shrink the font (to 75%, in the pixel design) before adding columns.
+  double size = m.legend();
+  int columns = 1;
+  for (;; size *= 0.9) {
+    const double row = 1.45 * size, fixed = 12 * m.s * 1.4;
+    const int fit_rows = std::max(1, static_cast<int>((max_height - fixed) / row));
+    columns = (n + fit_rows - 1) / fit_rows;
+    if (columns <= 1 || !m.shrinks || size < 0.76 * m.legend()) break;
+  }
+  Legend L = shape_legend(panel, entries, painter, m, columns, max_width, size);
+  L.place = LegendPlace::right;
+  return L;
+}
+
+Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, double max_width) {
+  const std::vector<int> entries = legend_entries(panel);
+  const int n = static_cast<int>(entries.size());
+  Legend best;
+  for (int columns = std::max(1, n); columns >= 1; --columns) {
+    Legend L = shape_legend(panel, entries, painter, m, columns, max_width, m.legend());
+    best = L;
+    if (!L.shortened && L.width <= max_width) break;
+  }
+  best.place = LegendPlace::above;
+  return best;
+}
+
+std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
+                                             const Rect& f, const DataInk& ink) {
+  const std::vector<int> entries = legend_entries(panel);
+  if (entries.empty()) return std::nullopt;
+  const double inset = 14 * m.s, margin = std::max(2.0, 3 * m.line);
+  const int n = static_cast<int>(entries.size());
+  std::vector<Legend> shapes;
+  for (int columns = 1; columns <= std::min(n, 4); ++columns) {
+    Legend L = shape_legend(panel, entries, painter, m, columns, 0.9 * f.width(), m.legend());
+    if (L.width <= f.width() - 2 * inset && L.height <= f.height() - 2 * inset) {
+      shapes.push_back(std::move(L));
     }
   }
-  return count;
-}
-
-std::array<Rect, 6> legend_places(const Rect& f, const Legend& L, double s) {
-  const double inset = 14 * s;
-  const double cx = 0.5 * (f.x0 + f.x1 - L.width);
-  return {{
-      {f.x1 - inset - L.width, f.y0 + inset, f.x1 - inset, f.y0 + inset + L.height},
-      {f.x0 + inset, f.y0 + inset, f.x0 + inset + L.width, f.y0 + inset + L.height},
-      {f.x1 - inset - L.width, f.y1 - inset - L.height, f.x1 - inset, f.y1 - inset},
-      {f.x0 + inset, f.y1 - inset - L.height, f.x0 + inset + L.width, f.y1 - inset},
-      {cx, f.y0 + inset, cx + L.width, f.y0 + inset + L.height},
-      {cx, f.y1 - inset - L.height, cx + L.width, f.y1 - inset},
-  }};
-}
-
-LegendPlace emptiest_place(const std::vector<std::vector<Point>>& lines, const Rect& frame,
-                           const Legend& legend, double s) {
-  const std::array<Rect, 6> places = legend_places(frame, legend, s);
-  LegendPlace best{places[0], std::numeric_limits<double>::infinity()};
-  for (const Rect& c : places) {
-    const double occ = occupancy(lines, c);
-    if (occ < best.occupancy - 0.5) best = {c, occ};
+  // Places as fractions along the free width and height: corners, middles, then along the
+  // top and bottom edges and down the sides.
+  std::vector<std::pair<double, double>> places{{1, 0},   {0, 0},   {1, 1},   {0, 1},
+                                                {0.5, 0}, {0.5, 1}, {0, 0.5}, {1, 0.5}};
+  for (double u : {0.25, 0.75, 0.125, 0.375, 0.625, 0.875}) {
+    places.push_back({u, 0});
+    places.push_back({u, 1});
   }
-  return best;
+  for (double v : {0.25, 0.75}) {
+    places.push_back({0, v});
+    places.push_back({1, v});
+  }
+  for (const auto& [u, v] : places) {
+    for (const Legend& L : shapes) {
+      const double x0 = f.x0 + inset + u * (f.width() - 2 * inset - L.width);
+      const double y0 = f.y0 + inset + v * (f.height() - 2 * inset - L.height);
+      const Rect box{std::round(x0), std::round(y0), std::round(x0 + L.width),
+                     std::round(y0 + L.height)};
+      const Rect around{box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin};
+      if (ink.count(around) == 0) return InsidePlace{L, box};
+    }
+  }
+  return std::nullopt;
 }
 
 void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Rect& box,
@@ -106,7 +129,9 @@ void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Re
     if (entry >= 0) {
       style = panel.series[entry].style ? *panel.series[entry].style : series_style(entry);
     }
-    const int column = static_cast<int>(k) / L.rows, row = static_cast<int>(k) % L.rows;
+    const int i = static_cast<int>(k);
+    const int column = L.by_rows ? i % L.columns : i / L.rows;
+    const int row = L.by_rows ? i / L.columns : i % L.rows;
     const double x0 = box.x0 + L.pad + column * L.column;
     const double cy = box.y0 + 0.8 * L.pad + row * L.row + 0.5 * L.row;
     painter.line({x0, cy}, {x0 + L.sample, cy}, make_stroke(style, m.line));

@@ -85,6 +85,13 @@ plot::Figure fig7(plot::Figure::Print print) {
   return figure;
 }
 
+void check_clean(const plot::FigureLayout& layout, const std::string& what) {
+  INFO(what);
+  const std::vector<std::string> problems = plot::layout_problems(layout);
+  for (const std::string& p : problems) UNSCOPED_INFO(p);
+  CHECK(problems.empty());
+}
+
 }  // namespace
 
 TEST_CASE("a print figure is its page at its dpi, in PNG, PDF and SVG", "[plot][print]") {
@@ -133,6 +140,8 @@ TEST_CASE("print figures have text of font_pt on the page at any size and resolu
     for (const auto& [width_mm, height_mm] :
          {std::pair{88.9, 66.0}, std::pair{60.0, 50.0}, std::pair{180.0, 110.0}}) {
       for (const double font_pt : {7.0, 8.0, 10.0}) {
+        // 10 pt text needs a taller page than 50 mm for a title and two panels.
+        if (height_mm < 5.5 * font_pt) continue;
         for (int which = 0; which < 2; ++which) {
           const plot::Figure::Print print{width_mm, height_mm, font_pt, dpi};
           const plot::Figure figure = which == 0 ? fig4(print) : fig7(print);
@@ -148,6 +157,7 @@ TEST_CASE("print figures have text of font_pt on the page at any size and resolu
           CHECK(sizes.body_min == Approx(font_pt).epsilon(1e-3));
           CHECK(sizes.body_max == Approx(font_pt).epsilon(1e-3));
           CHECK(sizes.title == Approx(font_pt + 1.0).epsilon(1e-3));
+          check_clean(layout, what);
         }
       }
     }
@@ -160,8 +170,11 @@ TEST_CASE("print figures of random pages keep a clean layout", "[plot][print]") 
       dpi(90.0, 400.0);
   const core::Trajectory sphere = plot::testing::sphere_run(1.0);
   for (int i = 0; i < 24; ++i) {
-    const double w = width(rng);
-    const plot::Figure::Print print{w, w * aspect(rng), font(rng), dpi(rng)};
+    // Pages that can hold their text: at least 8 times the type size in mm wide, 5.5 times
+    // high (8 pt: 64 x 44 mm).
+    const double pt = font(rng);
+    const double w = std::max(width(rng), 8 * pt);
+    const plot::Figure::Print print{w, std::max(w * aspect(rng), 5.5 * pt), pt, dpi(rng)};
     plot::Figure figure = i % 2 ? fig7(print) : fig4(print);
     if (plot::pixel_size(figure).height < 150) continue;
     plot::FigureLayout layout;
@@ -169,6 +182,7 @@ TEST_CASE("print figures of random pages keep a clean layout", "[plot][print]") 
     if (i < 4)
       plot::write_figure(figure, kOut / ("random_" + std::to_string(i) + ".png"),
                          plot::Format::png);
+    check_clean(layout, "random page " + std::to_string(i));
     const TextSizes sizes = text_sizes(layout);
     CHECK(sizes.body_min == Approx(print.font_pt).epsilon(1e-3));
   }
