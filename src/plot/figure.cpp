@@ -178,6 +178,28 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   double outside_width = 0.0;
   Ticks x_ticks;
   TickLabels x_labels;
+  // Every vertical axis keeps two labelled ticks: per panel, finer ticks than its height
+  // asks for, labelled minor ticks on a log axis, and time axis labels that give way to them.
+  std::vector<int> y_finer(n_panels, 0);
+  std::vector<bool> y_minor_labels(n_panels, false);
+  std::vector<double> hidden_x_values;
+  std::vector<std::vector<YLabel>> y_labels(n_panels);
+  // The time axis' labels under the bottom frame, but those that gave way.
+  auto x_label_boxes = [&](const Axis& x_axis) {
+    std::vector<Rect> boxes;
+    const double baseline = frames.back().y1 + m.tick_length() + tick_extent.line_ascent;
+    for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
+      if (std::find(hidden_x_values.begin(), hidden_x_values.end(), x_ticks.values[i]) !=
+          hidden_x_values.end()) {
+        continue;
+      }
+      const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
+      const double w = painter.measure(x_labels.labels[i], m.tick()).width;
+      boxes.push_back(Rect{px - 0.5 * w - 2 * s, baseline - tick_extent.line_ascent,
+                           px + 0.5 * w + 2 * s, baseline + tick_extent.line_descent});
+    }
+    return boxes;
+  };
   std::vector<std::vector<std::vector<Point>>> lines(n_panels);
   for (int pass = 0; pass < 8; ++pass) {
     double above_total = 0.0;
@@ -195,7 +217,8 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     double tick_width = 0.0;
     std::size_t max_lines = 1;
     for (std::size_t p = 0; p < n_panels; ++p) {
-      YAxis y = make_y_axis(panel_at(p), x_lo, x_hi, y_target);
+      YAxis y = make_y_axis(panel_at(p), x_lo, x_hi, y_target + y_finer[p]);
+      if (y_minor_labels[p]) label_minor_ticks(y);
       for (const TickMark& t : y.ticks) {
         if (!t.label.empty())
           tick_width = std::max(tick_width, painter.measure(t.label, m.tick()).width);
@@ -307,6 +330,67 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       }
     }
 
+    // Tick labels, and at least two on every vertical axis.
+    {
+      std::vector<Rect> taken = x_label_boxes(x_axis);
+      for (std::size_t p = 0; p < n_panels; ++p) {
+        const Rect& f = frames[p];
+        auto select = [&](const YAxis& y, std::vector<Rect>& boxes) {
+          return select_y_labels(painter, y, f, m, boxes);
+        };
+        std::vector<Rect> trial = taken;
+        y_labels[p] = select(y_axes[p], trial);
+        // Finer ticks keep a label away from the neighbour it touched.
+        for (int finer = 1; finer <= 6 && y_labels[p].size() < 2; ++finer) {
+          YAxis alt = make_y_axis(panel_at(p), x_lo, x_hi, y_target + y_finer[p] + finer);
+          if (y_minor_labels[p]) label_minor_ticks(alt);
+          alt.axis.p0 = f.y1;
+          alt.axis.p1 = f.y0;
+          std::vector<Rect> alt_taken = taken;
+          std::vector<YLabel> alt_labels = select(alt, alt_taken);
+          if (alt_labels.size() >= 2) {
+            y_finer[p] += finer;
+            y_axes[p] = std::move(alt);
+            y_labels[p] = std::move(alt_labels);
+            trial = std::move(alt_taken);
+            moved = true;
+          }
+        }
+        // A log axis within about a decade: its minor ticks at 2 and 5 get labels.
+        if (y_labels[p].size() < 2 && y_axes[p].axis.log && !y_minor_labels[p]) {
+          y_minor_labels[p] = true;
+          label_minor_ticks(y_axes[p]);
+          trial = taken;
+          y_labels[p] = select(y_axes[p], trial);
+          moved = true;
+        }
+        // Still one: the time axis' labels under it give way (the time axis has more).
+        if (y_labels[p].size() < 2 && p + 1 == n_panels) {
+          std::vector<Rect> alone;  // this axis' labels with nothing in their way
+          const std::vector<YLabel> wanted = select(y_axes[p], alone);
+          for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
+            const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
+            const double w = painter.measure(x_labels.labels[i], m.tick()).width;
+            const double baseline = f.y1 + m.tick_length() + tick_extent.line_ascent;
+            const Rect box{px - 0.5 * w - 2 * s, baseline - tick_extent.line_ascent,
+                           px + 0.5 * w + 2 * s, baseline + tick_extent.line_descent};
+            if (std::any_of(wanted.begin(), wanted.end(),
+                            [&](const YLabel& l) { return l.box.overlaps(box); })) {
+              hidden_x_values.push_back(x_ticks.values[i]);
+              moved = true;
+            }
+          }
+          taken = x_label_boxes(x_axis);
+          for (std::size_t q = 0; q < p; ++q) {
+            for (const YLabel& l : y_labels[q]) taken.push_back(l.box);
+          }
+          trial = taken;
+          y_labels[p] = select(y_axes[p], trial);
+        }
+        taken = std::move(trial);
+      }
+    }
+
     // Event labels at their marks; the key when some event is drawn without one.
     // Not left of the top panel: its highest tick label reaches above the frame.
     event_plan = place_event_labels(painter, figure.events, x_axis, frames[0], frames[0].x0,
@@ -344,17 +428,7 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   const Stroke frame_stroke{kFrame, m.frame_width(), {}};
   const Stroke grid_stroke{kGrid, m.grid_width(), {}};
   const Stroke minor_stroke{kMinorGrid, m.grid_width(), {}};
-  std::vector<Rect> tick_label_boxes;  // of every panel: thinned so that none touch
-  // The horizontal tick labels under the bottom panel come first: a y label at the bottom
-  // corner gives way to the "0.0" of the time axis.
   const double tick_baseline = frames.back().y1 + m.tick_length() + tick_extent.line_ascent;
-  for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
-    const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
-    const double w = painter.measure(x_labels.labels[i], m.tick()).width;
-    tick_label_boxes.push_back(Rect{px - 0.5 * w - 2 * s, tick_baseline - tick_extent.line_ascent,
-                                    px + 0.5 * w + 2 * s,
-                                    tick_baseline + tick_extent.line_descent});
-  }
 
   for (std::size_t p = 0; p < n_panels; ++p) {
     const Panel& panel = panel_at(p);
@@ -387,7 +461,7 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     // Frame and ticks.
     const Rect crisp{f.x0 + 0.5, f.y0 + 0.5, f.x1 - 0.5, f.y1 - 0.5};
     painter.stroke_rect(crisp, frame_stroke);
-    draw_y_ticks(painter, y, f, m, frame_stroke, tick_label_boxes, pi);
+    draw_y_ticks(painter, y, f, m, frame_stroke, y_labels[p], pi);
     for (double v : x_ticks.values) {
       const double px = std::round(x_axis.map(v)) + 0.5;
       painter.line({px, f.y1 - m.tick_length()}, {px, f.y1}, frame_stroke);
@@ -427,6 +501,10 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   // ---- Horizontal tick labels and axis title under the bottom panel.
   const Rect& bottom = frames.back();
   for (std::size_t i = 0; i < x_ticks.values.size(); ++i) {
+    if (std::find(hidden_x_values.begin(), hidden_x_values.end(), x_ticks.values[i]) !=
+        hidden_x_values.end()) {
+      continue;  // gave way to a vertical axis' label
+    }
     const double px = std::round(x_axis.map(x_ticks.values[i])) + 0.5;
     const double w = painter.measure(x_labels.labels[i], m.tick()).width;
     painter.text(x_labels.labels[i], px - 0.5 * w, tick_baseline, m.tick(), kText,

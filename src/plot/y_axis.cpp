@@ -124,15 +124,29 @@ YTitle fit_y_title(Painter& painter, const std::string& title, double panel_heig
   return fitted;
 }
 
-void draw_y_ticks(Painter& painter, const YAxis& y, const Rect& f, const Metrics& m,
-                  const Stroke& stroke, std::vector<Rect>& taken, int panel_index) {
+void label_minor_ticks(YAxis& y) {
+  if (!y.axis.log) return;
+  for (TickMark& t : y.ticks) {
+    if (!t.label.empty() || !(t.value > 0.0)) continue;
+    const int exponent = static_cast<int>(std::floor(std::log10(t.value) + 1e-9));
+    const double mantissa = t.value / std::pow(10.0, exponent);
+    for (int shown : {2, 5}) {
+      if (std::abs(mantissa - shown) < 1e-6) {
+        t.label = std::to_string(shown) + "\u00D710" + superscript(exponent);
+      }
+    }
+  }
+}
+
+std::vector<YLabel> select_y_labels(Painter& painter, const YAxis& y, const Rect& f,
+                                    const Metrics& m, std::vector<Rect>& taken) {
   const Extent digits = painter.measure("0123456789", m.tick());
-  for (const TickMark& t : y.ticks) {
-    const double py = std::round(y.axis.map(t.value)) + 0.5;
-    const double len = t.label.empty() ? 0.55 * m.tick_length() : m.tick_length();
-    painter.line({f.x0, py}, {f.x0 + len, py}, stroke);
-    painter.line({f.x1 - len, py}, {f.x1, py}, stroke);
+  std::vector<YLabel> labels;
+  for (std::size_t i = 0; i < y.ticks.size(); ++i) {
+    const TickMark& t = y.ticks[i];
     if (t.label.empty()) continue;
+    const double py = std::round(y.axis.map(t.value)) + 0.5;
+    if (!std::isfinite(py) || py < f.y0 - 1 || py > f.y1 + 1) continue;
     const double w = painter.measure(t.label, m.tick()).width;
     const double baseline = py + 0.5 * digits.ascent;
     const Rect box{f.x0 - m.tick_length() - w, baseline - digits.line_ascent - 1 * m.s,
@@ -141,7 +155,23 @@ void draw_y_ticks(Painter& painter, const YAxis& y, const Rect& f, const Metrics
       continue;  // the tick stays, its label would touch a neighbour's
     }
     taken.push_back(box);
-    painter.text(t.label, box.x0, baseline, m.tick(), kText, TextRole::tick_label, panel_index);
+    labels.push_back({i, box, baseline});
+  }
+  return labels;
+}
+
+void draw_y_ticks(Painter& painter, const YAxis& y, const Rect& f, const Metrics& m,
+                  const Stroke& stroke, const std::vector<YLabel>& labels, int panel_index) {
+  for (const TickMark& t : y.ticks) {
+    const double py = std::round(y.axis.map(t.value)) + 0.5;
+    if (!std::isfinite(py)) continue;
+    const double len = t.label.empty() ? 0.55 * m.tick_length() : m.tick_length();
+    painter.line({f.x0, py}, {f.x0 + len, py}, stroke);
+    painter.line({f.x1 - len, py}, {f.x1, py}, stroke);
+  }
+  for (const YLabel& l : labels) {
+    painter.text(y.ticks[l.tick].label, l.box.x0, l.baseline, m.tick(), kText, TextRole::tick_label,
+                 panel_index);
   }
 }
 

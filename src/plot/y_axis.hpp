@@ -54,10 +54,24 @@ struct YTitle {
 YTitle fit_y_title(Painter& painter, const std::string& title, double panel_height,
                    double full_size, bool may_shrink);
 
-// Tick marks on both sides of the frame and labels on the left; a label that would touch one
-// in `taken` (the labels of every panel so far) is left out, its tick stays.
+// A log axis whose decades give fewer than two labels in view also labels its minor ticks at
+// 2 and 5 times a decade ("2×10⁻⁷", "5×10⁻⁷").
+void label_minor_ticks(YAxis& y);
+
+// The tick labels drawn on the left of the frame (y.axis mapped to the frame): a label that
+// would touch one in `taken` (the time axis' labels and those of the panels above) is left
+// out, its tick stays. The boxes of the labels kept are added to `taken`.
+struct YLabel {
+  std::size_t tick = 0;  // index in y.ticks
+  Rect box;
+  double baseline = 0.0;
+};
+std::vector<YLabel> select_y_labels(Painter& painter, const YAxis& y, const Rect& frame,
+                                    const Metrics& m, std::vector<Rect>& taken);
+
+// Tick marks on both sides of the frame and the labels selected.
 void draw_y_ticks(Painter& painter, const YAxis& y, const Rect& frame, const Metrics& m,
-                  const Stroke& stroke, std::vector<Rect>& taken, int panel_index);
+                  const Stroke& stroke, const std::vector<YLabel>& labels, int panel_index);
 
 // The title centred on the panel's height, one rotated line per wrapped line, from the left
 // margin of the figure.
