@@ -6,13 +6,10 @@
 #include <cmath>
 #include <memory>
 
-#include "plot/painter.hpp"
-#include "plot/series_strokes.hpp"
-
 namespace stiction::plot {
 
-DataInk::DataInk(const Panel& panel, const std::vector<std::vector<Point>>& pixels, const Axis& y,
-                 const Rect& frame, const Metrics& m, const CairoFont& font)
+DataInk::DataInk(const Rect& frame, const CairoFont& font,
+                 const std::function<void(Painter&)>& draw)
     : frame_(frame),
       width_(std::max(1, static_cast<int>(std::ceil(frame.width())))),
       height_(std::max(1, static_cast<int>(std::ceil(frame.height())))) {
@@ -21,15 +18,11 @@ DataInk::DataInk(const Panel& panel, const std::vector<std::vector<Point>>& pixe
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
                                                         &cairo_destroy);
   cairo_translate(cr.get(), -frame.x0, -frame.y0);
+  cairo_rectangle(cr.get(), frame.x0, frame.y0, frame.width(), frame.height());
+  cairo_clip(cr.get());
   FigureLayout scratch;
   Painter painter(cr.get(), font, scratch);
-  // The same strokes as the figure draws, reference lines included.
-  const Stroke reference = make_stroke(reference_style(), m.line);
-  for (const ReferenceLine& r : panel.references) {
-    const double py = y.map(r.y);
-    if (std::isfinite(py)) painter.line({frame.x0, py}, {frame.x1, py}, reference);
-  }
-  draw_series(painter, panel, pixels, frame, m.line, nullptr);
+  draw(painter);
   cairo_surface_flush(surface.get());
   const unsigned char* data = cairo_image_surface_get_data(surface.get());
   const int stride = cairo_image_surface_get_stride(surface.get());

@@ -1,24 +1,23 @@
-// Where a panel's data is: its series (as they are drawn: polylines and dense bands, at their
-// line widths) and its reference lines rasterized into a coverage mask of the frame, summed
-// so that the ink under any rectangle is counted at once. Used to put a legend where there is
-// no data. Internal to src/plot.
+// Where a panel's data is: whatever a function draws into the frame (the panel's series as
+// they are drawn, polylines and dense bands at their line widths, its reference lines and
+// its event marks) rasterized into a coverage mask and summed, so that the ink under any
+// rectangle is counted at once. Used to put a legend where there is no data. Internal to
+// src/plot.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "plot/cairo_font.hpp"
-#include "plot/figure.hpp"
 #include "plot/layout.hpp"
-#include "plot/style.hpp"
-#include "plot/y_axis.hpp"
+#include "plot/painter.hpp"
 
 namespace stiction::plot {
 
 class DataInk {
  public:
-  // `pixels` are the panel's series as to_pixels gives them; `y` its vertical axis.
-  DataInk(const Panel& panel, const std::vector<std::vector<Point>>& pixels, const Axis& y,
-          const Rect& frame, const Metrics& m, const CairoFont& font);
+  // `draw` paints into a painter whose user space is the figure's pixels, clipped to `frame`.
+  DataInk(const Rect& frame, const CairoFont& font, const std::function<void(Painter&)>& draw);
 
   // Pixels with any ink within the rectangle (clipped to the frame).
   long count(const Rect& r) const;

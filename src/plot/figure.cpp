@@ -64,6 +64,21 @@ void check_size(const Figure& figure) {
 
 }  // namespace
 
+namespace {
+
+// Reference lines under the data, across the frame.
+void draw_references(Painter& painter, const Panel& panel, const Axis& y, const Rect& f,
+                     const Metrics& m) {
+  const Stroke stroke = make_stroke(reference_style(), m.line);
+  for (const ReferenceLine& r : panel.references) {
+    const double py = y.map(r.y);
+    if (!std::isfinite(py) || py < f.y0 || py > f.y1) continue;
+    painter.line({f.x0, py}, {f.x1, py}, stroke);
+  }
+}
+
+}  // namespace
+
 FigureLayout draw(const Figure& figure, cairo_t* cr) { return draw_figure(figure, cr, nullptr); }
 
 FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedText>* texts) {
@@ -281,7 +296,12 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
         lines[p].push_back(to_pixels(series, x_axis, y.axis));
       if (legend_entries(panel_at(p)).empty()) continue;
       if (places[p] == LegendPlace::inside) {
-        const DataInk ink(panel_at(p), lines[p], y.axis, f, m, font);
+        // What the panel shows: its reference lines, event marks and series, as drawn.
+        const DataInk ink(f, font, [&](Painter& mask) {
+          draw_references(mask, panel_at(p), y.axis, f, m);
+          draw_event_marks(mask, figure.events, x_axis, f, event_rug, m);
+          draw_series(mask, panel_at(p), lines[p], f, m.line, nullptr);
+        });
         if (const auto inside = free_place_inside(panel_at(p), painter, m, f, ink)) {
           legends[p] = inside->legend;
           legend_boxes[p] = inside->box;
@@ -450,13 +470,7 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       painter.line({px, f.y0}, {px, f.y1}, grid_stroke);
     }
     draw_event_marks(painter, figure.events, x_axis, f, event_rug, m);
-    // Reference lines under the data.
-    const Stroke reference_stroke = make_stroke(reference_style(), m.line);
-    for (const ReferenceLine& r : panel.references) {
-      const double py = y.axis.map(r.y);
-      if (!std::isfinite(py) || py < f.y0 || py > f.y1) continue;
-      painter.line({f.x0, py}, {f.x1, py}, reference_stroke);
-    }
+    draw_references(painter, panel, y.axis, f, m);
     draw_series(painter, panel, lines[p], f, m.line, &layout);
     // Frame and ticks.
     const Rect crisp{f.x0 + 0.5, f.y0 + 0.5, f.x1 - 0.5, f.y1 - 0.5};
