@@ -187,6 +187,9 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   std::vector<Rect> legend_boxes(n_panels);  // inside places (chosen each pass)
   // Where each legend goes; once a legend leaves the axes it stays out (the passes converge).
   std::vector<LegendPlace> places(n_panels, LegendPlace::inside);
+  // Legends with no room outside the axes either, and the data under them (reported).
+  std::vector<bool> crowded(n_panels, false);
+  std::vector<long> legend_ink(n_panels, 0);
   // Room reserved above each panel and beside the axes for legends there; like the places and
   // the event rows it only grows from pass to pass, so the passes settle.
   std::vector<double> above(n_panels, 0.0);
@@ -240,14 +243,15 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       }
       y_titles.push_back(fit_y_title(painter,
                                      axis_title(panel_at(p).label, panel_at(p).unit, y.exponent),
-                                     panel_h, m.label(), m.shrinks));
+                                     panel_h, m.label(), m.shrinks, m.y_title_lines));
       max_lines = std::max(max_lines, y_titles.back().lines.size());
       y_axes.push_back(std::move(y));
     }
     left = m.margin() + max_lines * label_line + 10 * s + tick_width + m.tick_length() + 2 * s;
 
     // Horizontal ticks: as many as fit without their labels touching.
-    for (int x_target = std::max(3, static_cast<int>(size.width / (190 * s)));; --x_target) {
+    for (int x_target = std::max(3, static_cast<int>(size.width / (m.x_tick_spacing * s)));;
+         --x_target) {
       const Ticks loose = nice_ticks(x_lo, x_hi, x_target);
       x_ticks = loose;
       x_ticks.values.clear();
@@ -282,6 +286,8 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       y0 += panel_h + gap;
     }
     const Axis x_axis{x_lo, x_hi, false, frames[0].x0, frames[0].x1};
+    // The panels' width with no legend beside them.
+    const double free_width = frames[0].width() + outside_width;
 
     // Legends: inside at a place with no data under it; else above the panel when its
     // entries fit side by side in two rows, else beside the axes on the right.
@@ -305,6 +311,18 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
         if (const auto inside = free_place_inside(panel_at(p), painter, m, f, ink)) {
           legends[p] = inside->legend;
           legend_boxes[p] = inside->box;
+          legend_ink[p] = 0;
+          continue;
+        }
+        if (crowded[p]) {  // no room outside either: where the least data is
+          const InsidePlace least =
+              least_inked_place_inside(panel_at(p), painter, m, f, ink, legend_ink[p]);
+          legends[p] = least.legend;
+          legend_boxes[p] = least.box;
+          // No room even for one row: left out, and reported.
+          if (least.box.height() > f.height() || least.box.width() > f.width() + 1) {
+            legends[p].entries.clear();
+          }
           continue;
         }
         // Outside: where it costs the data least room, as a fraction of the figure (beside
@@ -320,11 +338,19 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
             room_above ? (on_top.height + 6 * s) / size.height +
                              (on_top.shortened || on_top.width > f.width() ? 0.15 : 0.0)
                        : std::numeric_limits<double>::infinity();
-        const double cost_beside =
-            std::max(0.0, beside.width + 16 * s - outside_width) / size.width +
-            (beside.shortened ? 0.15 : 0.0);
-        places[p] = cost_above <= cost_beside ? LegendPlace::above : LegendPlace::right;
+        // Not beside when the panels would keep less than half the width they have without
+        // legends beside them.
+        const double narrower = std::max(0.0, beside.width + 16 * s - outside_width);
+        const bool room_beside = std::max(outside_width, beside.width + 16 * s) <= 0.5 * free_width;
+        const double cost_beside = room_beside
+                                       ? narrower / size.width + (beside.shortened ? 0.15 : 0.0)
+                                       : std::numeric_limits<double>::infinity();
         moved = true;
+        if (std::isinf(cost_above) && std::isinf(cost_beside)) {
+          crowded[p] = true;  // the next pass puts it inside, where the least data is
+          continue;
+        }
+        places[p] = cost_above <= cost_beside ? LegendPlace::above : LegendPlace::right;
       }
       if (places[p] == LegendPlace::above) {
         legends[p] = legend_above(panel_at(p), painter, m, f.width());
@@ -343,7 +369,13 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
         }
         legends[p] = legend_beside(panel_at(p), painter, m, 0.4 * size.width,
                                    std::max(f.height(), column_bottom - f.y0));
-        if (legends[p].width + 16 * s > outside_width + 0.5) {
+        if (legends[p].width + 16 * s > 0.5 * free_width) {
+          // Grown too wide as the panels changed (more columns): inside, where the least
+          // data is, rather than squeezing the panels.
+          places[p] = LegendPlace::inside;
+          crowded[p] = true;
+          moved = true;
+        } else if (legends[p].width + 16 * s > outside_width + 0.5) {
           outside_width = legends[p].width + 16 * s;
           moved = true;
         }
@@ -496,7 +528,10 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     // Legend: inside at its free place, above the panel (right-aligned, over the event
     // labels of the top panel) or beside the axes.
     const Legend& L = legends[p];
-    if (L.entries.empty()) continue;
+    if (L.entries.empty()) {
+      if (!legend_entries(panel).empty()) layout.legends_left_out.push_back(pi);
+      continue;
+    }
     Rect box = legend_boxes[p];
     if (L.place == LegendPlace::right) {
       box = Rect{f.x1 + 16 * s, f.y0, f.x1 + 16 * s + L.width, f.y0 + L.height};
@@ -509,6 +544,7 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     layout.legends.push_back(box);
     layout.legend_outside.push_back(L.place != LegendPlace::inside);
     layout.legend_panels.push_back(pi);
+    layout.legend_ink.push_back(legend_ink[p]);
     draw_legend(painter, panel, L, box, pi, m);
   }
 

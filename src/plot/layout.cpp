@@ -57,6 +57,9 @@ std::vector<std::string> layout_problems(const FigureLayout& layout) {
       }
     }
   }
+  for (int p : layout.legends_left_out) {
+    problems.push_back("the legend of panel " + std::to_string(p) + " has no room");
+  }
   // Leaders from event marks to their labels cross no text (their own label is where they end).
   for (const EventLabelReport& e : layout.event_labels) {
     for (std::size_t k = 1; k < e.leader.size(); ++k) {

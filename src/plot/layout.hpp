@@ -56,9 +56,13 @@ struct FigureLayout {
   std::vector<Rect> legends;         // legend boxes (their entries are in `texts`)
   std::vector<bool> legend_outside;  // per legend: placed outside the axes (above or beside)
   std::vector<int> legend_panels;    // per legend: the panel it belongs to
-  std::vector<AxisRange> y_axes;     // per panel: its vertical axis
-  AxisRange x_axis;                  // the shared horizontal axis
-  std::vector<std::string> series;   // Series::source (or label) of every series drawn
+  // Per legend: pixels of data (series, reference lines, event marks) under its box; 0 but
+  // for a legend that found no free place inside and no room outside the axes.
+  std::vector<long> legend_ink;
+  std::vector<int> legends_left_out;           // panels whose legend had no room at all (a problem)
+  std::vector<AxisRange> y_axes;               // per panel: its vertical axis
+  AxisRange x_axis;                            // the shared horizontal axis
+  std::vector<std::string> series;             // Series::source (or label) of every series drawn
   std::vector<EventLabelReport> event_labels;  // every labelled event inside the time window
   double dpi = 0.0;  // a print figure's pixels per inch (Figure::print); 0: a pixel design
 };
@@ -66,7 +70,7 @@ struct FigureLayout {
 // Everything wrong with a layout, one line each: two text boxes that overlap, a text or a
 // legend that leaves the image, a legend over another legend, an event label over a legend
 // (legend entries may of course sit inside their own legend), an event's leader across a
-// text. Empty: a clean layout.
+// text, a legend left out for want of room. Empty: a clean layout.
 std::vector<std::string> layout_problems(const FigureLayout& layout);
 
 }  // namespace stiction::plot

@@ -78,10 +78,16 @@ Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, doub
   return best;
 }
 
-std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                             const Rect& f, const DataInk& ink) {
+namespace {
+
+// Every candidate place inside, in order of preference, and the ink under each (within a
+// margin around the box); stops at the first free one when `first_free`.
+std::vector<std::pair<InsidePlace, long>> inside_places(const Panel& panel, Painter& painter,
+                                                        const Metrics& m, const Rect& f,
+                                                        const DataInk& ink, bool first_free) {
+  std::vector<std::pair<InsidePlace, long>> found;
   const std::vector<int> entries = legend_entries(panel);
-  if (entries.empty()) return std::nullopt;
+  if (entries.empty()) return found;
   const double inset = 14 * m.s, margin = std::max(2.0, 3 * m.line);
   const int n = static_cast<int>(entries.size());
   std::vector<Legend> shapes;
@@ -110,10 +116,41 @@ std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painte
       const Rect box{std::round(x0), std::round(y0), std::round(x0 + L.width),
                      std::round(y0 + L.height)};
       const Rect around{box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin};
-      if (ink.count(around) == 0) return InsidePlace{L, box};
+      const long under = ink.count(around);
+      found.push_back({InsidePlace{L, box}, under});
+      if (first_free && under == 0) return found;
     }
   }
-  return std::nullopt;
+  return found;
+}
+
+}  // namespace
+
+std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
+                                             const Rect& f, const DataInk& ink) {
+  auto found = inside_places(panel, painter, m, f, ink, true);
+  if (found.empty() || found.back().second != 0) return std::nullopt;
+  return found.back().first;
+}
+
+InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
+                                     const Rect& f, const DataInk& ink, long& ink_under) {
+  auto found = inside_places(panel, painter, m, f, ink, false);
+  if (found.empty()) {
+    // Too big for the frame in every shape: one row, its labels shortened to the frame's
+    // width, at the top (the caller checks that it fits the frame's height).
+    const std::vector<int> entries = legend_entries(panel);
+    Legend L = shape_legend(panel, entries, painter, m, static_cast<int>(entries.size()), f.width(),
+                            m.legend());
+    const Rect box{std::round(f.x0), std::round(f.y0), std::round(f.x0 + L.width),
+                   std::round(f.y0 + L.height)};
+    ink_under = ink.count(box);
+    return InsidePlace{L, box};
+  }
+  const auto best = std::min_element(
+      found.begin(), found.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  ink_under = best->second;
+  return best->first;
 }
 
 void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Rect& box,

@@ -24,7 +24,7 @@ struct Legend {
   double size = 0.0;  // font size
   double width = 0.0, height = 0.0, row = 0.0, sample = 0.0, pad = 0.0, column = 0.0;
   int columns = 1, rows = 0;
-  bool by_rows = false;  // entries fill rows first (a wide legend reads left to right)
+  bool by_rows = false;    // entries fill rows first (a wide legend reads left to right)
   bool shortened = false;  // some label shortened to fit
   LegendPlace place = LegendPlace::inside;
 };
@@ -56,6 +56,11 @@ struct InsidePlace {
 };
 std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
                                              const Rect& frame, const DataInk& ink);
+
+// The place inside with the least data under it, for a figure with no room outside the axes
+// (`ink_under` gets the count of inked pixels under its box).
+InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
+                                     const Rect& frame, const DataInk& ink, long& ink_under);
 
 // The box and its entries: a line sample in the series' style, then the label.
 void draw_legend(Painter& painter, const Panel& panel, const Legend& legend, const Rect& box,

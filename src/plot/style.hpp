@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,12 @@ struct Metrics {
   double line = 1.0;  // pixels per line-width unit (LineStyle widths and dashes)
   double title_size = 32, label_size = 27, tick_size = 24, legend_size = 23, event_size = 22;
   bool shrinks = true;  // texts may shrink to fit (the pixel design only)
+  // Time axis ticks: about one per this many layout units (a print figure is narrower for its
+  // type, so its ticks are denser).
+  double x_tick_spacing = 190.0;
+  // Lines a vertical axis title may wrap onto before it is shortened (print: one more, since
+  // its font does not shrink).
+  std::size_t y_title_lines = 3;
 
   double title() const { return title_size; }
   double label() const { return label_size; }

@@ -52,7 +52,7 @@ struct YTitle {
   double size = 0.0;
 };
 YTitle fit_y_title(Painter& painter, const std::string& title, double panel_height,
-                   double full_size, bool may_shrink);
+                   double full_size, bool may_shrink, std::size_t max_lines = 3);
 
 // A log axis whose decades give fewer than two labels in view also labels its minor ticks at
 // 2 and 5 times a decade ("2×10⁻⁷", "5×10⁻⁷").

@@ -138,10 +138,10 @@ TEST_CASE("print figures have text of font_pt on the page at any size and resolu
   // 72 to 600 dpi.
   for (const double dpi : {72.0, 150.0, 300.0, 600.0}) {
     for (const auto& [width_mm, height_mm] :
-         {std::pair{88.9, 66.0}, std::pair{60.0, 50.0}, std::pair{180.0, 110.0}}) {
+         {std::pair{88.9, 66.0}, std::pair{70.0, 60.0}, std::pair{180.0, 110.0}}) {
       for (const double font_pt : {7.0, 8.0, 10.0}) {
-        // 10 pt text needs a taller page than 50 mm for a title and two panels.
-        if (height_mm < 5.5 * font_pt) continue;
+        // 10 pt text needs a taller page than 60 mm for a title, two panels and legends.
+        if (height_mm < 7 * font_pt) continue;
         for (int which = 0; which < 2; ++which) {
           const plot::Figure::Print print{width_mm, height_mm, font_pt, dpi};
           const plot::Figure figure = which == 0 ? fig4(print) : fig7(print);
@@ -170,11 +170,11 @@ TEST_CASE("print figures of random pages keep a clean layout", "[plot][print]") 
       dpi(90.0, 400.0);
   const core::Trajectory sphere = plot::testing::sphere_run(1.0);
   for (int i = 0; i < 24; ++i) {
-    // Pages that can hold their text: at least 8 times the type size in mm wide, 5.5 times
-    // high (8 pt: 64 x 44 mm).
+    // Pages that can hold a title, two panels and their legends: at least 9 times the type
+    // size in mm wide, 7 times high (8 pt: 72 x 56 mm).
     const double pt = font(rng);
-    const double w = std::max(width(rng), 8 * pt);
-    const plot::Figure::Print print{w, std::max(w * aspect(rng), 5.5 * pt), pt, dpi(rng)};
+    const double w = std::max(width(rng), 9 * pt);
+    const plot::Figure::Print print{w, std::max(w * aspect(rng), 7 * pt), pt, dpi(rng)};
     plot::Figure figure = i % 2 ? fig7(print) : fig4(print);
     if (plot::pixel_size(figure).height < 150) continue;
     plot::FigureLayout layout;
@@ -186,4 +186,16 @@ TEST_CASE("print figures of random pages keep a clean layout", "[plot][print]") 
     const TextSizes sizes = text_sizes(layout);
     CHECK(sizes.body_min == Approx(print.font_pt).epsilon(1e-3));
   }
+}
+
+TEST_CASE("a page too small for its legend says so", "[plot][print]") {
+  // 50 x 40 mm with 10 pt text: the title, two panels and Fig. 7's legends cannot all fit;
+  // the layout reports the legend it left out instead of drawing it over the axes.
+  plot::FigureLayout layout;
+  plot::render(fig7({50.0, 40.0, 10.0, 300.0}), &layout);
+  const std::vector<std::string> problems = plot::layout_problems(layout);
+  CHECK(!layout.legends_left_out.empty());
+  CHECK(std::any_of(problems.begin(), problems.end(), [](const std::string& p) {
+    return p.find("has no room") != std::string::npos;
+  }));
 }
