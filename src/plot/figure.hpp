@@ -13,12 +13,13 @@
 //   plot::write_figure(figure, "fig.pdf", plot::Format::pdf, 300);
 //
 // Everything is drawn by one code path through cairo (PNG, SVG and PDF alike), text with
-// the bundled DejaVu Sans through cairo-ft. The layout measures every text: y labels wrap
-// or are shortened in the middle ("…"), tick labels that would touch are thinned, a legend
-// goes to the place inside the axes with the least data under it, or beside the axes (inside
-// the image) when every place inside has data, and it grows columns when it is too tall.
-// Event labels sit in rows above the top panel; those that do not fit in three rows are left
-// unlabelled and a key explains the line styles. draw() reports every box it drew.
+// the bundled DejaVu Sans through cairo-ft, kerned (an SVG keeps it as <text> elements). The
+// layout measures every text: y labels wrap or are shortened in the middle ("…"), tick
+// labels that would touch are thinned (every vertical axis keeps two), a legend takes a
+// place inside the axes with no data under it, else goes above the panel or beside the axes.
+// A labelled event's label sits at its mark above the top panel (over it, beside it with a
+// leader, or higher up); other events are light ticks. A series denser than a line can show
+// is drawn as its min/max band. draw() reports every box it drew (FigureLayout).
 //
 // Series are told apart by colour (the Okabe-Ito colour-blind-safe palette) AND by dash
 // pattern (solid, dashed, dotted, dash-dot, ...), so a figure printed in grey stays legible.
@@ -80,8 +81,10 @@ struct Panel {
 
 struct EventMarker {
   double x = 0.0;
-  std::string label;   // printed above the top panel
-  std::string kind{};  // "stick" (dashed grey), "slip" (dash-dot red) or "" (dashed grey)
+  std::string label;  // printed at the mark above the top panel (when labelled)
+  // "stick" (dashed grey), "slip" or "slide" (dash-dot red), another kind such as "tip",
+  // "lift_off", "land" (dash-dot-dot ochre), "" (dashed grey)
+  std::string kind{};
   // Important events are labelled at their marks (without overlapping each other); the rest
   // are drawn as unlabelled ticks (issue 21).
   bool labelled = true;
