@@ -7,7 +7,6 @@
 #include "text/font.hpp"
 
 namespace stiction::plot {
-namespace {
 
 // Owned by the cairo face through user data: released when cairo drops its last reference.
 struct FreeTypeHandles {
@@ -18,6 +17,8 @@ struct FreeTypeHandles {
     if (library) FT_Done_FreeType(library);
   }
 };
+
+namespace {
 
 const cairo_user_data_key_t kHandlesKey{};
 
@@ -43,6 +44,18 @@ CairoFont::CairoFont(const std::filesystem::path& file) {
     delete handles;
     throw text::FontError("cairo could not use the font " + file.string());
   }
+  handles_ = handles;
+}
+
+double CairoFont::kerning(unsigned long left_glyph, unsigned long right_glyph) const {
+  FT_Face face = handles_->face;
+  if (!FT_HAS_KERNING(face) || face->units_per_EM == 0) return 0.0;
+  FT_Vector delta{0, 0};
+  if (FT_Get_Kerning(face, static_cast<FT_UInt>(left_glyph), static_cast<FT_UInt>(right_glyph),
+                     FT_KERNING_UNSCALED, &delta) != 0) {
+    return 0.0;
+  }
+  return static_cast<double>(delta.x) / face->units_per_EM;
 }
 
 CairoFont CairoFont::open_default() { return CairoFont(text::default_font_path()); }

@@ -13,17 +13,20 @@
 //   plot::write_figure(figure, "fig.pdf", plot::Format::pdf, 300);
 //
 // Everything is drawn by one code path through cairo (PNG, SVG and PDF alike), text with
-// the bundled DejaVu Sans through cairo-ft. The layout measures every text: y labels wrap
-// or are shortened in the middle ("…"), tick labels that would touch are thinned, a legend
-// goes to the place inside the axes with the least data under it, or beside the axes (inside
-// the image) when every place inside has data, and it grows columns when it is too tall.
-// Event labels sit in rows above the top panel; those that do not fit in three rows are left
-// unlabelled and a key explains the line styles. draw() reports every box it drew.
+// the bundled DejaVu Sans through cairo-ft, kerned (an SVG keeps it as <text> elements). The
+// layout measures every text: y labels wrap or are shortened in the middle ("…"), tick
+// labels that would touch are thinned (every vertical axis keeps two), a legend takes a
+// place inside the axes with no data under it, else goes above the panel or beside the axes.
+// A labelled event's label sits at its mark above the top panel (over it, beside it with a
+// leader, or higher up); other events are light ticks. A series denser than a line can show
+// is drawn as its min/max band. draw() reports every box it drew (FigureLayout).
 //
 // Series are told apart by colour (the Okabe-Ito colour-blind-safe palette) AND by dash
 // pattern (solid, dashed, dotted, dash-dot, ...), so a figure printed in grey stays legible.
-// All lengths (fonts, line widths, margins) are designed for 1600x1000 pixels and scale with
-// min(width/1600, height/1000).
+// Two designs of sizes: in pixels (fonts, line widths and margins designed for 1600x1000
+// pixels, scaled with min(width/1600, height/1000)), or, when Figure::print is set, in points
+// on a page of width_mm x height_mm: text of font_pt whatever the page size, lines of about
+// 1 pt, a pixel size that is the page at its dpi (docs/plots.md, "How figures are drawn").
 #pragma once
 
 #include <cairo.h>
@@ -41,8 +44,9 @@ namespace stiction::plot {
 
 struct LineStyle {
   image::Rgba colour{0, 0, 0, 255};
-  std::vector<double> dash;  // in multiples of the figure scale (pixels at 1600x1000)
-  double width = 3.0;        // likewise
+  // In line units: pixels at 1600x1000 in the pixel design, 0.3 pt in the print design.
+  std::vector<double> dash;
+  double width = 3.0;
 };
 
 // The style of the index-th series of a panel: colour and dash pattern both cycle, with
@@ -77,8 +81,10 @@ struct Panel {
 
 struct EventMarker {
   double x = 0.0;
-  std::string label;   // printed above the top panel
-  std::string kind{};  // "stick" (dashed grey), "slip" (dash-dot red) or "" (dashed grey)
+  std::string label;  // printed at the mark above the top panel (when labelled)
+  // "stick" (dashed grey), "slip" or "slide" (dash-dot red), another kind such as "tip",
+  // "lift_off", "land" (dash-dot-dot ochre), "" (dashed grey)
+  std::string kind{};
   // Important events are labelled at their marks (without overlapping each other); the rest
   // are drawn as unlabelled ticks (issue 21).
   bool labelled = true;
@@ -111,20 +117,29 @@ enum class Format { png, svg, pdf };
 std::optional<Format> parse_format(const std::string& name);
 const char* extension(Format format);  // ".png", ".svg", ".pdf"
 
-// Draws the figure with cairo into `cr`, whose user space is the figure's pixels (the caller
-// scales for PDF). Returns the boxes drawn. Throws std::invalid_argument for a size below
-// 200x150 or above 16384 pixels, text::FontError if the bundled font is missing.
+// The figure's size in pixels: its print page at the print dpi (rounded) when `print` is set,
+// else width x height.
+struct PixelSize {
+  int width = 0, height = 0;
+};
+PixelSize pixel_size(const Figure& figure);
+
+// Draws the figure with cairo into `cr`, whose user space is the figure's pixels (pixel_size;
+// the caller scales for PDF). Returns the boxes drawn. Throws std::invalid_argument for a size
+// below 200x150 or above 16384 pixels, text::FontError if the bundled font is missing.
 FigureLayout draw(const Figure& figure, cairo_t* cr);
 
-// Draws the figure on a white, opaque image of figure.width x figure.height. A figure without
+// Draws the figure on a white, opaque image of pixel_size(figure). A figure without
 // panels, or panels without data, still gives axes (range [0, 1]) and never NaN positions.
 image::Image render(const Figure& figure, FigureLayout* layout = nullptr);
 // The same; `font` is not used (kept for callers that hold one: text goes through cairo).
 image::Image render(const Figure& figure, text::Font& font);
 
-// Writes the figure atomically as PNG (with `dpi` in its pHYs chunk), SVG (user units =
-// pixels) or PDF (page of width/dpi x height/dpi inches, vector). Throws image::ImageError /
-// io::IoError on a write failure.
+// Writes the figure atomically as PNG (with its dpi in the pHYs chunk), SVG (user units =
+// pixels) or PDF (vector). A print figure's page is width_mm x height_mm in every format (its
+// own dpi; `dpi` is not used); otherwise the PNG carries `dpi`, the PDF page is width/dpi x
+// height/dpi inches and the SVG is width x height px. Throws image::ImageError / io::IoError
+// on a write failure.
 FigureLayout write_figure(const Figure& figure, const std::filesystem::path& path, Format format,
                           double dpi = 100.0);
 

@@ -1,5 +1,6 @@
 #include "plot/layout.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace stiction::plot {
@@ -14,6 +15,27 @@ std::string describe(const TextBox& t) {
 
 // Boxes that merely touch (rounding of a pixel) are not an overlap.
 Rect shrunk(const Rect& r, double by = 0.5) { return {r.x0 + by, r.y0 + by, r.x1 - by, r.y1 - by}; }
+
+// Whether the segment a-b passes through the rectangle (Liang-Barsky clipping).
+bool crosses(Point a, Point b, const Rect& r) {
+  double t0 = 0.0, t1 = 1.0;
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double p[4] = {-dx, dx, -dy, dy};
+  const double q[4] = {a.x - r.x0, r.x1 - a.x, a.y - r.y0, r.y1 - a.y};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0.0) {
+      if (q[i] < 0.0) return false;
+    } else {
+      const double t = q[i] / p[i];
+      if (p[i] < 0.0) {
+        t0 = std::max(t0, t);
+      } else {
+        t1 = std::min(t1, t);
+      }
+    }
+  }
+  return t0 < t1;
+}
 
 }  // namespace
 
@@ -32,6 +54,20 @@ std::vector<std::string> layout_problems(const FigureLayout& layout) {
     if (a.role == TextRole::event_label || a.role == TextRole::title) {
       for (const Rect& l : layout.legends) {
         if (shrunk(a.box).overlaps(l)) problems.push_back("over a legend: " + describe(a));
+      }
+    }
+  }
+  for (int p : layout.legends_left_out) {
+    problems.push_back("the legend of panel " + std::to_string(p) + " has no room");
+  }
+  // Leaders from event marks to their labels cross no text (their own label is where they end).
+  for (const EventLabelReport& e : layout.event_labels) {
+    for (std::size_t k = 1; k < e.leader.size(); ++k) {
+      for (std::size_t t = 0; t < layout.texts.size(); ++t) {
+        if (static_cast<int>(t) == e.text) continue;
+        if (crosses(e.leader[k - 1], e.leader[k], shrunk(layout.texts[t].box, 1.0))) {
+          problems.push_back("an event's leader crosses " + describe(layout.texts[t]));
+        }
       }
     }
   }

@@ -31,18 +31,46 @@ struct TextBox {
   int panel = -1;  // the panel it belongs to (-1: the figure)
 };
 
+// A labelled event: its mark (on the upper edge of the top panel), its label (an index into
+// FigureLayout::texts; -1 when there was no room for it, even shortened, in any row: reported
+// here, never dropped silently) and the leader drawn from the mark to a label that does not
+// sit over its mark (a polyline from `mark` to the label's edge; empty when there is none).
+struct EventLabelReport {
+  int event = -1;  // index in Figure::events
+  Point mark;
+  int text = -1;
+  std::vector<Point> leader;
+};
+
+// An axis as drawn: the data values at the ends of a frame (lo at its left or bottom edge);
+// on a log axis the values are mapped by their logarithm.
+struct AxisRange {
+  double lo = 0.0, hi = 1.0;
+  bool log = false;
+};
+
 struct FigureLayout {
   int width = 0, height = 0;
   std::vector<TextBox> texts;
   std::vector<Rect> panels;          // axes frames
   std::vector<Rect> legends;         // legend boxes (their entries are in `texts`)
-  std::vector<bool> legend_outside;  // per legend: placed beside the axes, not inside
-  std::vector<std::string> series;   // Series::source (or label) of every series drawn
+  std::vector<bool> legend_outside;  // per legend: placed outside the axes (above or beside)
+  std::vector<int> legend_panels;    // per legend: the panel it belongs to
+  // Per legend: pixels of data (series, reference lines, event marks) under its box; 0 but
+  // for a legend that found no free place inside and no room outside the axes.
+  std::vector<long> legend_ink;
+  std::vector<int> legends_left_out;           // panels whose legend had no room at all (a problem)
+  std::vector<AxisRange> y_axes;               // per panel: its vertical axis
+  AxisRange x_axis;                            // the shared horizontal axis
+  std::vector<std::string> series;             // Series::source (or label) of every series drawn
+  std::vector<EventLabelReport> event_labels;  // every labelled event inside the time window
+  double dpi = 0.0;  // a print figure's pixels per inch (Figure::print); 0: a pixel design
 };
 
 // Everything wrong with a layout, one line each: two text boxes that overlap, a text or a
 // legend that leaves the image, a legend over another legend, an event label over a legend
-// (legend entries may of course sit inside their own legend). Empty: a clean layout.
+// (legend entries may of course sit inside their own legend), an event's leader across a
+// text, a legend left out for want of room. Empty: a clean layout.
 std::vector<std::string> layout_problems(const FigureLayout& layout);
 
 }  // namespace stiction::plot

@@ -1,0 +1,182 @@
+#include "plot/painter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace stiction::plot {
+
+Painter::Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout,
+                 std::vector<PlacedText>* deferred)
+    : cr_(cr), font_(font), layout_(layout), deferred_(deferred) {
+  cairo_set_font_face(cr_, font.face());
+  cairo_font_options_t* options = cairo_font_options_create();
+  // Unhinted metrics: the same advances on every surface, so PNG, SVG and PDF lay out alike.
+  cairo_font_options_set_hint_metrics(options, CAIRO_HINT_METRICS_OFF);
+  cairo_font_options_set_hint_style(options, CAIRO_HINT_STYLE_SLIGHT);
+  cairo_font_options_set_antialias(options, CAIRO_ANTIALIAS_GRAY);
+  cairo_set_font_options(cr_, options);
+  cairo_font_options_destroy(options);
+  cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+}
+
+struct Painter::Glyphs {
+  cairo_glyph_t* glyphs = nullptr;
+  int count = 0;
+  cairo_text_cluster_t* clusters = nullptr;  // for text extraction from a PDF
+  int cluster_count = 0;
+  cairo_text_cluster_flags_t flags{};
+  Glyphs() = default;
+  Glyphs(const Glyphs&) = delete;
+  Glyphs& operator=(const Glyphs&) = delete;
+  Glyphs(Glyphs&& o) noexcept { *this = std::move(o); }
+  Glyphs& operator=(Glyphs&& o) noexcept {
+    std::swap(glyphs, o.glyphs);
+    std::swap(count, o.count);
+    std::swap(clusters, o.clusters);
+    std::swap(cluster_count, o.cluster_count);
+    std::swap(flags, o.flags);
+    return *this;
+  }
+  ~Glyphs() {
+    cairo_glyph_free(glyphs);
+    cairo_text_cluster_free(clusters);
+  }
+};
+
+Painter::Glyphs Painter::shape(const std::string& text) {
+  Glyphs g;
+  cairo_scaled_font_t* font = cairo_get_scaled_font(cr_);
+  if (cairo_scaled_font_text_to_glyphs(font, 0.0, 0.0, text.c_str(), static_cast<int>(text.size()),
+                                       &g.glyphs, &g.count, &g.clusters, &g.cluster_count,
+                                       &g.flags) != CAIRO_STATUS_SUCCESS) {
+    return Glyphs{};
+  }
+  cairo_matrix_t matrix;
+  cairo_get_font_matrix(cr_, &matrix);
+  const double size = matrix.xx;  // no rotation or skew in the font matrix
+  double shift = 0.0;
+  for (int i = 1; i < g.count; ++i) {
+    shift += size * font_.kerning(g.glyphs[i - 1].index, g.glyphs[i].index);
+    g.glyphs[i].x += shift;
+  }
+  return g;
+}
+
+Extent Painter::measure(const std::string& text, double size) {
+  cairo_set_font_size(cr_, size);
+  cairo_font_extents_t font;
+  cairo_font_extents(cr_, &font);
+  const Glyphs g = shape(text);
+  cairo_text_extents_t ink{};
+  if (g.count > 0) cairo_glyph_extents(cr_, g.glyphs, g.count, &ink);
+  return {ink.x_advance, -ink.y_bearing, font.ascent, font.descent};
+}
+
+Rect Painter::text(const std::string& s, double x, double baseline, double size, image::Rgba colour,
+                   TextRole role, int panel, bool rotated) {
+  const Extent e = measure(s, size);
+  if (deferred_) {
+    deferred_->push_back({s, x, baseline, size, colour, rotated});
+  } else {
+    set_colour(colour);
+    cairo_save(cr_);
+    cairo_translate(cr_, x, baseline);
+    if (rotated) cairo_rotate(cr_, -0.5 * std::acos(-1.0));
+    const Glyphs g = shape(s);
+    cairo_show_text_glyphs(cr_, s.c_str(), static_cast<int>(s.size()), g.glyphs, g.count,
+                           g.clusters, g.cluster_count, g.flags);
+    cairo_new_path(cr_);
+    cairo_restore(cr_);
+  }
+  const Rect box = rotated
+                       ? Rect{x - e.line_ascent, baseline - e.width, x + e.line_descent, baseline}
+                       : Rect{x, baseline - e.line_ascent, x + e.width, baseline + e.line_descent};
+  layout_.texts.push_back({s, role, box, panel});
+  return box;
+}
+
+// Stroked in pieces of at most kPiece segments: cairo's stroker holds the polygon of the
+// whole path it strokes, and a dense series that swings across its panel (a quaternion
+// over a long run) took over 100 MB in one stroke. Each piece starts where the last one
+// ended, its dash pattern carried on (cairo restarts the pattern at every sub-path).
+void Painter::polyline(const std::vector<Point>& points, const Stroke& stroke) {
+  constexpr int kPiece = 512;
+  apply(stroke);
+  bool open = false;
+  int segments = 0;
+  double along = 0.0;  // length since the sub-path began, for the dash offset
+  Point last{};
+  for (const Point& p : points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+      open = false;
+      continue;
+    }
+    if (!open) {
+      cairo_move_to(cr_, p.x, p.y);
+      open = true;
+      along = 0.0;
+    } else {
+      cairo_line_to(cr_, p.x, p.y);
+      along += std::hypot(p.x - last.x, p.y - last.y);
+      if (++segments == kPiece) {
+        cairo_stroke(cr_);
+        segments = 0;
+        set_dash_offset(stroke, along);
+        cairo_move_to(cr_, p.x, p.y);
+      }
+    }
+    last = p;
+  }
+  cairo_stroke(cr_);
+}
+
+void Painter::fill_rect(const Rect& r, image::Rgba colour) {
+  cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+  set_colour(colour);
+  cairo_fill(cr_);
+}
+
+void Painter::fill_polygon(const std::vector<Point>& points, image::Rgba colour) {
+  if (points.size() < 3) return;
+  cairo_move_to(cr_, points[0].x, points[0].y);
+  for (std::size_t i = 1; i < points.size(); ++i) cairo_line_to(cr_, points[i].x, points[i].y);
+  cairo_close_path(cr_);
+  set_colour(colour);
+  cairo_fill(cr_);
+}
+
+void Painter::stroke_rect(const Rect& r, const Stroke& stroke) {
+  cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+  apply(stroke);
+  cairo_stroke(cr_);
+}
+
+void Painter::clip(const Rect& r) {
+  cairo_save(cr_);
+  cairo_rectangle(cr_, r.x0, r.y0, r.width(), r.height());
+  cairo_clip(cr_);
+}
+
+void Painter::unclip() { cairo_restore(cr_); }
+
+void Painter::set_colour(image::Rgba c) {
+  cairo_set_source_rgba(cr_, c.r / 255.0, c.g / 255.0, c.b / 255.0, c.a / 255.0);
+}
+
+void Painter::apply(const Stroke& stroke) {
+  set_colour(stroke.colour);
+  cairo_set_line_width(cr_, stroke.width);
+  set_dash_offset(stroke, 0.0);
+}
+
+void Painter::set_dash_offset(const Stroke& stroke, double offset) {
+  // A dot is an "on" length of zero with round caps; cairo drops such pieces between
+  // longer dashes, so they get a length too small to see.
+  std::vector<double> dash = stroke.dash;
+  for (std::size_t i = 0; i < dash.size(); i += 2) dash[i] = std::max(dash[i], 0.01);
+  cairo_set_dash(cr_, dash.empty() ? nullptr : dash.data(), static_cast<int>(dash.size()), offset);
+}
+
+}  // namespace stiction::plot

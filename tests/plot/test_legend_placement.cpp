@@ -1,0 +1,187 @@
+// A legend avoids the data: inside the axes only where no series passes (measured here by
+// rasterizing the series alone, independently of the figure's own placement code), else
+// above the panel or beside the axes, never over a frame. Tested on generated figures:
+// 1..8 series of random shapes per panel, random sizes, pixel and print designs.
+#include <cairo.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "plot/figure.hpp"
+
+using namespace stiction;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kOut = fs::path(STICTION_TEST_OUTPUT_DIR) / "legends";
+
+double map(const plot::AxisRange& a, double v, double p_lo, double p_hi) {
+  double u = v, lo = a.lo, hi = a.hi;
+  if (a.log) {
+    if (!(v > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    u = std::log10(v);
+    lo = std::log10(lo);
+    hi = std::log10(hi);
+  }
+  return p_lo + (u - lo) / (hi - lo) * (p_hi - p_lo);
+}
+
+// Pixels a series' stroke inks, plus one pixel around it: every series of `panel` drawn as a
+// plain polyline at its width + 2 px (a dense band lies inside its polyline's ink).
+long ink_under(const plot::Figure& figure, const plot::FigureLayout& layout, int panel,
+               const plot::Rect& box) {
+  const plot::Rect& f = layout.panels[panel];
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
+      cairo_image_surface_create(CAIRO_FORMAT_A8, layout.width, layout.height),
+      &cairo_surface_destroy);
+  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()),
+                                                        &cairo_destroy);
+  cairo_rectangle(cr.get(), f.x0, f.y0, f.width(), f.height());
+  cairo_clip(cr.get());
+  const double scale = figure.print ? 0.3 * figure.print->dpi / 72.0
+                                    : std::min(layout.width / 1600.0, layout.height / 1000.0);
+  const plot::Panel& p = figure.panels[panel];
+  for (std::size_t i = 0; i < p.series.size(); ++i) {
+    const plot::Series& s = p.series[i];
+    const plot::LineStyle style = s.style ? *s.style : plot::series_style(static_cast<int>(i));
+    cairo_set_line_width(cr.get(), style.width * scale + 2.0);
+    cairo_set_line_cap(cr.get(), CAIRO_LINE_CAP_ROUND);
+    cairo_set_line_join(cr.get(), CAIRO_LINE_JOIN_ROUND);
+    bool open = false;
+    for (std::size_t k = 0; k < std::min(s.x.size(), s.y.size()); ++k) {
+      const double x = map(layout.x_axis, s.x[k], f.x0, f.x1);
+      const double y = map(layout.y_axes[panel], s.y[k], f.y1, f.y0);
+      if (!std::isfinite(x) || !std::isfinite(y)) {
+        open = false;
+        continue;
+      }
+      if (open) {
+        cairo_line_to(cr.get(), x, y);
+      } else {
+        cairo_move_to(cr.get(), x, y);
+        open = true;
+      }
+    }
+    cairo_stroke(cr.get());
+  }
+  cairo_surface_flush(surface.get());
+  const unsigned char* data = cairo_image_surface_get_data(surface.get());
+  const int stride = cairo_image_surface_get_stride(surface.get());
+  long inked = 0;
+  for (int y = std::max(0, static_cast<int>(box.y0));
+       y < std::min(layout.height, static_cast<int>(box.y1)); ++y) {
+    for (int x = std::max(0, static_cast<int>(box.x0));
+         x < std::min(layout.width, static_cast<int>(box.x1)); ++x) {
+      inked += data[static_cast<std::size_t>(y) * stride + x] != 0 ? 1 : 0;
+    }
+  }
+  return inked;
+}
+
+// A random series shape over [0, duration].
+plot::Series random_series(std::mt19937& rng, double duration, int index) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  plot::Series s;
+  const int shape = static_cast<int>(7 * unit(rng));
+  const double a = 0.2 + 3 * unit(rng), b = 4 * (unit(rng) - 0.5), w = 0.5 + 8 * unit(rng),
+               phase = 6.3 * unit(rng);
+  const int samples = 200 + static_cast<int>(1800 * unit(rng));
+  for (int k = 0; k <= samples; ++k) {
+    const double t = duration * k / samples;
+    double y = 0.0;
+    switch (shape) {
+      case 0:
+        y = b + a * std::sin(w * t + phase);
+        break;
+      case 1:
+        y = b + (t > duration * unit(rng) * 0.0 + duration * 0.4 ? a : -a);  // a step
+        break;
+      case 2:
+        y = b + a * t / duration;  // a ramp
+        break;
+      case 3:
+        y = b;  // a constant
+        break;
+      case 4:
+        y = b + a * (unit(rng) - 0.5);  // noise
+        break;
+      case 5:
+        y = b + a * std::sin(300.0 * t);  // dense
+        break;
+      default:
+        y = b + a * std::exp(-w * t / duration);  // a decay
+    }
+    if (shape == 0 && k > samples / 3 && k < samples / 3 + 20) y = std::nan("");  // a gap
+    s.x.push_back(t);
+    s.y.push_back(y);
+  }
+  s.label =
+      "series " + std::to_string(index) + std::string(static_cast<std::size_t>(8 * unit(rng)), 'x');
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("legends are placed where no series is, or outside the axes", "[plot][legend]") {
+  std::mt19937 rng(606);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  fs::create_directories(kOut);
+  double worst = 0.0;
+  int inside = 0, outside = 0;
+  for (int i = 0; i < 60; ++i) {
+    plot::Figure figure;
+    if (unit(rng) < 0.3) {
+      figure.print = plot::Figure::Print{70 + 110 * unit(rng), 50 + 80 * unit(rng),
+                                         7 + 3 * unit(rng), 150 + 250 * unit(rng)};
+    } else {
+      figure.width = 500 + static_cast<int>(1900 * unit(rng));
+      figure.height = 400 + static_cast<int>(1200 * unit(rng));
+    }
+    const double duration = 1 + 10 * unit(rng);
+    const int panels = 1 + static_cast<int>(3 * unit(rng));
+    for (int p = 0; p < panels; ++p) {
+      plot::Panel& panel = figure.panels.emplace_back();
+      panel.label = "quantity " + std::to_string(p);
+      panel.unit = "m";
+      const int n = 1 + static_cast<int>(8 * unit(rng));
+      for (int k = 0; k < n; ++k) panel.series.push_back(random_series(rng, duration, k));
+    }
+    plot::FigureLayout layout;
+    if (i < 8 || i == 9 || i == 54) {
+      layout = plot::write_figure(figure, kOut / ("random_" + std::to_string(i) + ".png"),
+                                  plot::Format::png);
+    } else {
+      plot::render(figure, &layout);
+    }
+    INFO("figure " << i << ", " << layout.width << " x " << layout.height);
+    const std::vector<std::string> problems = plot::layout_problems(layout);
+    for (const std::string& p : problems) UNSCOPED_INFO(p);
+    CHECK(problems.empty());
+    REQUIRE(layout.legend_panels.size() == layout.legends.size());
+    for (std::size_t k = 0; k < layout.legends.size(); ++k) {
+      const plot::Rect& box = layout.legends[k];
+      const int p = layout.legend_panels[k];
+      if (layout.legend_outside[k]) {
+        ++outside;
+        for (const plot::Rect& f : layout.panels) CHECK_FALSE(box.overlaps(f));
+        continue;
+      }
+      ++inside;
+      CHECK(box.inside(layout.panels[p]));
+      const long inked = ink_under(figure, layout, p, box);
+      worst = std::max(worst, static_cast<double>(inked) / (box.width() * box.height()));
+      CHECK(inked == 0);
+    }
+  }
+  CHECK(inside > 0);
+  CHECK(outside > 0);
+  WARN("legends inside " << inside << ", outside " << outside
+                         << "; worst fraction of an inside legend's box over a series: " << worst);
+}
