@@ -508,7 +508,7 @@ PanelSpec panel_spec(std::vector<std::string> signals, std::vector<std::string> 
 PlotSpec paper_fig4_spec() {
   PlotSpec spec;
   spec.name = "fig4_sphere";
-  spec.title = "Simulation I: sphere rolling with slip (cf. paper Fig. 4)";
+  spec.title = "Sphere rolling with slip (cf. paper Fig. 4)";  // one line at 88 mm, 9 pt
   spec.panels.push_back(panel_spec({"sphere.v.x", "ground.slip.x"},
                                    {"centre of the sphere", "contact point"}, "Horizontal velocity",
                                    "m/s"));
@@ -520,7 +520,7 @@ PlotSpec paper_fig4_spec() {
 PlotSpec paper_fig7_spec() {
   PlotSpec spec;
   spec.name = "fig7_two_link";
-  spec.title = "Simulation II: two-link arm with joint friction (cf. paper Fig. 7)";
+  spec.title = "Two-link arm, joint friction (cf. paper Fig. 7)";
   spec.panels.push_back(panel_spec({"arm.theta.0", "arm.theta.1"}, {"joint 0", "joint 1"},
                                    "Joint angle \u03B8", "rad"));
   PanelSpec torque = panel_spec({"motor0.tau", "motor1.tau"}, {"joint 0", "joint 1"},
@@ -744,15 +744,22 @@ Figure make_comparison_figure(const PlotSpec& spec, const std::vector<Run>& runs
   }
   std::vector<const core::Trajectory*> trajectories;
   for (const Run& run : runs) trajectories.push_back(run.trajectory);
+  // A panel of one signal per run has a legend of the run names alone, in the same colours
+  // and dashes in every panel: it is shown once, at the first such panel (a one-column
+  // figure has no room to repeat it, and a reader needs it once).
+  bool runs_legend_shown = false;
   for (const PanelSpec* ps : panels_of(spec)) {
     Panel panel = panel_frame(*ps);
     const int n_runs = static_cast<int>(runs.size());
+    const bool repeat_of_runs_legend = ps->signals.size() == 1 && runs_legend_shown;
+    runs_legend_shown = runs_legend_shown || ps->signals.size() == 1;
     for (const std::size_t i : drawn_signals(*ps, trajectories, panel)) {
       for (int r = 0; r < n_runs; ++r) {
         const Run& run = runs[r];
         Series series;
         const std::string what = ps->legend.empty() ? signal_label(ps->signals[i]) : ps->legend[i];
-        series.label = ps->signals.size() == 1 ? run.name : run.name + ": " + what;
+        series.label = ps->signals.size() == 1 ? (repeat_of_runs_legend ? "" : run.name)
+                                               : run.name + ": " + what;
         series.source = ps->signals[i];
         signal_series(*run.trajectory, *run.trajectory->find(ps->signals[i]), *ps, series.x,
                       series.y);
@@ -780,6 +787,17 @@ FigureLayout write_comparison_plot(const PlotSpec& spec, const std::vector<Run>&
   return write_figure(make_comparison_figure(spec, runs), path, format, spec.dpi);
 }
 
+namespace {
+
+// A comparison of more than two runs is a two-column figure (180 mm): its legend, one entry
+// per run and signal, has no room beside or above the panels of a one-column page.
+PlotSpec widen_for_runs(PlotSpec spec, std::size_t runs) {
+  if (runs > 2 && spec.print) spec.print->width_mm = 180.0;
+  return spec;
+}
+
+}  // namespace
+
 PlotSpec default_comparison_spec(const std::vector<Run>& runs) {
   std::vector<std::string> common;
   for (std::size_t r = 0; r < runs.size(); ++r) {
@@ -798,7 +816,7 @@ PlotSpec default_comparison_spec(const std::vector<Run>& runs) {
   if (specs.empty()) throw InputError("the runs have no signal in common to compare");
   PlotSpec spec = specs.front();
   spec.name = "compare";
-  return spec;
+  return widen_for_runs(spec, runs.size());
 }
 
 PlotSpec comparison_spec(const std::vector<Run>& runs, const std::vector<std::string>& signals,
@@ -846,7 +864,7 @@ PlotSpec comparison_spec(const std::vector<Run>& runs, const std::vector<std::st
     if (s.name.rfind("signals", 0) != 0) continue;  // the paper figures
     spec.panels.insert(spec.panels.end(), s.panels.begin(), s.panels.end());
   }
-  return spec;
+  return widen_for_runs(spec, runs.size());
 }
 
 }  // namespace stiction::plot

@@ -161,9 +161,10 @@ std::filesystem::path plot_path(const PlotSpec& spec, const std::filesystem::pat
                                 std::optional<Format> override = std::nullopt);
 
 // Several runs in one figure: each panel shows its signals for every run, labelled by run
-// name ("two_link", "two_link_lugre"); a run's colour is the same in every panel; a spec
-// without a title gets "RUN vs RUN ...". Events are not marked. Every
-// signal must exist in every run (scene::InputError otherwise, naming the run).
+// name ("two_link", "two_link_lugre"); a run's colour is the same in every panel, and a
+// legend of run names alone is drawn once (at the first such panel); a spec without a title gets
+// "RUN vs RUN ...". Events are not marked. Every signal must exist in every run (scene::InputError
+// otherwise, naming the run).
 struct Run {
   std::string name;
   const core::Trajectory* trajectory = nullptr;
@@ -173,6 +174,7 @@ void write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
                            const std::filesystem::path& png);
 FigureLayout write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
                                    const std::filesystem::path& path, Format format);
+// A comparison of more than two runs is a two-column figure, 180 mm wide.
 // The comparison to draw for `stiction compare`: drift_comparison_spec() when every run has
 // the arm's joint angles, else the first default spec of the columns common to all runs.
 PlotSpec default_comparison_spec(const std::vector<Run>& runs);

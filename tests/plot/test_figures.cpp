@@ -35,15 +35,20 @@ TEST_CASE("paper Fig. 4 replica", "[plot][golden]") {
   const plot::Figure figure =
       plot::make_figure(plot::paper_fig4_spec(), run, {{"ground.stick_time", t_stick}});
   const image::Image img = plot::render(figure, font);
-  CHECK(img.width == 1600);
-  CHECK(img.height == 1000);
+  // A one-column journal figure: 88 mm wide, two panels 80 mm high, at 300 dpi.
+  REQUIRE(figure.print.has_value());
+  CHECK(figure.print->width_mm == 88.0);
+  CHECK(figure.print->height_mm == plot::default_height_mm(2));
+  CHECK(img.width == static_cast<int>(std::lround(88.0 / 25.4 * 300.0)));
+  CHECK(img.height == static_cast<int>(std::lround(plot::default_height_mm(2) / 25.4 * 300.0)));
   check_golden("plot_fig4", img);
 }
 
 TEST_CASE("paper Fig. 7 replica", "[plot][golden]") {
   text::Font font = text::Font::open_default();
   const core::Trajectory run = plot::testing::arm_run(15.0);
-  const image::Image img = plot::render(plot::make_figure(plot::paper_fig7_spec(), run, std::vector<plot::PlotEvent>{}), font);
+  const image::Image img = plot::render(
+      plot::make_figure(plot::paper_fig7_spec(), run, std::vector<plot::PlotEvent>{}), font);
   check_golden("plot_fig7", img);
 }
 
@@ -87,6 +92,7 @@ TEST_CASE("axes for awkward data: log, tiny, flat, empty, NaN", "[plot][golden]"
 TEST_CASE("write_plot writes a PNG of the requested size", "[plot]") {
   const core::Trajectory run = plot::testing::sphere_run(0.5);
   plot::PlotSpec spec = plot::paper_fig4_spec();
+  spec.print.reset();  // the legacy pixel size (`size = [800, 500]`)
   spec.width = 800;
   spec.height = 500;
   const std::filesystem::path out = kFailures / "write_plot" / "fig4_small.png";

@@ -75,6 +75,7 @@ plot::Figure fig4() {
       plot::make_figure(plot::paper_fig4_spec(), plot::testing::sphere_run(1.0),
                         {{"ground.stick_time", plot::testing::sphere_stick_time()}});
   figure.title += " & <friends>";  // characters XML must escape
+  figure.print.reset();  // the pixel design: the title on one line, 1 user unit a pixel
   return figure;
 }
 
