@@ -2,25 +2,24 @@
 // video, the plots, the frames, Ctrl-C during the render, and the checks that run before the
 // simulation (DESIGN sections 3 and 4). Each test runs the built binary in a scratch
 // directory, at small frame sizes and short durations so that it takes a few seconds.
-#include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <regex>
-#include <string>
-#include <thread>
-#include <vector>
-
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "run_stiction.hpp"
 
@@ -70,7 +69,8 @@ bool finalized_mp4(const fs::path& p) {
 std::vector<std::string> names_in(const fs::path& dir) {
   std::vector<std::string> names;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec)) names.push_back(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
 }
@@ -84,9 +84,9 @@ nlohmann::json read_json(const fs::path& p) {
 
 TEST_CASE("run writes video.mp4 and the scene's plots", "[app][outputs]") {
   const fs::path dir = scratch("video");
-  const Outcome o = run_cli({"run", "sphere_roll", "--duration", "0.2", "--set", "render.size=[320,180]",
-                              "--out", "out"},
-                             dir);
+  const Outcome o = run_cli(
+      {"run", "sphere_roll", "--duration", "0.2", "--set", "render.size=[320,180]", "--out", "out"},
+      dir);
   INFO(o.out);
   REQUIRE(o.code == 0);
   CHECK(finalized_mp4(dir / "out" / "video.mp4"));
@@ -94,7 +94,8 @@ TEST_CASE("run writes video.mp4 and the scene's plots", "[app][outputs]") {
   // The paper figure, then every signal in figures of a few panels each.
   CHECK(names_in(dir / "out" / "plots") ==
         std::vector<std::string>{"fig4_sphere.png", "signals_1.png", "signals_2.png"});
-  CHECK(png_size(dir / "out" / "plots" / "fig4_sphere.png") == std::pair{1600, 1000});
+  // A one-column figure, 88 x 80 mm at 300 dpi (docs/plots.md).
+  CHECK(png_size(dir / "out" / "plots" / "fig4_sphere.png") == std::pair{1039, 945});
   // Only the finished files: no temporary names, no partial video, no frames unasked.
   CHECK(names_in(dir / "out") ==
         std::vector<std::string>{"plots", "summary.json", "trajectory.csv", "video.mp4"});
@@ -107,9 +108,10 @@ TEST_CASE("run --frames writes one PNG per video frame", "[app][outputs]") {
   const fs::path dir = scratch("frames");
   fs::create_directories(dir / "out" / "frames");
   std::ofstream(dir / "out" / "frames" / "000099.png") << "from an older, longer run";
-  const Outcome o = run_cli({"run", "sphere_roll", "--duration", "0.05", "--set", "render.size=[320,180]",
-                              "--no-video", "--no-plots", "--frames", "--out", "out"},
-                             dir);
+  const Outcome o =
+      run_cli({"run", "sphere_roll", "--duration", "0.05", "--set", "render.size=[320,180]",
+               "--no-video", "--no-plots", "--frames", "--out", "out"},
+              dir);
   INFO(o.out);
   REQUIRE(o.code == 0);
   // 0.05 s at 60 fps: frames at 0, 1/60, 2/60, 3/60 s. The stale frame 99 is gone.
@@ -121,9 +123,8 @@ TEST_CASE("run --frames writes one PNG per video frame", "[app][outputs]") {
 
 TEST_CASE("run --no-video --no-plots writes neither", "[app][outputs]") {
   const fs::path dir = scratch("none");
-  const Outcome o = run_cli({"run", "sphere_roll", "--duration", "0.2", "--no-video", "--no-plots",
-                              "--out", "out"},
-                             dir);
+  const Outcome o = run_cli(
+      {"run", "sphere_roll", "--duration", "0.2", "--no-video", "--no-plots", "--out", "out"}, dir);
   INFO(o.out);
   REQUIRE(o.code == 0);
   CHECK(names_in(dir / "out") == std::vector<std::string>{"summary.json", "trajectory.csv"});
@@ -154,7 +155,8 @@ name = "speed"
 
 TEST_CASE("bad render settings fail before the simulation", "[app][outputs]") {
   const fs::path dir = scratch("bad_render");
-  const Outcome o = run_cli({"run", "sphere_roll", "--set", "render.size=[321,180]", "--out", "out"}, dir);
+  const Outcome o =
+      run_cli({"run", "sphere_roll", "--set", "render.size=[321,180]", "--out", "out"}, dir);
   INFO(o.out);
   CHECK(o.code == 2);
   CHECK_THAT(o.out, Contains("render.size"));
@@ -165,8 +167,8 @@ TEST_CASE("an unstable run writes no plots and no video", "[app][outputs]") {
   const fs::path dir = scratch("unstable");
   // RK4 with a step far beyond the contact's limit (about 1.7e-4 s for sphere_roll).
   const Outcome o = run_cli({"run", "sphere_roll", "--dt", "2e-3", "--duration", "0.5", "--set",
-                              "render.size=[320,180]", "--out", "out", "--force-step"},
-                             dir);
+                             "render.size=[320,180]", "--out", "out", "--force-step"},
+                            dir);
   INFO(o.out);
   REQUIRE(o.code == 3);
   CHECK(names_in(dir / "out") == std::vector<std::string>{"summary.json", "trajectory.csv"});
@@ -176,9 +178,18 @@ TEST_CASE("Ctrl-C during the render keeps a playable video.partial.mp4", "[app][
   const fs::path dir = scratch("interrupt");
   const fs::path out = dir / "out";
   // Four times slow motion: 481 frames, far more than are rendered before the signal lands.
-  std::vector<std::string> args{STICTION_BINARY, "run", "sphere_roll", "--set", "render.size=[320,180]",
-                                "--set", "render.slow_motion=4", "--no-plots", "--frames", "--quiet",
-                                "--out", out.string()};
+  std::vector<std::string> args{STICTION_BINARY,
+                                "run",
+                                "sphere_roll",
+                                "--set",
+                                "render.size=[320,180]",
+                                "--set",
+                                "render.slow_motion=4",
+                                "--no-plots",
+                                "--frames",
+                                "--quiet",
+                                "--out",
+                                out.string()};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -191,7 +202,8 @@ TEST_CASE("Ctrl-C during the render keeps a playable video.partial.mp4", "[app][
 
   // The third frame on disk means the renderer is running (and the SIGINT handler is set).
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (!fs::exists(out / "frames" / "000002.png") && std::chrono::steady_clock::now() < deadline) {
+  while (!fs::exists(out / "frames" / "000002.png") &&
+         std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   ::kill(pid, SIGINT);
@@ -207,21 +219,21 @@ TEST_CASE("Ctrl-C during the render keeps a playable video.partial.mp4", "[app][
 TEST_CASE("the tolerance option selects rk4_adaptive", "[app][outputs]") {
   const fs::path dir = scratch("tolerance");
   const Outcome ok = run_cli({"run", "sphere_roll", "--tolerance", "1e-7", "--duration", "0.1",
-                               "--no-video", "--no-plots", "--out", "out"},
-                              dir);
+                              "--no-video", "--no-plots", "--out", "out"},
+                             dir);
   INFO(ok.out);
   REQUIRE(ok.code == 0);
   CHECK(read_json(dir / "out" / "summary.json")["integrator"] == "rk4_adaptive");
 
   const Outcome clash = run_cli({"run", "sphere_roll", "--tolerance", "1e-7", "--integrator", "rk4",
-                                  "--no-video", "--no-plots", "--out", "out2"},
-                                 dir);
+                                 "--no-video", "--no-plots", "--out", "out2"},
+                                dir);
   CHECK(clash.code == 2);
   CHECK_THAT(clash.out, Contains("--tolerance"));
 
-  const Outcome missing = run_cli({"run", "sphere_roll", "--integrator", "rk4_adaptive", "--no-video",
-                                    "--no-plots", "--out", "out3"},
-                                   dir);
+  const Outcome missing = run_cli({"run", "sphere_roll", "--integrator", "rk4_adaptive",
+                                   "--no-video", "--no-plots", "--out", "out3"},
+                                  dir);
   CHECK(missing.code == 2);
   CHECK_THAT(missing.out, Contains("tolerance"));
 }
@@ -229,11 +241,14 @@ TEST_CASE("the tolerance option selects rk4_adaptive", "[app][outputs]") {
 TEST_CASE("[simulation] tolerance selects rk4_adaptive and is checked", "[app][outputs]") {
   const fs::path dir = scratch("tolerance_key");
   const std::string body = "[bodies.block]\ntype = \"point_mass\"\nmass = 1.0\n";
-  std::ofstream(dir / "adaptive.toml") << "[simulation]\nduration = 0.1\ntolerance = 1e-8\n" << body;
-  std::ofstream(dir / "clash.toml") << "[simulation]\nintegrator = \"rk4\"\ntolerance = 1e-8\n" << body;
+  std::ofstream(dir / "adaptive.toml") << "[simulation]\nduration = 0.1\ntolerance = 1e-8\n"
+                                       << body;
+  std::ofstream(dir / "clash.toml") << "[simulation]\nintegrator = \"rk4\"\ntolerance = 1e-8\n"
+                                    << body;
   std::ofstream(dir / "missing.toml") << "[simulation]\nintegrator = \"rk4_adaptive\"\n" << body;
 
-  const Outcome ok = run_cli({"run", "adaptive.toml", "--no-video", "--no-plots", "--out", "out"}, dir);
+  const Outcome ok =
+      run_cli({"run", "adaptive.toml", "--no-video", "--no-plots", "--out", "out"}, dir);
   INFO(ok.out);
   REQUIRE(ok.code == 0);
   CHECK(read_json(dir / "out" / "summary.json")["integrator"] == "rk4_adaptive");
@@ -248,13 +263,14 @@ TEST_CASE("[simulation] tolerance selects rk4_adaptive and is checked", "[app][o
 
 TEST_CASE("compare overlays two runs in compare.png", "[app][outputs]") {
   const fs::path dir = scratch("compare");
-  const Outcome o = run_cli({"compare", "two_link", "two_link_lugre", "--set", "simulation.duration=6",
-                              "--out", "cmp"},
-                             dir);
+  const Outcome o = run_cli(
+      {"compare", "two_link", "two_link_lugre", "--set", "simulation.duration=6", "--out", "cmp"},
+      dir);
   INFO(o.out);
   REQUIRE(o.code == 0);
   CHECK(names_in(dir / "cmp") == std::vector<std::string>{"compare.png"});
-  CHECK(png_size(dir / "cmp" / "compare.png") == std::pair{1600, 1000});
+  // Two runs: a one-column figure, 88 mm wide at 300 dpi, 106 mm high for its three panels.
+  CHECK(png_size(dir / "cmp" / "compare.png") == std::pair{1039, 1252});
   CHECK_THAT(o.out, Contains("cmp/compare.png"));
 
   const Outcome one = run_cli({"compare", "two_link", "--out", "cmp1"}, dir);
