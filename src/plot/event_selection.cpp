@@ -117,7 +117,12 @@ const std::vector<std::string>& selector_words() {
 }
 
 std::optional<EventSelector> parse_event_selector(const std::string& text, std::string& why) {
-  const std::size_t dot = text.rfind('.');
+  std::size_t dot = text.rfind('.');
+  // "floor.1": the whole text names one contact point of a contact with several.
+  if (dot != std::string::npos && dot + 1 < text.size() &&
+      text.find_first_not_of("0123456789", dot + 1) == std::string::npos) {
+    dot = std::string::npos;
+  }
   EventSelector selector{text.substr(0, dot), dot == std::string::npos ? "" : text.substr(dot + 1)};
   if (selector.element.empty()) {
     why = "'" + text + "' names no element (expected \"ELEMENT\" or \"ELEMENT.EVENT\")";

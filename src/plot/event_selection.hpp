@@ -19,7 +19,8 @@
 // between them are ticks.
 //
 // Selectors name events in a [[plots]] `events` or `labels` list:
-//   "<element>"              every event of an element or body ("ground", "arm", "box")
+//   "<element>"              every event of an element or body ("ground", "arm", "box"), or
+//                            of one point of a contact with several ("floor.0")
 //   "<element>.<kind>"       every event of a kind: stick, slip, slide, lift_off, land, tip,
 //                            partial_slip (a body: some touching points slip; a tick)
 //   "<element>.first_stick"  the first stick (above)      "<element>.final_stop"  the stop

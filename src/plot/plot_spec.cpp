@@ -124,6 +124,19 @@ std::vector<std::string> components_of(const std::vector<std::string>& columns) 
   return out;
 }
 
+// Whether an event selector's element is a component ("floor", a body "box") or one contact
+// point of a component with several ("floor.0": its columns are "floor.0.f.x", ...).
+bool names_an_element(const std::string& element, const std::vector<std::string>& components,
+                      const std::vector<std::string>& columns) {
+  if (has_column(components, element)) return true;
+  const std::size_t dot = element.find('.');
+  if (dot == std::string::npos || !has_column(components, element.substr(0, dot))) return false;
+  const std::string index = element.substr(dot + 1);
+  if (index.empty() || index.find_first_not_of("0123456789") != std::string::npos) return false;
+  return std::any_of(columns.begin(), columns.end(),
+                     [&](const std::string& c) { return c.rfind(element + ".", 0) == 0; });
+}
+
 // A list of event selectors (`events` or `labels`), each checked: a known event word after
 // the element, and an element that is a component of the run.
 std::vector<std::string> read_selectors(scene::TableReader& table, const std::string& key,
@@ -137,10 +150,12 @@ std::vector<std::string> read_selectors(scene::TableReader& table, const std::st
     std::string why;
     const std::optional<EventSelector> selector = parse_event_selector(selectors[i], why);
     if (!selector) throw error_at(array[i], file, where + why);
-    if (!has_column(components, selector->element)) {
+    if (!names_an_element(selector->element, components, columns)) {
       throw error_at(array[i], file,
                      where + "'" + selector->element +
-                         "' is not a component of the run; it has: " + join(components));
+                         "' is not a component of the run (or one of its contact points, "
+                         "NAME.0, NAME.1, ...); it has: " +
+                         join(components));
     }
   }
   return selectors;

@@ -397,6 +397,23 @@ TEST_CASE("`labels` and `events` take event selectors, checked against the run's
              Catch::StartsWith("scenes/test.toml:2:21:") && Catch::Contains("plots[0].events[1]") &&
                  Catch::Contains("'floor' is not a component") &&
                  Catch::Contains("sphere, ground"));
+  // A contact of several points names each point's events by NAME.i (box_slope's
+  // "floor.0.stick_time"); a point that does not exist, or a signal, is not an element.
+  const std::vector<std::string> box_columns{"t", "box.p.z", "floor.0.slip.x", "floor.1.slip.x"};
+  const std::string box_panel = "  [[plots.panels]]\n  signals = [\"box.p.z\"]\n";
+  const auto read_box = [&](const std::string& keys) {
+    const std::string text = "[[plots]]\n" + keys + box_panel;
+    const toml::table doc = toml::parse(std::string_view(text), std::string_view("box.toml"));
+    return plot::read_plot_specs(doc, "box.toml", box_columns);
+  };
+  CHECK(read_box("events = [\"floor.0.stick_time\", \"floor.1\", \"floor\"]\n")
+            .at(0)
+            .only_events.size() == 3);
+  for (const std::string bad : {"floor.2", "box.0", "floor.0.1"}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(read_box("events = [\"" + bad + "\"]\n"),
+                      Catch::Contains("is not a component of the run"));
+  }
 }
 
 TEST_CASE("default figures leave out signals that are zero throughout, and say so",
