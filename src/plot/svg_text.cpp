@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "text/xml_escape.hpp"
+
 namespace stiction::plot {
 namespace {
 
@@ -41,33 +43,6 @@ void set_attribute(std::string& svg, std::size_t tag_start, const std::string& n
 
 }  // namespace
 
-std::string xml_escaped(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string add_svg_text(const std::string& svg, const std::vector<PlacedText>& texts,
                          std::optional<PageSize> page_mm) {
   std::string out = svg;
@@ -104,7 +79,7 @@ std::string add_svg_text(const std::string& svg, const std::vector<PlacedText>& 
     attribute("fill", colour(t.colour));
     if (t.colour.a != 255) attribute("fill-opacity", number(t.colour.a / 255.0));
     group += '>';
-    group += xml_escaped(t.text);
+    group += text::xml_escaped(t.text);
     group += "</text>\n";
   }
   group += "</g>\n";

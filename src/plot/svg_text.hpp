@@ -24,7 +24,4 @@ struct PageSize {
 std::string add_svg_text(const std::string& svg, const std::vector<PlacedText>& texts,
                          std::optional<PageSize> page_mm);
 
-// Text escaped for XML character data and attribute values.
-std::string xml_escaped(const std::string& text);
-
 }  // namespace stiction::plot

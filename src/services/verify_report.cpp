@@ -3,40 +3,10 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "text/xml_escape.hpp"
 
 namespace stiction::services {
 namespace {
-
-std::string escape_xml(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        // Control characters are not allowed in XML 1.0 (except tab, newline, return).
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') {
-          out += ' ';
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out;
-}
 
 // Markdown table cells: a '|' would end the cell.
 std::string escape_cell(const std::string& s) {
@@ -106,32 +76,33 @@ std::string verify_html(const std::vector<SceneVerdict>& verdicts, const std::st
     << ".MISMATCH,.FAILED,.ERROR{color:#b00;font-weight:bold}.match,.passed{color:#070}"
     << "figure{display:inline-block;margin:0 8px 8px 0}img{max-width:32vw;border:1px solid #999}"
     << "</style>\n</head>\n<body>\n<h1>stiction verify</h1>\n<p>Golden set: <code>"
-    << escape_xml(golden) << "</code></p>\n";
+    << text::xml_escaped(golden) << "</code></p>\n";
   h << "<table>\n<tr><th>scene</th><th>verdict</th><th>items</th><th>mismatches</th></tr>\n";
   for (const auto& v : verdicts) {
-    h << "<tr><td><a href=\"#" << escape_xml(v.scene) << "\">" << escape_xml(v.scene)
+    h << "<tr><td><a href=\"#" << text::xml_escaped(v.scene) << "\">" << text::xml_escaped(v.scene)
       << "</a></td><td class=\"" << verdict_word(v) << "\">" << verdict_word(v) << "</td><td>"
       << v.items.size() << "</td><td>" << count(v, ItemStatus::mismatch) << "</td></tr>\n";
   }
   h << "</table>\n";
   for (const auto& v : verdicts) {
-    h << "<h2 id=\"" << escape_xml(v.scene) << "\">" << escape_xml(v.scene) << ": <span class=\""
-      << verdict_word(v) << "\">" << verdict_word(v) << "</span></h2>\n";
-    if (!v.error.empty()) h << "<p class=\"ERROR\">" << escape_xml(v.error) << "</p>\n";
+    h << "<h2 id=\"" << text::xml_escaped(v.scene) << "\">" << text::xml_escaped(v.scene)
+      << ": <span class=\"" << verdict_word(v) << "\">" << verdict_word(v) << "</span></h2>\n";
+    if (!v.error.empty()) h << "<p class=\"ERROR\">" << text::xml_escaped(v.error) << "</p>\n";
     h << "<table>\n<tr><th>item</th><th>what</th><th>status</th><th>detail</th></tr>\n";
     for (const VerifyItem& i : v.items) {
-      h << "<tr><td>" << escape_xml(i.name) << "</td><td>" << escape_xml(i.what)
+      h << "<tr><td>" << text::xml_escaped(i.name) << "</td><td>" << text::xml_escaped(i.what)
         << "</td><td class=\"" << status_name(i.status) << "\">" << status_name(i.status)
-        << "</td><td>" << escape_xml(i.detail) << "</td></tr>\n";
+        << "</td><td>" << text::xml_escaped(i.detail) << "</td></tr>\n";
     }
     h << "</table>\n";
     for (const VerifyItem& i : v.items) {
       if (i.status != ItemStatus::mismatch) continue;
-      h << "<h3>" << escape_xml(i.name) << ": " << escape_xml(i.what) << "</h3>\n<div>\n";
+      h << "<h3>" << text::xml_escaped(i.name) << ": " << text::xml_escaped(i.what)
+        << "</h3>\n<div>\n";
       const auto image = [&](const std::string& file, const char* caption) {
         if (file.empty()) return;
-        h << "<figure><img src=\"" << escape_xml(file) << "\" alt=\"" << caption
-          << "\"><figcaption>" << caption << " <code>" << escape_xml(file)
+        h << "<figure><img src=\"" << text::xml_escaped(file) << "\" alt=\"" << caption
+          << "\"><figcaption>" << caption << " <code>" << text::xml_escaped(file)
           << "</code></figcaption></figure>\n";
       };
       image(i.actual, "actual");
@@ -141,7 +112,7 @@ std::string verify_html(const std::vector<SceneVerdict>& verdicts, const std::st
       if (!i.differences.empty()) {
         h << "<ul>\n";
         for (const std::string& d : i.differences)
-          h << "<li><code>" << escape_xml(d) << "</code></li>\n";
+          h << "<li><code>" << text::xml_escaped(d) << "</code></li>\n";
         h << "</ul>\n";
       }
     }
@@ -163,27 +134,27 @@ std::string verify_junit(const std::vector<SceneVerdict>& verdicts) {
     << "\" errors=\"" << errors << "\">\n";
   for (const auto& v : verdicts) {
     const int f = count(v, ItemStatus::mismatch);
-    x << "  <testsuite name=\"" << escape_xml(v.scene) << "\" tests=\""
+    x << "  <testsuite name=\"" << text::xml_escaped(v.scene) << "\" tests=\""
       << v.items.size() + (v.error.empty() ? 0 : 1) << "\" failures=\"" << f << "\" errors=\""
       << (v.error.empty() ? 0 : 1) << "\">\n";
     for (const VerifyItem& i : v.items) {
-      x << "    <testcase classname=\"stiction.verify." << escape_xml(v.scene) << "\" name=\""
-        << escape_xml(i.name + ": " + i.what) << "\"";
+      x << "    <testcase classname=\"stiction.verify." << text::xml_escaped(v.scene)
+        << "\" name=\"" << text::xml_escaped(i.name + ": " + i.what) << "\"";
       if (i.status != ItemStatus::mismatch) {
         x << "/>\n";
         continue;
       }
-      x << ">\n      <failure type=\"mismatch\" message=\"" << escape_xml(i.detail) << "\">";
+      x << ">\n      <failure type=\"mismatch\" message=\"" << text::xml_escaped(i.detail) << "\">";
       std::string body = i.detail;
       if (!i.actual.empty()) body += "\nactual: " + i.actual;
       if (!i.golden.empty()) body += "\ngolden: " + i.golden;
       if (!i.diff.empty()) body += "\ndiff: " + i.diff;
       for (const std::string& d : i.differences) body += "\n" + d;
-      x << escape_xml(body) << "</failure>\n    </testcase>\n";
+      x << text::xml_escaped(body) << "</failure>\n    </testcase>\n";
     }
     if (!v.error.empty()) {
-      x << "    <testcase classname=\"stiction.verify." << escape_xml(v.scene)
-        << "\" name=\"run\">\n      <error message=\"" << escape_xml(v.error)
+      x << "    <testcase classname=\"stiction.verify." << text::xml_escaped(v.scene)
+        << "\" name=\"run\">\n      <error message=\"" << text::xml_escaped(v.error)
         << "\"/>\n    </testcase>\n";
     }
     x << "  </testsuite>\n";
