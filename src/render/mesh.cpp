@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstddef>
-
 #include <glm/gtc/constants.hpp>
 
 namespace stiction::render {
@@ -31,7 +30,8 @@ MeshData make_sphere(int slices, int stacks) {
 
 MeshData make_box() {
   MeshData m;
-  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const glm::vec3 normals[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
   for (const glm::vec3& n : normals) {
     // Two axes spanning the face, ordered so that (u, v, n) is right-handed.
     const glm::vec3 u = std::abs(n.z) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1);
@@ -76,6 +76,35 @@ MeshData make_cylinder(int slices) {
         m.indices.insert(m.indices.end(), {centre, a + 1, a});
       }
     }
+  }
+  return m;
+}
+
+MeshData make_cone(int slices) {
+  MeshData m;
+  // The side: per slice an apex vertex of its own, so each facet's normals are smooth around
+  // and tilted up by the half-angle (45 degrees for a unit cone).
+  const float k = std::sqrt(0.5f);
+  for (int j = 0; j <= slices; ++j) {
+    const float theta = 2.0f * glm::pi<float>() * float(j) / float(slices);
+    const glm::vec3 radial(std::cos(theta), std::sin(theta), 0.0f);
+    const glm::vec3 n = k * radial + glm::vec3(0, 0, k);
+    m.vertices.push_back({radial, n});
+    m.vertices.push_back({{0, 0, 1}, n});
+  }
+  for (int j = 0; j < slices; ++j) {
+    const auto a = static_cast<std::uint32_t>(2 * j);
+    m.indices.insert(m.indices.end(), {a, a + 2, a + 1});
+  }
+  const auto centre = static_cast<std::uint32_t>(m.vertices.size());
+  m.vertices.push_back({{0, 0, 0}, {0, 0, -1}});
+  for (int j = 0; j <= slices; ++j) {
+    const float theta = 2.0f * glm::pi<float>() * float(j) / float(slices);
+    m.vertices.push_back({{std::cos(theta), std::sin(theta), 0.0f}, {0, 0, -1}});
+  }
+  for (int j = 0; j < slices; ++j) {
+    const auto a = static_cast<std::uint32_t>(centre + 1 + j);
+    m.indices.insert(m.indices.end(), {centre, a + 1, a});
   }
   return m;
 }

@@ -28,6 +28,8 @@ MeshData make_sphere(int slices, int stacks);
 MeshData make_box();
 // Cylinder of radius 1 along z from -1 to 1, with caps.
 MeshData make_cylinder(int slices);
+// Cone with its base (radius 1, capped) at z = 0 and its apex at z = 1: arrow heads.
+MeshData make_cone(int slices);
 // Square in the z = 0 plane from -1 to 1 (scale by the half size), normal +z. `cells` per
 // side so that per-vertex lighting and depth precision stay good on a large floor.
 MeshData make_plane(int cells);

@@ -36,6 +36,7 @@ Renderer::Renderer(const RendererOptions& options)
       sphere_(make_sphere(48, 24)),
       box_(make_box()),
       cylinder_(make_cylinder(32)),
+      cone_(make_cone(24)),
       plane_(make_plane(16)),
       trail_vao_(make_vertex_array()),
       trail_buffer_(make_buffer()),
@@ -126,6 +127,8 @@ const Mesh& Renderer::mesh(Shape shape) const {
       return box_;
     case Shape::cylinder:
       return cylinder_;
+    case Shape::cone:
+      return cone_;
     default:
       return plane_;
   }

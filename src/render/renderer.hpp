@@ -62,7 +62,7 @@ class Renderer {
   std::array<std::unique_ptr<ShaderProgram>, 6> scene_programs_;
   ShaderProgram depth_program_;
   ShaderProgram trail_program_;
-  Mesh sphere_, box_, cylinder_, plane_;
+  Mesh sphere_, box_, cylinder_, cone_, plane_;
   GlVertexArray trail_vao_;
   GlBuffer trail_buffer_;
   // Multisampled colour + depth and the single-sampled resolve target.

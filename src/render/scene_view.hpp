@@ -80,7 +80,7 @@ struct SceneDescription {
 // points from the document's `point` and `parent_point`).
 SceneDescription describe_scene(const core::Network& network, const toml::table& document);
 
-enum class Shape { sphere, box, cylinder, plane, trail };
+enum class Shape { sphere, box, cylinder, plane, trail, cone };
 
 enum class MaterialKind { plain = 0, checker = 1, sphere_pattern = 2 };
 
