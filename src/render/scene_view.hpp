@@ -1,6 +1,8 @@
 // What the renderer draws: the shapes of a scene (from its components and its document) and
 // their poses at any time (from the trajectory's signals only: `<body>.p.*`, `<body>.q.*`,
-// `<arm>.theta.*`), turned into a list of draw items.
+// `<arm>.theta.*`), turned into a list of draw items. Defined in scene_description.cpp
+// (describe_scene), pose_track.cpp (PoseTrack), body_bounds.cpp (bounds), draw_items.cpp
+// (build_items) and scene_view.cpp (small helpers); scene_geometry.hpp holds their shared maths.
 #pragma once
 
 #include <toml++/toml.h>
