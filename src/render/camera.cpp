@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 
 #include "render/framing.hpp"
+#include "render/mechanism_items.hpp"
+#include "render/scene_geometry.hpp"
 
 namespace stiction::render {
 
@@ -43,10 +46,11 @@ Camera frame_bounds(const Bounds& bounds, glm::vec3 direction, float fov_y_degre
   return camera;
 }
 
-glm::vec3 default_view_direction(const SceneDescription& scene) {
-  // A three-quarter view looking down ~28 degrees, slightly from the side: from the front
-  // (-y), or, for a scene with an arm swinging in a vertical plane, from in front of that
-  // plane (along its joint axis) so that the arm is seen face on, not edge on.
+namespace {
+
+// The horizontal direction the cameras look along: +y (from the front), or, for a scene
+// with an arm swinging in a vertical plane, along its joint axis so the arm is seen face on.
+glm::vec3 front_direction(const SceneDescription& scene) {
   glm::vec3 forward(0.0f, 1.0f, 0.0f);
   for (const BodyVisual& body : scene.bodies) {
     if (body.kind != BodyVisual::Kind::arm) continue;
@@ -55,18 +59,82 @@ glm::vec3 default_view_direction(const SceneDescription& scene) {
     if (glm::length(horizontal) > 0.5f) forward = -glm::normalize(horizontal);
     break;
   }
+  return forward;
+}
+
+// The first body with a pose of its own (a planar arm has none to follow).
+int first_followable(const SceneDescription& scene) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].kind != BodyVisual::Kind::arm) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+}  // namespace
+
+glm::vec3 default_view_direction(const SceneDescription& scene) {
+  // A three-quarter view looking down ~28 degrees, slightly from the side: from the front
+  // (-y), or, for a scene with an arm swinging in a vertical plane, from in front of that
+  // plane (along its joint axis) so that the arm is seen face on, not edge on.
+  const glm::vec3 forward = front_direction(scene);
   const glm::vec3 side(-forward.y, forward.x, 0.0f);  // (-1, 0, 0) for the front view
   return glm::normalize(forward + 0.30f * side + glm::vec3(0.0f, 0.0f, -0.55f));
+}
+
+glm::vec3 view_direction(CameraView view, const SceneDescription& scene) {
+  const glm::vec3 forward = front_direction(scene);
+  const glm::vec3 side(-forward.y, forward.x, 0.0f);
+  switch (view) {
+    case CameraView::side:  // nearly level: heights read true, the floor a thin strip
+      return glm::normalize(forward + glm::vec3(0.0f, 0.0f, -0.08f));
+    case CameraView::top:
+      return glm::vec3(0.0f, 0.0f, -1.0f);
+    case CameraView::three_quarter:  // from a front corner, 35 degrees down
+      return glm::normalize(forward + 0.9f * side + glm::vec3(0.0f, 0.0f, -0.95f));
+    case CameraView::automatic:
+    case CameraView::follow:
+      break;
+  }
+  return default_view_direction(scene);
+}
+
+glm::vec3 view_up(CameraView view, const SceneDescription& scene) {
+  // Looking straight down, +z cannot be up: the picture's up is the front direction.
+  return view == CameraView::top ? front_direction(scene) : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
 CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& scene,
                      const PoseTrack& poses, float aspect)
     : poses_(poses) {
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (!settings.follow.empty() && scene.bodies[i].name == settings.follow &&
-        scene.bodies[i].kind != BodyVisual::Kind::arm) {
-      follow_ = static_cast<int>(i);
+  const CameraView view = settings.view;
+  const glm::vec3 direction = view_direction(view, scene);
+  const glm::vec3 up = view_up(view, scene);
+  const float fov = static_cast<float>(settings.fov_degrees);
+  if (view == CameraView::automatic || view == CameraView::follow) {
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (!settings.follow.empty() && scene.bodies[i].name == settings.follow &&
+          scene.bodies[i].kind != BodyVisual::Kind::arm) {
+        follow_ = static_cast<int>(i);
+      }
     }
+  }
+  if (view == CameraView::follow && follow_ < 0) follow_ = first_followable(scene);
+  // Every body and every element of the mechanism at every time in view, framed by their
+  // own points (an arm fills the picture rather than the box around its sweep).
+  auto whole_run = [&] {
+    std::vector<glm::vec3> points = run_points(scene, poses, direction, 96, up);
+    if (points.empty()) points.push_back(glm::vec3(0.0f));
+    return frame_points(points, direction, fov, aspect, 0.12f, up);
+  };
+  if (view == CameraView::automatic && follow_ >= 0 && has_world_parts(scene)) {
+    // A follow camera would move the posts, rollers and pivots in the picture and hide the
+    // body's motion against them (belt_oscillator's oscillation): the camera stays on the
+    // whole mechanism while the followed body is still seen at a twelfth of the picture's
+    // height or more.
+    const Camera fixed = whole_run();
+    const float height =
+        2.0f * std::tan(glm::radians(fov) * 0.5f) * glm::length(fixed.target - fixed.eye);
+    if (piece_size(scene.bodies[static_cast<std::size_t>(follow_)]) >= height / 12.0) follow_ = -1;
   }
   // What to frame: the whole run, or the followed body's neighbourhood at the start.
   follow_vertical_ = settings.follow_vertical;
@@ -84,21 +152,23 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
     bounds = run_bounds(scene, poses);
   }
   if (bounds.empty()) bounds.add(glm::vec3(0.0f));
-  const glm::vec3 direction = default_view_direction(scene);
-  const float fov = static_cast<float>(settings.fov_degrees);
-  if (follow_ >= 0) {
+  if (view == CameraView::follow) {
+    // Everything as the camera moving with the body (horizontally) sees it over the run.
+    vertical_dead_zone_ = std::numeric_limits<float>::infinity();  // a fixed height
+    const std::vector<glm::vec3> points =
+        run_points(scene, poses, direction, 96, up, [&](double t) { return shift(t); });
+    base_ = frame_points(points, direction, fov, aspect, 0.12f, up);
+  } else if (follow_ >= 0) {
     base_ = frame_bounds(bounds, direction, fov, aspect);
   } else {
-    // Every body at every time in view, framed by the bodies' own points (an arm fills the
-    // picture rather than the box around its sweep).
-    std::vector<glm::vec3> points = run_points(scene, poses, direction);
-    if (points.empty()) points.push_back(glm::vec3(0.0f));
-    base_ = frame_points(points, direction, fov, aspect);
+    base_ = whole_run();
   }
   // Following horizontally, the camera still moves vertically once the body is more than
   // this far above or below where it started, so a body that drops stays in the frame.
-  vertical_dead_zone_ =
-      0.5f * std::tan(glm::radians(fov) * 0.5f) * glm::length(base_.eye - base_.target);
+  if (view != CameraView::follow) {
+    vertical_dead_zone_ =
+        0.5f * std::tan(glm::radians(fov) * 0.5f) * glm::length(base_.eye - base_.target);
+  }
   if (settings.target) base_.target = to_glm(*settings.target);
   if (settings.position) base_.eye = to_glm(*settings.position);
   if (settings.position || settings.target) {

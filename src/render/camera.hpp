@@ -33,6 +33,11 @@ Camera frame_bounds(const Bounds& bounds, glm::vec3 direction, float fov_y_degre
 // from in front of the plane of the first arm that swings in a vertical plane.
 glm::vec3 default_view_direction(const SceneDescription& scene);
 
+// A preset's viewing direction (`auto` and `follow`: default_view_direction) and the
+// picture's up vector (+z, or the front direction for `top`).
+glm::vec3 view_direction(CameraView view, const SceneDescription& scene);
+glm::vec3 view_up(CameraView view, const SceneDescription& scene);
+
 // The camera at every time of a run.
 class CameraRig {
  public:
@@ -50,10 +55,10 @@ class CameraRig {
 
   const PoseTrack& poses_;
   Camera base_;
-  int follow_ = -1;             // body index, -1: fixed
+  int follow_ = -1;  // body index, -1: fixed
   bool follow_vertical_ = false;
-  glm::vec3 follow_origin_{0};  // followed body's position at the start
-  Bounds follow_region_;        // followed body's neighbourhood at the start
+  glm::vec3 follow_origin_{0};       // followed body's position at the start
+  Bounds follow_region_;             // followed body's neighbourhood at the start
   float vertical_dead_zone_ = 0.0f;  // height change (m) a horizontal follow lets pass
 };
 

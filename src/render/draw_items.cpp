@@ -3,8 +3,11 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "components/impedance/moving_contact.hpp"
+#include "render/mechanism_items.hpp"
 #include "render/scene_geometry.hpp"
 #include "render/scene_view.hpp"
 
@@ -27,41 +30,21 @@ const glm::vec3 kSphereColour2{0.86f, 0.86f, 0.82f};
 const glm::vec3 kBoxColour{0.10f, 0.28f, 0.62f};
 const glm::vec3 kLinkColour2{0.15f, 0.50f, 0.75f};  // every other link of a chain
 const glm::vec3 kJointColour{0.06f, 0.06f, 0.07f};
+const glm::vec3 kPinColour{0.80f, 0.80f, 0.82f};
 const glm::vec3 kBlockColour{0.72f, 0.10f, 0.08f};
 const glm::vec3 kGroundLight{0.78f, 0.78f, 0.76f};
 const glm::vec3 kGroundDark{0.55f, 0.57f, 0.60f};
 const glm::vec3 kBeltLight{0.36f, 0.36f, 0.38f};  // moving surfaces: darker, rubber-like
 const glm::vec3 kBeltDark{0.16f, 0.16f, 0.18f};
-// Characteristic size of the scene's bodies: sets the checker square.
-double body_scale(const SceneDescription& scene) {
-  double s = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const BodyVisual& b = scene.bodies[i];
-    switch (b.kind) {
-      case BodyVisual::Kind::sphere:
-        s = std::min(s, b.radius);
-        break;
-      case BodyVisual::Kind::box:
-        // A jointed link counts as an arm's link does: half its length.
-        s = std::min(s, (is_link(scene, static_cast<int>(i)) ? 0.5 : 1.0) * b.size.maxCoeff());
-        break;
-      case BodyVisual::Kind::block:
-        s = std::min(s, b.size.maxCoeff());
-        break;
-      case BodyVisual::Kind::arm:
-        for (double l : b.lengths) s = std::min(s, 0.5 * l);
-        break;
-    }
-  }
-  return std::isfinite(s) ? s : 0.2;
-}
-
 // A contact surface as checkered squares: the plane within `half` of the scene's centre,
 // cut to the surface's extent (a rectangle in the plane's u, v coordinates, covered by
 // squares of its shorter side so the checker keeps square cells), tilted and scrolled as the
 // surface moves at time t.
+// A belt is cut to `belt_span` (along its direction from the plane's origin: between its
+// rollers).
 void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bounds& around,
-                 float half, float checker, double t) {
+                 float half, float checker, double t,
+                 std::optional<std::pair<double, double>> belt_span = std::nullopt) {
   const bool bounded = s.extent.bounded();
   core::Vec3 u, v;
   if (bounded) {
@@ -99,6 +82,16 @@ void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bou
     b0 = std::max(b0, cb + s.extent.v_min);
     b1 = std::min(b1, cb + s.extent.v_max);
     if (!(a1 > a0) || !(b1 > b0)) return;
+  }
+  if (belt_span && s.moving) {
+    const double cosine = s.moving->belt_direction().dot(u);
+    if (std::abs(cosine) > 0.999) {
+      const double lo = cosine > 0.0 ? belt_span->first : -belt_span->second;
+      const double hi = cosine > 0.0 ? belt_span->second : -belt_span->first;
+      a0 = std::max(a0, lo);
+      a1 = std::min(a1, hi);
+      if (!(a1 > a0)) return;
+    }
   }
   const double side = std::min(a1 - a0, b1 - b0);
   // A long narrow strip (a belt) is drawn over at most 64 of its squares around the scene.
@@ -148,6 +141,19 @@ void add_surface(std::vector<DrawItem>& items, const SurfaceVisual& s, const Bou
   }
 }
 
+// A pin through a joint's hub (radius 0.95 w, half-height 0.85 w): a bright steel rod
+// standing out on both faces, so the joint reads as a pin and not as a dark disc.
+void add_pin(std::vector<DrawItem>& items, const core::Vec3& at, const core::Vec3& axis, float w) {
+  DrawItem pin;
+  pin.shape = Shape::cylinder;
+  pin.model = glm::translate(glm::mat4(1.0f), to_glm(at)) * align_z(axis.normalized()) *
+              glm::scale(glm::mat4(1.0f), glm::vec3(0.38f * w, 0.38f * w, 1.05f * w));
+  pin.material.colour = kPinColour;
+  pin.material.specular = 0.7f;
+  pin.material.shininess = 64.0f;
+  items.push_back(pin);
+}
+
 }  // namespace
 
 std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t,
@@ -159,24 +165,18 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
 
   // Surfaces: the contacts' planes, or a floor under the scene.
   std::vector<SurfaceVisual> surfaces = scene.surfaces;
-  double floor_z = 0.0;
-  if (surfaces.empty()) {
-    double gap = 0.5 * scale;
-    // Arms and jointed rigid bodies: three link widths below the lowest joint.
-    double link_width = 0.0;
-    for (const auto& b : scene.bodies) {
-      if (b.kind == BodyVisual::Kind::arm) {
-        link_width = std::max(link_width, *std::max_element(b.widths.begin(), b.widths.end()));
-      }
-    }
-    for (const auto& j : scene.joints) link_width = std::max(link_width, j.width);
-    if (link_width > 0.0) gap = 3.0 * link_width;
-    floor_z = (all.empty() ? 0.0 : all.min.z) - gap;
-    surfaces.push_back({core::Vec3::UnitZ(), floor_z, {}, nullptr});
-  }
+  const MechanismFrame mechanism = mechanism_frame(scene, poses, &all);
+  const double floor_z = mechanism.floor_z;
+  if (surfaces.empty()) surfaces.push_back({core::Vec3::UnitZ(), floor_z, {}, nullptr});
   const Bounds& around = focus.empty() ? all : focus;
   const float half = std::max(20.0f, 8.0f * (around.empty() ? 1.0f : around.radius()));
-  for (const auto& s : surfaces) add_surface(items, s, around, half, checker, t);
+  for (const auto& s : surfaces) {
+    std::optional<std::pair<double, double>> span;
+    if (const auto rollers = belt_rollers(scene, mechanism, s)) {
+      span = std::pair{rollers->span_min, rollers->span_max};
+    }
+    add_surface(items, s, around, half, checker, t, span);
+  }
 
   int links = 0;  // jointed rigid bodies so far: their colours alternate as an arm's links
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -277,6 +277,7 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
           joint.material.colour = kJointColour;
           joint.material.specular = 0.5f;
           items.push_back(joint);
+          add_pin(items, pose.joints[k], b.axis, w);
         }
         // The tip: a small sphere, so the end of the chain reads clearly.
         DrawItem tip;
@@ -314,6 +315,7 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
     joint.material.colour = kJointColour;
     joint.material.specular = 0.5f;
     items.push_back(joint);
+    add_pin(items, joint_point(j, poses, t), joint_axis(j, poses, t), w);
     // The tip: the child's point mirrored through its centre, if the child is a box jointed
     // near one end and carries no further joint.
     const BodyVisual& child = scene.bodies[static_cast<std::size_t>(j.child)];
@@ -331,6 +333,7 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
       items.push_back(tip);
     }
   }
+  add_mechanism_items(items, scene, poses, mechanism, t);
   return items;
 }
 

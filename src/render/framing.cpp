@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/mechanism_items.hpp"
+
 namespace stiction::render {
 namespace {
 
@@ -92,14 +94,22 @@ float piece_size(const SceneDescription& scene) {
 }
 
 std::vector<glm::vec3> run_points(const SceneDescription& scene, const PoseTrack& poses,
-                                  glm::vec3 direction, int samples) {
+                                  glm::vec3 direction, int samples, glm::vec3 up_hint,
+                                  const std::function<glm::vec3(double)>& moving_frame) {
   std::vector<glm::vec3> points;
   Bounds all;
+  const MechanismFrame mechanism = mechanism_frame(scene, poses);
   for (int i = 0; i < samples; ++i) {
     const double t =
         poses.start_time() + (poses.end_time() - poses.start_time()) * i / std::max(1, samples - 1);
-    const std::vector<glm::vec3> at = body_points(scene, poses, t);
-    for (const glm::vec3& p : at) all.add(p);
+    std::vector<glm::vec3> at = body_points(scene, poses, t);
+    const std::vector<glm::vec3> parts = mechanism_points(scene, poses, mechanism, t);
+    at.insert(at.end(), parts.begin(), parts.end());
+    const glm::vec3 offset = moving_frame ? moving_frame(t) : glm::vec3(0.0f);
+    for (glm::vec3& p : at) {
+      p -= offset;
+      all.add(p);
+    }
     points.insert(points.end(), at.begin(), at.end());
   }
   // Some ground around bodies that barely move (a block at rest would fill the picture): a
@@ -107,7 +117,7 @@ std::vector<glm::vec3> run_points(const SceneDescription& scene, const PoseTrack
   // seen centred.
   if (!all.empty()) {
     const glm::vec3 f = glm::normalize(direction);
-    const glm::vec3 right = glm::normalize(glm::cross(f, glm::vec3(0, 0, 1)));
+    const glm::vec3 right = glm::normalize(glm::cross(f, up_hint));
     const glm::vec3 up = glm::cross(right, f);
     const float h = 3.0f * piece_size(scene);
     for (const glm::vec3 d : {h * right, -h * right, h * up, -h * up})
@@ -117,9 +127,10 @@ std::vector<glm::vec3> run_points(const SceneDescription& scene, const PoseTrack
 }
 
 Camera frame_points(const std::vector<glm::vec3>& points, glm::vec3 direction, float fov_y_degrees,
-                    float aspect, float margin) {
+                    float aspect, float margin, glm::vec3 up_hint) {
   Camera camera;
   camera.fov_y_degrees = fov_y_degrees;
+  camera.up = up_hint;
   if (points.empty()) return camera;
   const glm::vec3 f = glm::normalize(direction);
   const glm::vec3 right = glm::normalize(glm::cross(f, camera.up));

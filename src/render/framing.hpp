@@ -3,6 +3,7 @@
 // fills the picture instead of sitting in a corner of an empty box.
 #pragma once
 
+#include <functional>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -14,16 +15,21 @@ namespace stiction::render {
 // Points whose convex hull holds every body (and penalty joint) at time t.
 std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrack& poses, double t);
 
-// body_points at `samples` times spread over the run, and a square six of the bodies'
-// pieces wide facing a camera looking along `direction`, centred on them (ground around a
-// body at rest).
+// body_points and the mechanism's points (springs, posts, sources' arrows, rollers, pivots:
+// mechanism_items.hpp) at `samples` times spread over the run, and a square six of the
+// bodies' pieces wide facing a camera looking along `direction` with `up` (a view straight
+// down needs another up than +z), centred on them (ground around a body at rest).
+// `moving_frame`, if given, is subtracted from the points at each time: the points as seen
+// by a camera that moves by it (a follow camera).
 std::vector<glm::vec3> run_points(const SceneDescription& scene, const PoseTrack& poses,
-                                  glm::vec3 direction, int samples = 96);
+                                  glm::vec3 direction, int samples = 96,
+                                  glm::vec3 up = glm::vec3(0.0f, 0.0f, 1.0f),
+                                  const std::function<glm::vec3(double)>& moving_frame = {});
 
 // The closest camera looking along `direction` that shows every point with `margin` (the
 // fraction of the half-width and half-height of the view left free on the tightest side).
 // The camera is shifted sideways so the points' picture is centred; exact for perspective.
 Camera frame_points(const std::vector<glm::vec3>& points, glm::vec3 direction, float fov_y_degrees,
-                    float aspect, float margin = 0.12f);
+                    float aspect, float margin = 0.12f, glm::vec3 up = glm::vec3(0.0f, 0.0f, 1.0f));
 
 }  // namespace stiction::render

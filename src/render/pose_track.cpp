@@ -35,6 +35,19 @@ PoseTrack::PoseTrack(const core::Trajectory& trajectory, const SceneDescription&
   }
 }
 
+int PoseTrack::column(const std::string& name) const {
+  const auto c = trajectory_.find(name);
+  return c ? *c : -1;
+}
+
+double PoseTrack::column_peak(int column) const {
+  double peak = 0.0;
+  for (int r = 0; r < trajectory_.row_count(); ++r) {
+    peak = std::max(peak, std::abs(trajectory_.at(r, column)));
+  }
+  return peak;
+}
+
 std::pair<int, double> PoseTrack::locate(double t) const {
   if (t <= t_.front() || t_.size() == 1) return {0, 0.0};
   if (t >= t_.back()) return {static_cast<int>(t_.size()) - 2, 1.0};

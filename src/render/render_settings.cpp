@@ -100,6 +100,10 @@ void read_camera(TableReader& r, CameraSettings& c, const std::vector<std::strin
   if (c.follow_vertical && c.follow.empty()) {
     r.fail("follow_vertical", "needs `follow` (the body whose motion the camera tracks)");
   }
+  c.view = read_camera_view(r);
+  if (c.view == CameraView::follow && c.follow_vertical) {
+    r.fail("follow_vertical", "the \"follow\" view keeps a fixed height (use view = \"auto\")");
+  }
   if (c.position && c.target && (*c.position - *c.target).norm() < 1e-9) {
     r.fail("target", "must differ from position");
   }

@@ -27,6 +27,10 @@
 //   follow = "sphere"       # keep this body's horizontal position in view
 //   follow_vertical = false # true: follow its height too (needs `follow`); the shadow map is
 //                           # then fitted around the body every frame (long descents)
+//   view = "auto"           # camera preset (camera_preset.hpp): "auto" (the automatic framing
+//                           # above), "side", "top", "three_quarter" (fixed, the whole mechanism
+//                           # over the run in view; `follow` ignored) or "follow" (the `follow`
+//                           # body, else the first, tracked horizontally at a fixed height)
 //
 //   [overlay]
 //   enabled = true          # draw the time and the signal
@@ -47,6 +51,7 @@
 #include <toml++/toml.h>
 
 #include "core/types.hpp"
+#include "render/camera_preset.hpp"
 
 namespace stiction::scene {
 struct Scene;
@@ -60,6 +65,7 @@ struct CameraSettings {
   double fov_degrees = 40.0;
   std::string follow;  // body name, empty: fixed camera
   bool follow_vertical = false;  // also follow the body's vertical motion
+  CameraView view = CameraView::automatic;  // `view`: a preset (camera_preset.hpp)
 };
 
 struct OverlaySettings {

@@ -10,6 +10,7 @@
 #include "components/impedance/penalty_joint.hpp"
 #include "core/admittance.hpp"
 #include "core/coordinate_map.hpp"
+#include "render/mechanism_description.hpp"
 #include "render/scene_view.hpp"
 
 namespace stiction::render {
@@ -140,6 +141,7 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
     if (c.kind == BodyVisual::Kind::sphere) j.width = c.radius;
     scene.joints.push_back(j);
   }
+  describe_mechanism(network, document, scene);  // springs, dampers, sources
   return scene;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
+#include <limits>
 
 namespace stiction::render {
 
@@ -61,6 +62,56 @@ glm::vec3 box_half_extent(const core::Vec3& size, const core::Quat& q) {
   const core::Mat3 r = q.toRotationMatrix();
   const core::Vec3 e = r.cwiseAbs() * (0.5 * size);
   return {static_cast<float>(e.x()), static_cast<float>(e.y()), static_cast<float>(e.z())};
+}
+
+double body_scale(const SceneDescription& scene) {
+  double s = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyVisual& b = scene.bodies[i];
+    switch (b.kind) {
+      case BodyVisual::Kind::sphere:
+        s = std::min(s, b.radius);
+        break;
+      case BodyVisual::Kind::box:
+        // A jointed link counts as an arm's link does: half its length.
+        s = std::min(s, (is_link(scene, static_cast<int>(i)) ? 0.5 : 1.0) * b.size.maxCoeff());
+        break;
+      case BodyVisual::Kind::block:
+        s = std::min(s, b.size.maxCoeff());
+        break;
+      case BodyVisual::Kind::arm:
+        for (double l : b.lengths) s = std::min(s, 0.5 * l);
+        break;
+    }
+  }
+  return std::isfinite(s) ? s : 0.2;
+}
+
+double piece_size(const BodyVisual& b) {
+  switch (b.kind) {
+    case BodyVisual::Kind::sphere:
+      return 2.0 * b.radius;
+    case BodyVisual::Kind::box:
+    case BodyVisual::Kind::block:
+      return b.size.maxCoeff();
+    case BodyVisual::Kind::arm:
+      return *std::max_element(b.widths.begin(), b.widths.end());
+  }
+  return 0.1;
+}
+
+double floor_height(const SceneDescription& scene, const Bounds& all, double scale) {
+  double gap = 0.5 * scale;
+  // Arms and jointed rigid bodies: three link widths below the lowest joint.
+  double link_width = 0.0;
+  for (const auto& b : scene.bodies) {
+    if (b.kind == BodyVisual::Kind::arm) {
+      link_width = std::max(link_width, *std::max_element(b.widths.begin(), b.widths.end()));
+    }
+  }
+  for (const auto& j : scene.joints) link_width = std::max(link_width, j.width);
+  if (link_width > 0.0) gap = 3.0 * link_width;
+  return (all.empty() ? 0.0 : all.min.z) - gap;
 }
 
 }  // namespace stiction::render

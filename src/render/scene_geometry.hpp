@@ -38,4 +38,15 @@ core::Vec3 joint_axis(const JointVisual& j, const PoseTrack& poses, double t);
 // Half-extents of the axis-aligned box around a box of full sides `size` turned by `q`.
 glm::vec3 box_half_extent(const core::Vec3& size, const core::Quat& q);
 
+// Characteristic size of the scene's bodies: sets the checker square.
+double body_scale(const SceneDescription& scene);
+
+// A body's size as drawn: a sphere's diameter, a box's or block's largest side, an arm's
+// widest link. Sets the size of what is drawn on it (coils, arrows).
+double piece_size(const BodyVisual& body);
+
+// Height of the floor drawn under a scene without contact surfaces: below the lowest point
+// of the bodies over the run (`all`), three link widths under an arm, half `scale` else.
+double floor_height(const SceneDescription& scene, const Bounds& all, double scale);
+
 }  // namespace stiction::render

@@ -29,9 +29,9 @@ struct BodyVisual {
   enum class Kind { sphere, box, block, arm };
   Kind kind = Kind::sphere;
   std::string name;
-  double radius = 0.0;                  // sphere
-  core::Vec3 size{0.1, 0.1, 0.1};       // box, block: full side lengths
-  core::Vec3 up{0.0, 0.0, 1.0};         // block: normal of the surface it rests on
+  double radius = 0.0;                   // sphere
+  core::Vec3 size{0.1, 0.1, 0.1};        // box, block: full side lengths
+  core::Vec3 up{0.0, 0.0, 1.0};          // block: normal of the surface it rests on
   core::Vec3 base = core::Vec3::Zero();  // arm
   // arm: its plane of motion, e1 and e2 (theta_0 from e1 towards e2), and the joint axis
   core::Vec3 plane_x{1.0, 0.0, 0.0}, plane_y{0.0, 1.0, 0.0}, axis{0.0, 0.0, 1.0};
@@ -60,13 +60,39 @@ struct ContactVisual {
 // a dark cylinder along the joint axis at the articulation point, and a post down to the
 // floor when the parent is the ground.
 struct JointVisual {
+  std::string name;                              // impedance name
+  int child = -1;                                // index into SceneDescription::bodies
+  int parent = -1;                               // -1: the ground
+  core::Vec3 point = core::Vec3::Zero();         // articulation point in the child's frame
+  core::Vec3 parent_point = core::Vec3::Zero();  // in the parent's frame (world for the ground)
+  core::Vec3 axis{0.0, 0.0, 1.0};                // joint axis in the child's frame (unit)
+  double width = 0.02;                           // the child's thickness (as an arm link's width)
+};
+
+// A spring-damper between a point of a body and a point of another body or of the world
+// (spring_damper wired to points; with `length`, a line spring), drawn as a coil, with a
+// damper inside it when its damping is non-zero and a post under a world end.
+struct SpringVisual {
   std::string name;                             // impedance name
-  int child = -1;                               // index into SceneDescription::bodies
-  int parent = -1;                              // -1: the ground
-  core::Vec3 point = core::Vec3::Zero();        // articulation point in the child's frame
-  core::Vec3 parent_point = core::Vec3::Zero(); // in the parent's frame (world for the ground)
-  core::Vec3 axis{0.0, 0.0, 1.0};               // joint axis in the child's frame (unit)
-  double width = 0.02;                          // the child's thickness (as an arm link's width)
+  int body = -1;                                // the moving side, index into bodies
+  core::Vec3 point = core::Vec3::Zero();        // in the body's frame
+  int other = -1;                               // -1: the world
+  core::Vec3 other_point = core::Vec3::Zero();  // in other's frame (world for the world)
+  double damping = 0.0;                         // Ns/m; > 0: a damper is drawn
+  double free_length = 0.0;                     // m; 0: a zero-length spring (spring_damper)
+};
+
+// A force or torque source, drawn as an arrow scaled by its value at time t (its trajectory
+// columns `NAME.f.*` or `NAME.tau`, i.e. the value of its own law at every output row).
+struct SourceVisual {
+  enum class Kind { force, torque };
+  Kind kind = Kind::force;
+  std::string name;                       // impedance name: its signal is NAME.f or NAME.tau
+  int body = -1;                          // index into bodies
+  core::Vec3 point = core::Vec3::Zero();  // force: application point in the body's frame
+  bool body_frame = false;                // force: its value is in the body's frame
+  core::Vec3 axis{0.0, 0.0, 1.0};         // torque on a rigid body: axis in its frame (unit)
+  int joint = -1;                         // torque on a planar arm's joint (axis: the arm's)
 };
 
 struct SceneDescription {
@@ -74,6 +100,8 @@ struct SceneDescription {
   std::vector<SurfaceVisual> surfaces;  // empty: a floor is put under the scene
   std::vector<ContactVisual> contacts;
   std::vector<JointVisual> joints;
+  std::vector<SpringVisual> springs;
+  std::vector<SourceVisual> sources;
 };
 
 // Shapes from the network's components (dynamic_cast) and the body tables of the document
@@ -88,14 +116,14 @@ enum class MaterialKind { plain = 0, checker = 1, sphere_pattern = 2 };
 
 struct Material {
   MaterialKind kind = MaterialKind::plain;
-  glm::vec3 colour{0.5f};   // linear RGB
+  glm::vec3 colour{0.5f};  // linear RGB
   glm::vec3 colour2{0.5f};
   float shininess = 32.0f;
   float specular = 0.25f;
-  float checker_size = 0.2f;   // metres per square (checker)
-  float grid_spacing = 1.0f;    // metres between darker grid lines (checker)
-  float local_scale = 1.0f;     // unit-shape coordinates -> metres (checker)
-  glm::vec2 local_offset{0.0f}; // added after scaling, so squares align with the world
+  float checker_size = 0.2f;     // metres per square (checker)
+  float grid_spacing = 1.0f;     // metres between darker grid lines (checker)
+  float local_scale = 1.0f;      // unit-shape coordinates -> metres (checker)
+  glm::vec2 local_offset{0.0f};  // added after scaling, so squares align with the world
   // Motion blur of the sphere pattern (render/spin_blur.hpp): the rotation during the
   // frame's exposure, about `spin_axis` (object coordinates, unit), `spin_blur` radians.
   glm::vec3 spin_axis{0.0f, 0.0f, 1.0f};
@@ -142,6 +170,10 @@ class PoseTrack {
   double angle(int body, int joint, double t) const;
   // Value of a trajectory column (or the norm of the columns NAME.*) at time t; NaN if absent.
   double signal(const std::string& name, double t) const;
+  // Index of a column, -1 if absent; its value at time t; the largest |value| over the run.
+  int column(const std::string& name) const;
+  double column_value(int column, double t) const { return value(column, t); }
+  double column_peak(int column) const;
 
  private:
   struct Columns {
