@@ -2,7 +2,9 @@
 // body stays in view) or set by the scene file ([camera] position/target/fov), optionally
 // following one body's horizontal motion (and its height once it leaves a dead zone of half
 // the picture's half-height, so a dropping body stays in the frame), or with
-// follow_vertical, its motion along all three axes.
+// follow_vertical, its motion along all three axes. `view` presets (camera_preset.hpp) pick
+// the direction (side, top, three-quarter) or a follow camera at a fixed height; every fixed
+// camera frames the mechanism's elements too (mechanism_items.hpp).
 #pragma once
 
 #include <glm/glm.hpp>

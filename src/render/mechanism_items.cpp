@@ -329,7 +329,9 @@ void add_mechanism_items(std::vector<DrawItem>& items, const SceneDescription& s
     const SpringEnds e = spring_ends(scene, poses, frame, static_cast<int>(i), t);
     CoilShape shape;
     shape.coil_radius = e.coil_radius;
-    add_tube(items, coil_path(e.a, e.b, shape), 0.17f * e.coil_radius, steel);
+    // The coil casts no shadow: its ~80 pieces would be drawn again into the shadow map, a
+    // third of the layer's cost on llvmpipe, for a shadow the post and the body already give.
+    add_tube(items, coil_path(e.a, e.b, shape), 0.17f * e.coil_radius, steel, false);
     if (s.damping > 0.0) {
       // A damper inside the coil: a dark cylinder from one end, a bright rod from the other,
       // sliding into it as the spring works.
@@ -378,21 +380,24 @@ void add_mechanism_items(std::vector<DrawItem>& items, const SceneDescription& s
       // The roller turns with the belt: its top moves along d by the belt's travel.
       const float angle = static_cast<float>(travel / r->radius);
       for (const glm::vec3& c : r->centre) {
+        // Rollers, their stripes, axles and trestles cast no shadow: they lie far apart at the
+        // ends of a belt or a board, and shadow casters spread over the picture make every
+        // pixel pay for the shadow lookups (shadow_region.hpp).
         add_cylinder(items, c - r->half_length * r->axis, c + r->half_length * r->axis, r->radius,
-                     plain(kRollerColour, 0.5f, 48.0f));
+                     plain(kRollerColour, 0.5f, 48.0f), false);
         const glm::vec3 at = c + 0.93f * r->radius * (std::cos(angle) * n + std::sin(angle) * d);
         add_cylinder(items, at - 1.01f * r->half_length * r->axis,
                      at + 1.01f * r->half_length * r->axis, 0.12f * r->radius,
-                     plain(kRollerStripe));
+                     plain(kRollerStripe), false);
       }
     }
     if (const auto axle = pivot_axle(frame, s, t)) {
       const Material metal = plain(glm::vec3(0.35f), 0.5f, 48.0f);
-      add_cylinder(items, axle->a, axle->b, axle->radius, metal);
+      add_cylinder(items, axle->a, axle->b, axle->radius, metal, false);
       // Two trestles from the floor hold the axle at its ends.
       for (const glm::vec3& end : {axle->a, axle->b}) {
         const glm::vec3 foot(end.x, end.y, floor_under(scene, frame, end));
-        add_cylinder(items, foot, end, 0.8f * axle->radius, plain(kPostColour));
+        add_cylinder(items, foot, end, 0.8f * axle->radius, plain(kPostColour), false);
       }
     }
   }
