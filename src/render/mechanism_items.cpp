@@ -387,8 +387,8 @@ void add_mechanism_items(std::vector<DrawItem>& items, const SceneDescription& s
                      plain(kRollerColour, 0.5f, 48.0f), false);
         const glm::vec3 at = c + 0.93f * r->radius * (std::cos(angle) * n + std::sin(angle) * d);
         add_cylinder(items, at - 1.01f * r->half_length * r->axis,
-                     at + 1.01f * r->half_length * r->axis, 0.12f * r->radius,
-                     plain(kRollerStripe), false);
+                     at + 1.01f * r->half_length * r->axis, 0.12f * r->radius, plain(kRollerStripe),
+                     false);
       }
     }
     if (const auto axle = pivot_axle(frame, s, t)) {
