@@ -73,3 +73,10 @@ extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v2
     }
   });
 }
+
+extern "C" __attribute__((visibility("default"))) void stiction_render_compare_v1(
+    stiction::render::CompareVideoCall* call) {
+  guarded(call, [call] {
+    *call->result = stiction::render::render_compare_video(*call->runs, *call->request);
+  });
+}

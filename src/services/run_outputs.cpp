@@ -69,6 +69,9 @@ render::RenderResult write_run_video(const scene::Scene& scene, const core::RunR
   request.frames = video.frames;
   request.cancel = video.cancel;
   request.event_times = slip_event_times(result);  // time-warp around events
+  for (const core::SlipHistory& h : result.slip_events) {  // in the same order: the inset's marks
+    for (const core::SlipEvent& e : h.monitor.events()) request.event_kinds.push_back(e.kind);
+  }
   if (video.progress) {
     bar = std::make_unique<ProgressBar>(video.video ? "render video" : "render frames");
     request.progress = [&bar](const render::RenderProgress& p) {
