@@ -152,6 +152,7 @@ int compare_command(const CompareArguments& args) {
   const fs::path path =
       write_comparison(runs, args.signals, out, args.plot_format.value_or(plot::Format::png));
   if (!args.quiet) std::printf("  wrote %s\n", path.c_str());
+  std::fflush(stdout);  // before the video's progress lines on stderr
   if (args.video) {
     std::vector<render::CompareRun> video_runs;
     for (std::size_t i = 0; i < scenes.size(); ++i) {

@@ -31,7 +31,7 @@ void label(image::Image& frame, text::Font& font, const text::TextStyle& style,
   const double h = 1.35 * style.pixel_size + pad;
   for (int py = y; py < std::min(frame.height, int(std::ceil(y + h))); ++py) {
     for (int px = x; px < std::min(frame.width, int(std::ceil(x + w))); ++px) {
-      frame.blend(px, py, {255, 255, 255, 255}, 0.8f);
+      frame.blend(px, py, {255, 255, 255, 255}, 0.9f);
     }
   }
   font.draw(frame, text, x + pad, y + 0.5 * pad + 1.0 * style.pixel_size, style);

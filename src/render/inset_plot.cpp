@@ -44,6 +44,29 @@ std::vector<double> signal_values(const core::Trajectory& trajectory, const std:
   return values;
 }
 
+// `source` resized to w x h (not larger) by averaging the source pixels under each pixel: a
+// white background stays exactly white, so the inset's translucency still finds it.
+image::Image shrunk(const image::Image& source, int w, int h) {
+  image::Image out(w, h);
+  for (int y = 0; y < h; ++y) {
+    const int sy0 = y * source.height / h, sy1 = std::max(sy0 + 1, (y + 1) * source.height / h);
+    for (int x = 0; x < w; ++x) {
+      const int sx0 = x * source.width / w, sx1 = std::max(sx0 + 1, (x + 1) * source.width / w);
+      int sum[4] = {0, 0, 0, 0};
+      for (int v = sy0; v < sy1; ++v) {
+        for (int u = sx0; u < sx1; ++u) {
+          const std::uint8_t* p = source.data(u, v);
+          for (int c = 0; c < 4; ++c) sum[c] += p[c];
+        }
+      }
+      const int n = (sy1 - sy0) * (sx1 - sx0);
+      std::uint8_t* d = out.data(x, y);
+      for (int c = 0; c < 4; ++c) d[c] = static_cast<std::uint8_t>(sum[c] / n);
+    }
+  }
+  return out;
+}
+
 // The events worth a mark in a small plot: the changes between slipping and sticking. A
 // contact that chatters (opens and touches down every few milliseconds, as sphere_roll's
 // bouncing start does) gives dozens of "open" events and re-sticks that would bury the one
@@ -91,23 +114,25 @@ InsetPlot::InsetPlot(const InsetSettings& settings, const core::Trajectory& traj
       settings_.in_pixels ? int(settings_.width) : int(std::lround(settings_.width * frame_width));
   int h = settings_.in_pixels ? int(settings_.height)
                               : int(std::lround(settings_.height * frame_height));
-  w = std::max(w, kMinWidth);
-  h = std::max(h, kMinHeight);
-  const int margin = std::max(4, frame_height / 60);
-  if (w + 2 * margin > frame_width || h + 2 * margin > frame_height) {
-    std::string message = "[inset] size: ";
-    message.append(std::to_string(w)).append("x").append(std::to_string(h));
-    message.append(" pixels do not fit in a ").append(std::to_string(frame_width)).append("x");
-    message.append(std::to_string(frame_height))
-        .append(" frame (the inset needs at least 200x150)");
-    throw RenderError(message);
+  // The inset stays inside the frame (less its margin); a box too small for a figure (a
+  // tile of a compare video) gets the figure drawn at the least size, same aspect, and
+  // scaled down once per page.
+  const int margin = std::max(2, frame_height / 60);
+  w = std::clamp(w, 8, std::max(8, frame_width - 2 * margin));
+  h = std::clamp(h, 8, std::max(8, frame_height - 2 * margin));
+  const double enlarge = std::max({1.0, double(kMinWidth) / w, double(kMinHeight) / h});
+  figure_width_ = static_cast<int>(std::ceil(w * enlarge));
+  figure_height_ = static_cast<int>(std::ceil(h * enlarge));
+  font_px_ *= enlarge;
+  if (w > frame_width || h > frame_height) {
+    throw RenderError("[inset]: the frame is too small for an inset");
   }
   const bool left =
       settings_.corner == InsetCorner::top_left || settings_.corner == InsetCorner::bottom_left;
   const bool top =
       settings_.corner == InsetCorner::top_left || settings_.corner == InsetCorner::top_right;
-  box_.x0 = left ? margin : frame_width - margin - w;
-  box_.y0 = top ? margin : frame_height - margin - h;
+  box_.x0 = left ? std::min(margin, frame_width - w) : std::max(0, frame_width - margin - w);
+  box_.y0 = top ? std::min(margin, frame_height - h) : std::max(0, frame_height - margin - h);
   box_.x1 = box_.x0 + w;
   box_.y1 = box_.y0 + h;
 }
@@ -144,8 +169,8 @@ void InsetPlot::draw_page(Page& page) const {
   figure.x_max = page.t1;
   plot::Figure::Print print;
   print.dpi = kDpi;
-  print.width_mm = (box_.x1 - box_.x0) * 25.4 / kDpi;
-  print.height_mm = (box_.y1 - box_.y0) * 25.4 / kDpi;
+  print.width_mm = figure_width_ * 25.4 / kDpi;
+  print.height_mm = figure_height_ * 25.4 / kDpi;
   print.font_pt = font_px_ * 72.0 / kDpi;
   figure.print = print;
   // Only the rows of this page (and one on each side, so the line reaches the frame's edges).
@@ -195,6 +220,13 @@ void InsetPlot::draw_page(Page& page) const {
   }
   plot::FigureLayout axes_layout;
   page.axes = plot::render(figure, &axes_layout);
+  const int w = box_.x1 - box_.x0, h = box_.y1 - box_.y0;
+  if (page.full.width != w || page.full.height != h) {
+    const double sx = double(w) / page.full.width, sy = double(h) / page.full.height;
+    page.full = shrunk(page.full, w, h);
+    page.axes = shrunk(page.axes, w, h);
+    for (plot::Rect& r : page.layout.panels) r = {r.x0 * sx, r.y0 * sy, r.x1 * sx, r.y1 * sy};
+  }
 }
 
 double InsetPlot::column_of(const Page& page, double t) const {

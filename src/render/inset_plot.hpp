@@ -32,7 +32,8 @@ struct InsetEvent {
 class InsetPlot {
  public:
   // `frame_width` x `frame_height`: the video's frame. Throws RenderError for a signal the
-  // trajectory lacks or a frame smaller than the inset's least size (200 x 150 pixels).
+  // trajectory lacks. An inset larger than the frame is cut to it; one smaller than a figure
+  // can be (200 x 150 pixels: a compare video's tile) is drawn at that size and scaled down.
   InsetPlot(const InsetSettings& settings, const core::Trajectory& trajectory, int frame_width,
             int frame_height, std::vector<InsetEvent> events = {});
 
@@ -66,6 +67,7 @@ class InsetPlot {
   std::vector<std::pair<double, double>> ranges_;  // per signal: min, max over the run
   double start_ = 0.0, end_ = 0.0;
   double font_px_ = 12.0;
+  int figure_width_ = 0, figure_height_ = 0;  // the figure as drawn (at least 200 x 150)
   PixelBox box_;
   Page page_;
 };

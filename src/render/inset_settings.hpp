@@ -7,8 +7,9 @@
 //   signals = ["ground.slip", "sphere.w"]  # one panel each, stacked (a vector signal shows
 //                                          # its norm, as the overlay does); none: no inset
 //   position = "bottom_right"  # top_left, top_right, bottom_left or bottom_right
-//   size = [0.4, 0.4]          # fractions of the frame (both <= 1) or pixels (both > 1),
-//                              # at least 200 x 150 pixels (smaller fractions are widened)
+//   size = [0.4, 0.4]          # fractions of the frame (both <= 1) or pixels (at least
+//                              # [200, 150]); an inset below 200 x 150 pixels (a compare
+//                              # tile) is drawn at that size and scaled down
 //   window = 2.0               # seconds shown; default: the whole run. A shorter window
 //                              # pages: the plot shows [k w, (k + 1) w) and turns to the next
 //                              # page when t passes its end

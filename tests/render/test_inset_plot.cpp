@@ -184,12 +184,31 @@ TEST_CASE("generated signals and windows: the curves are revealed up to the curs
   }
 }
 
-TEST_CASE("an inset that does not fit in the frame is an error", "[render][inset]") {
+TEST_CASE("an inset in a frame smaller than a figure is scaled down into it", "[render][inset]") {
   std::mt19937 rng(1);
-  const core::Trajectory tr = random_run(rng, 1, 1.0);
+  const core::Trajectory tr = random_run(rng, 2, 1.0);
   InsetSettings s;
-  s.signals = {"s0"};
-  CHECK_THROWS_AS(InsetPlot(s, tr, 200, 120), RenderError);
+  s.signals = {"s0", "s1"};
+  s.width = 0.8;
+  s.height = 0.9;
+  for (const auto& [w, h] : {std::pair{158, 88}, std::pair{200, 120}, std::pair{90, 300}}) {
+    INFO(w << "x" << h);
+    const image::Rgba background{40, 60, 80, 255};
+    image::Image frame(w, h, background);
+    InsetPlot inset(s, tr, w, h);
+    const PixelBox box = inset.box();
+    CHECK(box.x0 >= 0);
+    CHECK(box.y0 >= 0);
+    CHECK(box.x1 <= w);
+    CHECK(box.y1 <= h);
+    inset.draw(frame, 0.5);
+    const PixelBox panels = inset.panels_box(0.5);
+    CHECK(panels.x0 >= box.x0);
+    CHECK(panels.x1 <= box.x1);
+    const int cursor = inset.cursor_x(0.5);
+    CHECK(std::abs(cursor - 0.5 * (panels.x0 + panels.x1)) <= 1.5);
+    CHECK(frame.at(cursor, (panels.y0 + panels.y1) / 2) == image::Rgba{200, 30, 30, 255});
+  }
   s.signals = {"nope"};
   CHECK_THROWS_AS(InsetPlot(s, tr, 640, 360), RenderError);
 }
