@@ -138,11 +138,18 @@ void CompareFrames::render(double t, image::Image& out, double speed) {
     const int pad = static_cast<int>(0.6 * style.pixel_size);
     label(out, *font_, style, tile.label, box.x0 + pad, box.y0 + pad);
   }
-  // The shared time line, centred at the bottom.
+  // The shared time line: centred at the bottom, or in the grid's empty cell when there is
+  // one (3 runs in 2 x 2), where it covers no run.
   const std::string line = time_line(t, speed);
   const double w = font_->measure(line, style).width + style.pixel_size;
-  const int x = static_cast<int>((settings_.width - w) / 2.0);
-  const int y = settings_.height - static_cast<int>(2.2 * style.pixel_size);
+  int x = static_cast<int>((settings_.width - w) / 2.0);
+  int y = settings_.height - static_cast<int>(2.2 * style.pixel_size);
+  const int runs = static_cast<int>(tiles_.size());
+  if (grid_.columns * grid_.rows > runs) {
+    const TileGrid::Box empty = grid_.tile(grid_.columns * grid_.rows - 1);
+    x = static_cast<int>((empty.x0 + empty.x1 - w) / 2.0);
+    y = static_cast<int>((empty.y0 + empty.y1) / 2.0 - style.pixel_size);
+  }
   label(out, *font_, style, line, std::max(0, x), std::max(0, y));
 }
 
