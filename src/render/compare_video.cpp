@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "render/frame_worker.hpp"
+#include "render/number_format.hpp"
 #include "render/scene_view.hpp"
 #include "render/video_encoder.hpp"
 #include "scene/scene.hpp"
@@ -73,6 +74,10 @@ TileGrid tile_grid(int runs, int width, int height) {
 
 struct CompareFrames::Tile {
   std::string label;
+  // The scene's [overlay] value, shown under the label (the time line is shared): a creeping
+  // joint reads "1.234 mrad/s" beside one that holds at "0.000 rad/s".
+  OverlaySettings overlay;
+  double zero_below = -1.0;  // 1e-9 of the signal's largest magnitude, measured on first use
   double end = 0.0;
   std::unique_ptr<FrameRenderer> renderer;
   image::Image picture;
@@ -98,6 +103,7 @@ CompareFrames::CompareFrames(const std::vector<CompareRun>& runs) {
     s.overlay.enabled = false;  // one shared time line instead of one per tile
     auto tile = std::make_unique<Tile>();
     tile->label = r.label;
+    if (r.settings.overlay.enabled) tile->overlay = r.settings.overlay;
     tile->renderer =
         std::make_unique<FrameRenderer>(describe_scene(*r.scene->network, r.scene->document),
                                         *r.trajectory, s, r.event_times, r.event_kinds);
@@ -137,6 +143,26 @@ void CompareFrames::render(double t, image::Image& out, double speed) {
     }
     const int pad = static_cast<int>(0.6 * style.pixel_size);
     label(out, *font_, style, tile.label, box.x0 + pad, box.y0 + pad);
+    if (!tile.overlay.signal.empty()) {
+      const PoseTrack& poses = tile.renderer->poses();
+      if (tile.zero_below < 0.0) {
+        double largest = 0.0;
+        for (int k = 0; k <= 512; ++k) {
+          const double at =
+              poses.start_time() + (poses.end_time() - poses.start_time()) * k / 512.0;
+          const double v = std::abs(poses.signal(tile.overlay.signal, at));
+          if (std::isfinite(v)) largest = std::max(largest, v);
+        }
+        tile.zero_below = 1e-9 * largest;
+      }
+      const Quantity q = format_quantity(poses.signal(tile.overlay.signal, std::min(t, tile.end)),
+                                         tile.overlay.unit, tile.zero_below);
+      std::string value = tile.overlay.label;
+      value.append(" = ").append(q.number);
+      if (!q.unit.empty()) value.append(" ").append(q.unit);
+      label(out, *font_, style, value, box.x0 + pad,
+            box.y0 + pad + static_cast<int>(1.5 * style.pixel_size + pad));
+    }
   }
   // The shared time line: centred at the bottom, or in the grid's empty cell when there is
   // one (3 runs in 2 x 2), where it covers no run.

@@ -1,13 +1,14 @@
 // `stiction compare A B ... --video`: one video, OUT/compare.mp4, of the runs side by side
 // (2 runs: left and right; more: a grid of ceil(sqrt(n)) columns), synchronized on simulated
-// time, each tile labelled with its run's label at its top left, one time line for all at the
-// bottom. Each tile is drawn by a FrameRenderer of its own run (its scene's camera, trail and
-// inset; its time overlay is off: the shared time line replaces it) at the tile's size, and
-// the tiles are copied into one frame that the FrameWorker encodes, as render_outputs does.
-// The frame is the first run's [render] size, fps, crf and preset; the video slows down
-// around the union of every run's events when any scene sets slow_motion_around_events (the
-// largest window and the first run's event_slow_motion). A run that ends before the others
-// holds its last picture.
+// time, each tile labelled with its run's label at its top left and, under it, its scene's
+// [overlay] value ("joint 1 speed = 0.000 rad/s"); one time line for all at the bottom (or in
+// the grid's empty cell). Each tile is drawn by a FrameRenderer of its own run (its scene's
+// camera, trail and inset; its time overlay is off: the shared time line replaces it) at the
+// tile's size, and the tiles are copied into one frame that the FrameWorker encodes, as
+// render_outputs does. The frame is the first run's [render] size, fps, crf and preset; the
+// video slows down around the union of every run's events when any scene sets
+// slow_motion_around_events (the largest window and the first run's event_slow_motion). A run that
+// ends before the others holds its last picture.
 #pragma once
 
 #include <atomic>
