@@ -162,9 +162,7 @@ int compare_command(const CompareArguments& args) {
       run.trajectory = &results[i].trajectory;
       run.settings = render_settings[i];
       run.event_times = slip_event_times(results[i]);
-      for (const core::SlipHistory& h : results[i].slip_events) {
-        for (const core::SlipEvent& e : h.monitor.events()) run.event_kinds.push_back(e.kind);
-      }
+      run.event_kinds = slip_event_kinds(results[i]);
       video_runs.push_back(std::move(run));
     }
     render::CompareVideoRequest request;

@@ -125,8 +125,9 @@ int dispatch(int argc, char** argv) {
       ->check(app::finite_positive());
 
   app::CompareArguments compare_args;
-  CLI::App* compare = cli.add_subcommand(
-      "compare", "run several scenes and overlay their signals in compare.png (--video: side by side in compare.mp4)");
+  CLI::App* compare = cli.add_subcommand("compare",
+                                         "run several scenes and overlay their signals in "
+                                         "compare.png (--video: side by side in compare.mp4)");
   compare->add_option("SCENE", compare_args.scenes, "two or more bundled scene names or .toml paths")
       ->required();
   compare->add_option("--out", compare_args.out, "output directory (default out/compare/)");
