@@ -176,7 +176,12 @@ int compare_command(const CompareArguments& args) {
       };
     }
     const render::RenderResult video = render_compare_video_on_demand(video_runs, request);
-    if (video.interrupted) throw sys::Interrupted{};
+    if (video.interrupted) {
+      // The figure and the frames so far are kept; main() turns this into exit 130 / 143.
+      std::fprintf(stderr, "interrupted: %s holds the %d frames rendered\n", video.video.c_str(),
+                   video.frames);
+      return kExitOk;
+    }
     if (bar) bar->finish(std::to_string(video.frames) + " frames");
     if (!args.quiet) std::printf("  wrote %s\n", video.video.c_str());
   }
