@@ -51,6 +51,7 @@ struct CompareArguments {
   std::optional<plot::Format> plot_format;
   bool quiet = false;
   bool force_step = false;  // --force-step
+  bool video = false;       // --video: OUT/compare.mp4, the runs side by side
 };
 
 // `stiction study SCENE`: speed against accuracy of the integrators (src/app/study.hpp).

@@ -1,18 +1,25 @@
 // `stiction compare SCENE SCENE...`: runs each scene as `run --no-video --no-plots` would
 // and overlays them in one figure, OUT/compare.png (default out/compare/), drawn by
 // services/comparison.hpp; this file parses the scene arguments, guards and simulates the
-// runs and prints.
+// runs and prints. With --video it also writes OUT/compare.mp4, the runs side by side
+// (render/compare_video.hpp, through the renderer plugin).
 // A scene argument may carry overrides of its own after '@' ("sphere_roll@ground.mu=0.3");
 // each run is labelled by its scene name plus the overrides that tell it from the others.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app/commands.hpp"
 #include "core/column_info.hpp"
+#include "render/compare_video.hpp"
+#include "render/render_settings.hpp"
 #include "scene/scene.hpp"
 #include "services/comparison.hpp"
+#include "services/progress.hpp"
+#include "services/render_loader.hpp"
+#include "services/run_outputs.hpp"
 #include "services/run_support.hpp"
 #include "services/step_guard.hpp"
 #include "sys/interrupt.hpp"
@@ -83,6 +90,16 @@ int compare_command(const CompareArguments& args) {
   // --signals is checked against the scenes' columns before anything runs (exit 2 at once).
   check_comparison_signals(labels, signal_columns, args.signals);
 
+  // With --video, every scene's [render]/[camera]/[overlay]/[inset] is checked before the
+  // first simulation too (exit 2 at once).
+  std::vector<render::RenderSettings> render_settings;
+  if (args.video) {
+    for (const scene::Scene& s : scenes) {
+      render_settings.push_back(render::read_render_settings(s));
+      render::check_frame_count(s, render_settings.back());
+    }
+  }
+
   // The step guard for every run before the first simulation: a refused step ends the
   // comparison with exit 3 and nothing written.
   std::vector<StepCheck> checks;
@@ -135,6 +152,39 @@ int compare_command(const CompareArguments& args) {
   const fs::path path =
       write_comparison(runs, args.signals, out, args.plot_format.value_or(plot::Format::png));
   if (!args.quiet) std::printf("  wrote %s\n", path.c_str());
+  std::fflush(stdout);  // before the video's progress lines on stderr
+  if (args.video) {
+    std::vector<render::CompareRun> video_runs;
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+      render::CompareRun run;
+      run.label = labels[i];
+      run.scene = &scenes[i];
+      run.trajectory = &results[i].trajectory;
+      run.settings = render_settings[i];
+      run.event_times = slip_event_times(results[i]);
+      run.event_kinds = slip_event_kinds(results[i]);
+      video_runs.push_back(std::move(run));
+    }
+    render::CompareVideoRequest request;
+    request.out_dir = out;
+    request.cancel = &sys::interrupt_flag();
+    std::unique_ptr<ProgressBar> bar;
+    if (progress) {
+      bar = std::make_unique<ProgressBar>("render compare video");
+      request.progress = [&bar](const render::RenderProgress& p) {
+        bar->frames(p.frames_done, p.frame_count, p.frames_per_second, p.eta_seconds);
+      };
+    }
+    const render::RenderResult video = render_compare_video_on_demand(video_runs, request);
+    if (video.interrupted) {
+      // The figure and the frames so far are kept; main() turns this into exit 130 / 143.
+      std::fprintf(stderr, "interrupted: %s holds the %d frames rendered\n", video.video.c_str(),
+                   video.frames);
+      return kExitOk;
+    }
+    if (bar) bar->finish(std::to_string(video.frames) + " frames");
+    if (!args.quiet) std::printf("  wrote %s\n", video.video.c_str());
+  }
   return kExitOk;
 }
 

@@ -125,8 +125,9 @@ int dispatch(int argc, char** argv) {
       ->check(app::finite_positive());
 
   app::CompareArguments compare_args;
-  CLI::App* compare = cli.add_subcommand(
-      "compare", "run several scenes (no video) and overlay their signals in compare.png");
+  CLI::App* compare = cli.add_subcommand("compare",
+                                         "run several scenes and overlay their signals in "
+                                         "compare.png (--video: side by side in compare.mp4)");
   compare->add_option("SCENE", compare_args.scenes, "two or more bundled scene names or .toml paths")
       ->required();
   compare->add_option("--out", compare_args.out, "output directory (default out/compare/)");
@@ -134,6 +135,8 @@ int dispatch(int argc, char** argv) {
                       "KEY=VALUE: set a dotted key of every scene to a TOML value (repeatable)")
       ->allow_extra_args(false);
   compare->add_flag("--quiet", compare_args.quiet, "print nothing but errors");
+  compare->add_flag("--video", compare_args.video,
+                    "also write compare.mp4: the runs side by side, synchronized on time");
   compare->add_flag("--force-step", compare_args.force_step,
                     "simulate even when a step is above its predicted instability limit");
   compare->add_option("--signals", compare_args.signals,

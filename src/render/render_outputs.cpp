@@ -2,18 +2,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
-#include <cstdio>
-#include <ctime>
-#include <deque>
-#include <exception>
-#include <mutex>
 #include <optional>
-#include <thread>
 
-#include "image/png.hpp"
 #include "render/camera.hpp"
+#include "render/frame_worker.hpp"
 #include "render/gl_context.hpp"
+#include "render/inset_plot.hpp"
 #include "render/overlay.hpp"
 #include "render/renderer.hpp"
 #include "render/spin_blur.hpp"
@@ -23,107 +17,8 @@
 #include "scene/scene.hpp"
 
 namespace stiction::render {
-namespace {
 
 namespace fs = std::filesystem;
-
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// Encodes and writes frames on its own thread. push() blocks while `capacity` frames wait,
-// so memory stays bounded and the renderer is paced by the encoder when it is slower.
-class FrameWorker {
- public:
-  FrameWorker(VideoEncoder* encoder, std::optional<fs::path> frames_dir)
-      : encoder_(encoder), frames_dir_(std::move(frames_dir)), thread_([this] { run(); }) {}
-  ~FrameWorker() { stop(); }
-
-  void push(int index, image::Image&& frame) {
-    std::unique_lock lock(mutex_);
-    space_.wait(lock, [&] { return queue_.size() < kCapacity || error_; });
-    if (error_) std::rethrow_exception(error_);
-    queue_.push_back({index, std::move(frame)});
-    ready_.notify_one();
-  }
-  // Takes back an image buffer that the worker is done with (avoids reallocation).
-  bool recycle(image::Image& into) {
-    std::lock_guard lock(mutex_);
-    if (spare_.empty()) return false;
-    into = std::move(spare_.back());
-    spare_.pop_back();
-    return true;
-  }
-  // Waits for the queue to empty and the thread to end; rethrows the worker's error.
-  void stop() {
-    {
-      std::lock_guard lock(mutex_);
-      done_ = true;
-      ready_.notify_one();
-    }
-    if (thread_.joinable()) thread_.join();
-  }
-  void rethrow() {
-    std::lock_guard lock(mutex_);
-    if (error_) std::rethrow_exception(error_);
-  }
-  // The worker thread's CPU time; valid after stop().
-  double cpu_seconds() const { return cpu_seconds_; }
-
- private:
-  static constexpr std::size_t kCapacity = 3;
-  struct Job {
-    int index;
-    image::Image frame;
-  };
-  void run() {
-    for (;;) {
-      Job job;
-      {
-        std::unique_lock lock(mutex_);
-        ready_.wait(lock, [&] { return !queue_.empty() || done_; });
-        if (queue_.empty()) {
-          cpu_seconds_ = thread_cpu_seconds();
-          return;
-        }
-        job = std::move(queue_.front());
-        queue_.pop_front();
-        space_.notify_one();
-      }
-      try {
-        if (encoder_) encoder_->encode(job.frame);
-        if (frames_dir_) {
-          char name[32];
-          std::snprintf(name, sizeof name, "%06d.png", job.index);
-          image::write_png(*frames_dir_ / name, job.frame, image::PngSpeed::fast);
-        }
-      } catch (...) {
-        std::lock_guard lock(mutex_);
-        error_ = std::current_exception();
-        queue_.clear();
-        space_.notify_all();
-        return;
-      }
-      std::lock_guard lock(mutex_);
-      if (spare_.size() < kCapacity) spare_.push_back(std::move(job.frame));
-    }
-  }
-
-  VideoEncoder* encoder_;
-  std::optional<fs::path> frames_dir_;
-  std::mutex mutex_;
-  std::condition_variable ready_, space_;
-  std::deque<Job> queue_;
-  std::vector<image::Image> spare_;
-  std::exception_ptr error_;
-  bool done_ = false;
-  double cpu_seconds_ = 0.0;
-  std::thread thread_;  // last: starts after everything above is built
-};
-
-}  // namespace
 
 FrameClock frame_clock(double start, double end, double fps, double slow_motion) {
   FrameClock clock;
@@ -134,7 +29,8 @@ FrameClock frame_clock(double start, double end, double fps, double slow_motion)
 }
 
 FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
-                             const RenderSettings& settings)
+                             const RenderSettings& settings, const std::vector<double>& event_times,
+                             const std::vector<std::string>& event_kinds)
     : scene_(std::move(scene)), settings_(settings), poses_(trajectory, scene_) {
   context_ = create_offscreen_context();
   RendererOptions options;
@@ -149,6 +45,13 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
   if (settings.overlay.enabled) {
     overlay_ = std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
                                          settings.slow_motion_around_events > 0.0);
+  }
+  if (settings.inset.enabled()) {
+    std::vector<InsetEvent> events;
+    for (std::size_t i = 0; i < event_times.size(); ++i)
+      events.push_back({event_times[i], i < event_kinds.size() ? event_kinds[i] : ""});
+    inset_ = std::make_unique<InsetPlot>(settings.inset, trajectory, settings.width,
+                                         settings.height, std::move(events));
   }
 }
 
@@ -177,6 +80,7 @@ void FrameRenderer::render(double t, image::Image& out, double speed) {
   renderer_->draw(items, camera_->at(t), trail);
   renderer_->read_back(out);
   if (overlay_) overlay_->draw(out, poses_, t, speed);
+  if (inset_) inset_->draw(out, t);
 }
 
 image::Image FrameRenderer::render(double t, double speed) {
@@ -191,7 +95,8 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   RenderResult result;
   if (!request.video && !request.frames) return result;
 
-  FrameRenderer renderer(describe_scene(*scene.network, scene.document), trajectory, settings);
+  FrameRenderer renderer(describe_scene(*scene.network, scene.document), trajectory, settings,
+                         request.event_times, request.event_kinds);
   const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                                        settings.fps, settings.slow_motion);
   const std::vector<FrameTime> times =

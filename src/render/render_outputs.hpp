@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/trajectory.hpp"
@@ -47,6 +48,9 @@ struct RenderRequest {
   // Stick/slip event times of the run: the video slows down around them when the settings'
   // slow_motion_around_events is positive.
   std::vector<double> event_times;
+  // The kind of each event ("stick", "slip", ...), parallel to event_times; may be empty.
+  // The inset plot ([inset]) marks the events with them.
+  std::vector<std::string> event_kinds;
 };
 
 struct RenderResult {
@@ -73,13 +77,17 @@ class GlContext;
 class Renderer;
 class CameraRig;
 class Overlay;
+class InsetPlot;
 
 // Renders single frames of one run (also used by the tests and the benchmark). Creates its
 // own GL context; use it from one thread.
 class FrameRenderer {
  public:
+  // `event_times` / `event_kinds` (parallel; kinds may be empty): the run's events, which
+  // the inset plot marks when [inset] is on.
   FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
-                const RenderSettings& settings);
+                const RenderSettings& settings, const std::vector<double>& event_times = {},
+                const std::vector<std::string>& event_kinds = {});
   ~FrameRenderer();
   FrameRenderer(const FrameRenderer&) = delete;
   FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -100,6 +108,7 @@ class FrameRenderer {
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<CameraRig> camera_;
   std::unique_ptr<Overlay> overlay_;
+  std::unique_ptr<InsetPlot> inset_;
 };
 
 RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& trajectory,

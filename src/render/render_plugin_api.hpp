@@ -12,6 +12,7 @@
 
 #include "core/trajectory.hpp"
 #include "image/image.hpp"
+#include "render/compare_video.hpp"
 #include "render/render_outputs.hpp"
 #include "render/render_settings.hpp"
 #include "scene/scene.hpp"
@@ -46,10 +47,22 @@ struct FramesCall {
   std::string message;
 };
 
-// Bumped whenever PluginCall, FramesCall or the types they point to change.
-inline constexpr const char* kRenderPluginSymbol = "stiction_render_outputs_v1";
+// `stiction compare ... --video`: the runs side by side in OUT/compare.mp4
+// (render/compare_video.hpp).
+struct CompareVideoCall {
+  const std::vector<CompareRun>* runs = nullptr;
+  const CompareVideoRequest* request = nullptr;
+  RenderResult* result = nullptr;
+  PluginError error = PluginError::none;
+  std::string message;
+};
+
+// Bumped whenever PluginCall, FramesCall, CompareVideoCall or the types they point to change.
+inline constexpr const char* kRenderPluginSymbol = "stiction_render_outputs_v2";
 using RenderPluginEntry = void (*)(PluginCall*);
-inline constexpr const char* kRenderFramesSymbol = "stiction_render_frames_v2";
+inline constexpr const char* kRenderFramesSymbol = "stiction_render_frames_v3";
 using RenderFramesEntry = void (*)(FramesCall*);
+inline constexpr const char* kRenderCompareSymbol = "stiction_render_compare_v1";
+using RenderCompareEntry = void (*)(CompareVideoCall*);
 
 }  // namespace stiction::render

@@ -146,6 +146,7 @@ RenderSettings read_render_settings(const toml::table& document,
   if (auto r = table(root, "render")) read_render(*r, s);
   if (auto r = table(root, "camera")) read_camera(*r, s.camera, body_names);
   if (auto r = table(root, "overlay")) read_overlay(*r, s.overlay, signal_columns);
+  if (auto r = table(root, "inset")) read_inset(*r, s.inset, signal_columns);
   return s;
 }
 

@@ -41,6 +41,8 @@
 //                           # green below the contact's stick_threshold, red above
 //   trail_seconds = 0.5
 //   trail_contacts = ["ground"]  # contacts with a trail (default: every contact)
+//
+//   [inset]                 # a live plot in a corner of the video: see inset_settings.hpp
 #pragma once
 
 #include <map>
@@ -52,6 +54,7 @@
 
 #include "core/types.hpp"
 #include "render/camera_preset.hpp"
+#include "render/inset_settings.hpp"
 
 namespace stiction::scene {
 struct Scene;
@@ -101,6 +104,7 @@ struct RenderSettings {
   int encoder_threads = 0;  // 0: encoder_threads(); -1 (not a key): libx264's own choice
   CameraSettings camera;
   OverlaySettings overlay;
+  InsetSettings inset;  // [inset]: a live plot in a corner of the video (inset_settings.hpp)
 };
 
 // Reads the three tables of `document` (each optional). `body_names` are the names a camera

@@ -21,7 +21,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // Tables owned by the renderer, the plotter and `verify` (validated there, not here).
-constexpr const char* kForeignSections[] = {"render", "camera", "overlay", "plots", "verify"};
+constexpr const char* kForeignSections[] = {"render", "camera", "overlay",
+                                            "inset",  "plots",  "verify"};
 
 toml::table parse_text(const std::string& text, const std::string& origin) {
   try {

@@ -52,7 +52,8 @@ void* open_plugin() {
       continue;
     }
     if (::dlsym(handle, render::kRenderPluginSymbol) != nullptr &&
-        ::dlsym(handle, render::kRenderFramesSymbol) != nullptr) {
+        ::dlsym(handle, render::kRenderFramesSymbol) != nullptr &&
+        ::dlsym(handle, render::kRenderCompareSymbol) != nullptr) {
       return handle;
     }
     tried += "\n  " + path.string() + ": no " + render::kRenderPluginSymbol + " (another version?)";
@@ -147,6 +148,19 @@ std::vector<image::Image> render_frames_at(const scene::Scene& scene,
   entry(&call);
   rethrow(call.error, call.message);
   return std::move(call.images);
+}
+
+render::RenderResult render_compare_video_on_demand(const std::vector<render::CompareRun>& runs,
+                                                    const render::CompareVideoRequest& request) {
+  const auto entry = entry_point<render::RenderCompareEntry>(render::kRenderCompareSymbol);
+  render::RenderResult result;
+  render::CompareVideoCall call;
+  call.runs = &runs;
+  call.request = &request;
+  call.result = &result;
+  entry(&call);
+  rethrow(call.error, call.message);
+  return result;
 }
 
 }  // namespace stiction::services

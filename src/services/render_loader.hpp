@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "image/image.hpp"
+#include "render/compare_video.hpp"
 #include "render/render_outputs.hpp"
 #include "render/render_settings.hpp"
 #include "render/time_warp.hpp"
@@ -42,5 +43,10 @@ std::vector<image::Image> render_frames_at(const scene::Scene& scene,
                                            const core::Trajectory& trajectory,
                                            const render::RenderSettings& settings,
                                            const std::vector<render::FrameTime>& times);
+
+// `stiction compare ... --video` through the plugin: the runs side by side in
+// OUT/compare.mp4 (render/compare_video.hpp). Throws as render_outputs_on_demand.
+render::RenderResult render_compare_video_on_demand(const std::vector<render::CompareRun>& runs,
+                                                    const render::CompareVideoRequest& request);
 
 }  // namespace stiction::services

@@ -33,6 +33,14 @@ std::vector<double> slip_event_times(const core::RunResult& result) {
   return times;
 }
 
+std::vector<std::string> slip_event_kinds(const core::RunResult& result) {
+  std::vector<std::string> kinds;
+  for (const core::SlipHistory& h : result.slip_events) {
+    for (const core::SlipEvent& e : h.monitor.events()) kinds.push_back(e.kind);
+  }
+  return kinds;
+}
+
 core::Trajectory plot_rows(const core::Trajectory& all) {
   return replay(all, core::DecimatedTrajectory(all.columns(), StreamedRows::kPlotRows));
 }
@@ -69,6 +77,7 @@ render::RenderResult write_run_video(const scene::Scene& scene, const core::RunR
   request.frames = video.frames;
   request.cancel = video.cancel;
   request.event_times = slip_event_times(result);  // time-warp around events
+  request.event_kinds = slip_event_kinds(result);
   if (video.progress) {
     bar = std::make_unique<ProgressBar>(video.video ? "render video" : "render frames");
     request.progress = [&bar](const render::RenderProgress& p) {

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/simulation.hpp"
@@ -21,6 +22,8 @@ namespace stiction::services {
 // Every stick and slip event time of the run, element after element: the video slows down
 // around them when [render] slow_motion_around_events is set.
 std::vector<double> slip_event_times(const core::RunResult& result);
+// Their kinds ("stick", "slip", "open"), in the same order: the video's inset marks them.
+std::vector<std::string> slip_event_kinds(const core::RunResult& result);
 
 // From every row of a run, the rows `stiction run` keeps for its plots
 // (StreamedRows::for_plots) and for its video and frames (StreamedRows::for_video).
