@@ -13,6 +13,7 @@
 
 #include "image/png.hpp"
 #include "render/camera.hpp"
+#include "render/force_regime_layers.hpp"
 #include "render/gl_context.hpp"
 #include "render/overlay.hpp"
 #include "render/renderer.hpp"
@@ -134,7 +135,7 @@ FrameClock frame_clock(double start, double end, double fps, double slow_motion)
 }
 
 FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
-                             const RenderSettings& settings)
+                             const RenderSettings& settings, const ContactSites& sites)
     : scene_(std::move(scene)), settings_(settings), poses_(trajectory, scene_) {
   context_ = create_offscreen_context();
   RendererOptions options;
@@ -150,6 +151,7 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
     overlay_ = std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
                                          settings.slow_motion_around_events > 0.0);
   }
+  layers_ = ForceRegimeLayers::create(scene_, sites, poses_, settings);
 }
 
 FrameRenderer::~FrameRenderer() {
@@ -174,9 +176,12 @@ void FrameRenderer::render(double t, image::Image& out, double speed) {
     options.contacts = settings_.overlay.trail_contacts;
     trail = build_trails(scene_, poses_, t, options);
   }
-  renderer_->draw(items, camera_->at(t), trail);
+  const Camera camera = camera_->at(t);
+  if (layers_) layers_->add_items(items, t, camera);
+  renderer_->draw(items, camera, trail);
   renderer_->read_back(out);
   if (overlay_) overlay_->draw(out, poses_, t, speed);
+  if (layers_) layers_->draw(out, t, camera);
 }
 
 image::Image FrameRenderer::render(double t, double speed) {
@@ -191,7 +196,11 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   RenderResult result;
   if (!request.video && !request.frames) return result;
 
-  FrameRenderer renderer(describe_scene(*scene.network, scene.document), trajectory, settings);
+  SceneDescription description = describe_scene(*scene.network, scene.document);
+  const ContactSites sites = describe_contact_sites(
+      *scene.network, scene.document, description, settings.overlay.stick_thresholds,
+      settings.overlay.default_stick_threshold);
+  FrameRenderer renderer(std::move(description), trajectory, settings, sites);
   const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                                        settings.fps, settings.slow_motion);
   const std::vector<FrameTime> times =

@@ -21,6 +21,7 @@
 
 #include "core/trajectory.hpp"
 #include "image/image.hpp"
+#include "render/contact_sites.hpp"
 #include "render/render_settings.hpp"
 #include "render/scene_view.hpp"
 
@@ -73,13 +74,16 @@ class GlContext;
 class Renderer;
 class CameraRig;
 class Overlay;
+class ForceRegimeLayers;
 
 // Renders single frames of one run (also used by the tests and the benchmark). Creates its
 // own GL context; use it from one thread.
 class FrameRenderer {
  public:
+  // `sites`: contact points and friction joints for the force arrows and badges
+  // (describe_contact_sites); without them those layers show nothing.
   FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
-                const RenderSettings& settings);
+                const RenderSettings& settings, const ContactSites& sites = {});
   ~FrameRenderer();
   FrameRenderer(const FrameRenderer&) = delete;
   FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -100,6 +104,7 @@ class FrameRenderer {
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<CameraRig> camera_;
   std::unique_ptr<Overlay> overlay_;
+  std::unique_ptr<ForceRegimeLayers> layers_;  // null: forces, velocities, badges off
 };
 
 RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& trajectory,

@@ -1,0 +1,49 @@
+#include "render/force_regime_layers.hpp"
+
+#include <algorithm>
+
+namespace stiction::render {
+
+std::unique_ptr<ForceRegimeLayers> ForceRegimeLayers::create(const SceneDescription& scene,
+                                                             const ContactSites& sites,
+                                                             const PoseTrack& poses,
+                                                             const RenderSettings& settings) {
+  const OverlayLayers& l = settings.overlay.layers;
+  if (!settings.overlay.enabled || !(l.forces || l.velocities || l.badges)) return nullptr;
+  return std::make_unique<ForceRegimeLayers>(scene, sites, poses, settings);
+}
+
+ForceRegimeLayers::ForceRegimeLayers(const SceneDescription& scene, const ContactSites& sites,
+                                     const PoseTrack& poses, const RenderSettings& settings)
+    : scene_(scene),
+      sites_(sites),
+      poses_(poses),
+      layers_(settings.overlay.layers),
+      aspect_(static_cast<float>(settings.width) / static_cast<float>(settings.height)) {
+  if (layers_.forces || layers_.velocities) {
+    scales_ = choose_arrow_scales(scene, sites_, poses, layers_);
+    legend_.emplace(layers_.forces, layers_.velocities, scales_, settings.height);
+  }
+  if (layers_.badges) badges_.emplace(scene, sites_, poses, settings.height);
+  if (!layers_.caption.value_or("").empty()) {
+    // The overlay's caption band (overlay.cpp): 0.8 of its text size, 1.95 lines, one pad.
+    const double text = std::max(11.0, settings.height / 30.0);
+    caption_height_ = static_cast<int>(0.6 * text + 1.95 * 0.8 * text) + 2;
+  }
+}
+
+void ForceRegimeLayers::add_items(std::vector<DrawItem>& items, double t,
+                                  const Camera& camera) const {
+  if (layers_.forces) add_force_arrows(items, sites_, poses_, t, scales_, camera.eye);
+  if (layers_.velocities) add_velocity_arrows(items, scene_, poses_, t, scales_);
+}
+
+void ForceRegimeLayers::draw(image::Image& frame, double t, const Camera& camera) {
+  if (badges_) badges_->draw(frame, poses_, t, camera.projection(aspect_) * camera.view());
+  if (legend_) {
+    const int pad = static_cast<int>(0.6 * std::max(11.0, frame.height / 30.0));
+    legend_->draw(frame, camera, frame.height - caption_height_ - pad);
+  }
+}
+
+}  // namespace stiction::render
