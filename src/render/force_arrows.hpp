@@ -22,6 +22,7 @@ struct ArrowScales {
   double force = 1.0;           // N per metre of arrow
   double velocity = 1.0;        // (m/s) per metre of arrow
   float shaft_radius = 0.005f;  // metres
+  double max_length = 1e30;     // metres: longer arrows are cut to this (impact spikes)
 };
 
 // The body size the arrows are measured against: the largest sphere diameter, box side or
@@ -32,17 +33,25 @@ double arrow_body_size(const SceneDescription& scene);
 double round_up_125(double x);
 
 // The run's scales: the given ones, or the largest normal or friction force over the run
-// (sampled) at 0.6 body sizes and the largest body speed at 0.8 (not rounded: the legend
-// shows a round value at this scale).
+// (the 90th percentile over 129 sample times of the largest at each, so that impact spikes
+// do not set it) at 0.6 body sizes and the largest body speed at 0.8 (not rounded: the
+// legend shows a round value at this scale). Arrows are cut at 1.5 body sizes.
+// `exposure`: a frame's simulated duration, as for contact_force.
 ArrowScales choose_arrow_scales(const SceneDescription& scene, const ContactSites& sites,
-                                const PoseTrack& poses, const OverlayLayers& layers);
+                                const PoseTrack& poses, const OverlayLayers& layers,
+                                double exposure = 0.0);
 
-// The force on the body at a contact point split along the surface normal at t.
+// The force on the body at a contact point split along the surface normal at t. With an
+// `exposure` (the simulated time a video frame stands for, as the spin blur's), the mean over
+// [t - exposure / 2, t + exposure / 2]: a stiff contact that bounces (hundreds of newtons for
+// a fraction of a millisecond, nothing in between) shows its mean force, its weight, rather
+// than nothing or a spike depending on where the frame falls.
 struct ContactForce {
   core::Vec3 normal = core::Vec3::Zero();
   core::Vec3 friction = core::Vec3::Zero();
 };
-ContactForce contact_force(const ContactSite& site, const PoseTrack& poses, double t);
+ContactForce contact_force(const ContactSite& site, const PoseTrack& poses, double t,
+                           double exposure = 0.0);
 
 // Where a contact's arrows start: the contact point lifted off the surface by the shaft
 // radius and moved along the surface towards the camera (`eye`): beside a round body
@@ -54,7 +63,7 @@ core::Vec3 force_arrow_tail(const ContactSite& site, const PoseTrack& poses, dou
 // Normal and friction arrows of every contact point (a zero force adds nothing).
 void add_force_arrows(std::vector<DrawItem>& items, const ContactSites& sites,
                       const PoseTrack& poses, double t, const ArrowScales& scales,
-                      const glm::vec3& eye);
+                      const glm::vec3& eye, double exposure = 0.0);
 
 // One arrow per body with a velocity (`<b>.v.*`), from the body's surface along v.
 void add_velocity_arrows(std::vector<DrawItem>& items, const SceneDescription& scene,

@@ -28,10 +28,12 @@ class ForceRegimeLayers {
   ForceRegimeLayers(const SceneDescription& scene, const ContactSites& sites,
                     const PoseTrack& poses, const RenderSettings& settings);
 
-  // The arrows at time t.
-  void add_items(std::vector<DrawItem>& items, double t, const Camera& camera) const;
+  // The arrows at time t; `exposure`: the simulated time the frame stands for (forces and
+  // regimes are judged over it: contact_force, contact_regime).
+  void add_items(std::vector<DrawItem>& items, double t, const Camera& camera,
+                 double exposure) const;
   // Badges and legend over the read-back frame.
-  void draw(image::Image& frame, double t, const Camera& camera);
+  void draw(image::Image& frame, double t, const Camera& camera, double exposure);
 
   const ArrowScales& scales() const { return scales_; }
 

@@ -62,11 +62,18 @@ const char* regime_name(Regime r) {
   return "";
 }
 
-Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t) {
-  const double normal_force = poses.signal(site.name + ".n_force", t);
-  if (!(std::isnan(normal_force) || normal_force > 0.0)) return Regime::open;
-  const double slip = poses.signal(site.name + ".slip", t);
-  return std::isnan(slip) || sticks(slip, site.stick_threshold) ? Regime::stick : Regime::slip;
+Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t, double exposure) {
+  const int samples = exposure > 0.0 ? std::clamp(static_cast<int>(exposure / 5e-4), 4, 64) : 1;
+  bool closed = false, slipped = false;
+  for (int i = 0; i < samples; ++i) {
+    const double s = samples == 1 ? t : t + exposure * ((i + 0.5) / samples - 0.5);
+    const double normal_force = poses.signal(site.name + ".n_force", s);
+    if (!(std::isnan(normal_force) || normal_force > 0.0)) continue;
+    closed = true;
+    const double slip = poses.signal(site.name + ".slip", s);
+    if (!(std::isnan(slip) || sticks(slip, site.stick_threshold))) slipped = true;
+  }
+  return !closed ? Regime::open : slipped ? Regime::slip : Regime::stick;
 }
 
 Regime joint_regime(const JointSite& site, const PoseTrack& poses, double t) {
@@ -140,14 +147,15 @@ RegimeBadges::RegimeBadges(const SceneDescription& scene, const ContactSites& si
 }
 
 std::vector<Badge> RegimeBadges::badges(const PoseTrack& poses, double t,
-                                        const glm::mat4& view_projection, int width, int height) {
+                                        const glm::mat4& view_projection, int width, int height,
+                                        double exposure) {
   std::map<std::pair<std::string, Regime>, Badge> groups;  // ordered: the same every frame
   for (const ContactSite& s : sites_.contacts) {
     glm::vec2 pixel;
     if (!project(view_projection, to_glm(contact_point(s, poses, t)), width, height, pixel)) {
       continue;
     }
-    const Regime r = contact_regime(s, poses, t);
+    const Regime r = contact_regime(s, poses, t, exposure);
     Badge& b = groups[{s.group, r}];
     b.regime = r;
     b.points.push_back(pixel);
@@ -183,8 +191,9 @@ std::vector<Badge> RegimeBadges::badges(const PoseTrack& poses, double t,
 }
 
 void RegimeBadges::draw(image::Image& frame, const PoseTrack& poses, double t,
-                        const glm::mat4& view_projection) {
-  const std::vector<Badge> all = badges(poses, t, view_projection, frame.width, frame.height);
+                        const glm::mat4& view_projection, double exposure) {
+  const std::vector<Badge> all =
+      badges(poses, t, view_projection, frame.width, frame.height, exposure);
   const float radius = static_cast<float>(0.22 * style_.pixel_size);
   for (const Badge& b : all) {
     for (const glm::vec2& p : b.points) dot(frame, p, radius, regime_colour(b.regime));

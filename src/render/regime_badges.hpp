@@ -22,8 +22,12 @@ enum class Regime { stick, slip, open };
 const char* regime_name(Regime r);
 
 // Open: the normal force column reads zero (no force); else stick while the slip speed is
-// below the threshold (the rule of the events: core/slip_observer), slip otherwise.
-Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t);
+// below the threshold (the rule of the events: core/slip_observer), slip otherwise. With an
+// `exposure` (a frame's simulated duration) the regime over [t - exposure / 2, t +
+// exposure / 2]: open only if open throughout, slip if it slipped while closed at any time,
+// so a stiff contact's sub-millisecond hops do not make the badge flicker "open".
+Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t,
+                      double exposure = 0.0);
 // A friction joint: stick while |omega| of the joint is below its threshold.
 Regime joint_regime(const JointSite& site, const PoseTrack& poses, double t);
 
@@ -52,10 +56,11 @@ class RegimeBadges {
   RegimeBadges(const SceneDescription& scene, const ContactSites& sites, const PoseTrack& poses,
                int image_height);
   // The badges at time t (one per table and regime, one per joint), laid out.
+  // `exposure`: the frame's simulated duration (contact_regime).
   std::vector<Badge> badges(const PoseTrack& poses, double t, const glm::mat4& view_projection,
-                            int width, int height);
-  void draw(image::Image& frame, const PoseTrack& poses, double t,
-            const glm::mat4& view_projection);
+                            int width, int height, double exposure = 0.0);
+  void draw(image::Image& frame, const PoseTrack& poses, double t, const glm::mat4& view_projection,
+            double exposure = 0.0);
 
  private:
   SceneDescription scene_;

@@ -166,7 +166,8 @@ void FrameRenderer::render(double t, image::Image& out, double speed) {
   const Bounds focus = camera_->follows_vertically() ? camera_->follow_bounds(t) : Bounds{};
   std::vector<DrawItem> items = build_items(scene_, poses_, t, focus);
   // The frame stands for 1 / fps of video, i.e. this much simulated time (open shutter).
-  apply_spin_blur(items, poses_, t, speed / (settings_.fps * settings_.slow_motion));
+  const double exposure = speed / (settings_.fps * settings_.slow_motion);
+  apply_spin_blur(items, poses_, t, exposure);
   std::vector<TrailVertex> trail;
   if (settings_.overlay.trail) {
     TrailOptions options;
@@ -177,11 +178,11 @@ void FrameRenderer::render(double t, image::Image& out, double speed) {
     trail = build_trails(scene_, poses_, t, options);
   }
   const Camera camera = camera_->at(t);
-  if (layers_) layers_->add_items(items, t, camera);
+  if (layers_) layers_->add_items(items, t, camera, exposure);
   renderer_->draw(items, camera, trail);
   renderer_->read_back(out);
   if (overlay_) overlay_->draw(out, poses_, t, speed);
-  if (layers_) layers_->draw(out, t, camera);
+  if (layers_) layers_->draw(out, t, camera, exposure);
 }
 
 image::Image FrameRenderer::render(double t, double speed) {
@@ -197,9 +198,9 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   if (!request.video && !request.frames) return result;
 
   SceneDescription description = describe_scene(*scene.network, scene.document);
-  const ContactSites sites = describe_contact_sites(
-      *scene.network, scene.document, description, settings.overlay.stick_thresholds,
-      settings.overlay.default_stick_threshold);
+  const ContactSites sites = describe_contact_sites(*scene.network, scene.document, description,
+                                                    settings.overlay.stick_thresholds,
+                                                    settings.overlay.default_stick_threshold);
   FrameRenderer renderer(std::move(description), trajectory, settings, sites);
   const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                                        settings.fps, settings.slow_motion);

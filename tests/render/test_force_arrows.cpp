@@ -9,6 +9,7 @@
 #include "render/arrow_legend.hpp"
 #include "render/contact_sites.hpp"
 #include "render/force_arrows.hpp"
+#include "render/regime_badges.hpp"
 #include "render_fixtures.hpp"
 
 using namespace stiction;
@@ -250,4 +251,65 @@ TEST_CASE("arrow legend: a round value whose bar is 0.4 to 1 times the target le
     CHECK(bar.pixels == Approx(bar.value / scale * ppm));
     CHECK(round_up_125(bar.value) == Approx(bar.value));
   }
+}
+
+TEST_CASE("force arrows: impact spikes neither set the scale nor cross the picture",
+          "[render][forces]") {
+  const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
+  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const ContactSites sites =
+      describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+  core::Trajectory tr({"t", "sphere.p.x", "sphere.p.y", "sphere.p.z", "sphere.q.w", "sphere.q.x",
+                       "sphere.q.y", "sphere.q.z", "contact.f.x", "contact.f.y", "contact.f.z"});
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double steady = 1.0 + 5.0 * u(rng);
+  for (int i = 0; i <= 2000; ++i) {
+    const double t = 1e-3 * i;
+    // A bounce: 100 times the steady force during 1 ms of every 40.
+    const double f = i % 40 == 0 ? 100.0 * steady : steady;
+    const double row[] = {t, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, f};
+    tr.append(row);
+  }
+  const PoseTrack poses(tr, scene);
+  OverlayLayers layers;
+  layers.forces = true;
+  const ArrowScales scales = choose_arrow_scales(scene, sites, poses, layers);
+  CHECK(steady / scales.force == Approx(0.6 * 0.4));  // the body size: the 0.4 m diameter
+  std::vector<DrawItem> items;
+  add_force_arrows(items, sites, poses, 0.04, scales, {0.0f, -3.0f, 1.0f});  // a spike
+  REQUIRE(items.size() == 2);
+  const glm::vec3 start = apply(items[0].model, {0.0f, 0.0f, -1.0f});
+  const glm::vec3 tip = apply(items[1].model, {0.0f, 0.0f, 1.0f});
+  CHECK(glm::length(tip - start) == Approx(1.5 * 0.4).epsilon(1e-5));
+}
+
+TEST_CASE("force arrows: a bouncing contact shows its mean force over the frame's exposure",
+          "[render][forces]") {
+  const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
+  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const ContactSites sites =
+      describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+  core::Trajectory tr({"t", "sphere.p.x", "sphere.p.y", "sphere.p.z", "sphere.q.w", "sphere.q.x",
+                       "sphere.q.y", "sphere.q.z", "contact.f.x", "contact.f.y", "contact.f.z",
+                       "contact.slip.x", "contact.slip.y", "contact.slip.z", "contact.n_force"});
+  const double weight = 0.3 * 9.8;
+  for (int i = 0; i <= 2000; ++i) {
+    // Touching for one 1 kHz row in 20: an impulse of 20 x the weight (its mean is the weight).
+    const double f = i % 20 == 0 ? 20.0 * weight : 0.0;
+    const double row[] = {1e-3 * i, 0.0, 0.0, 0.2, 1.0, 0.0, 0.0, 0.0,
+                          0.1 * f,  0.0, f,   0.5, 0.0, 0.0, f};
+    tr.append(row);
+  }
+  const PoseTrack poses(tr, scene);
+  for (double t : {0.3, 0.3105, 0.317, 1.2}) {
+    // Over an exposure of two bounces; instantaneously it is nothing or a spike.
+    const ContactForce mean = contact_force(sites.contacts[0], poses, t, 0.04);
+    CHECK(mean.normal.z() == Approx(weight).epsilon(0.15));
+    CHECK(mean.friction.x() == Approx(0.1 * weight).epsilon(0.15));
+    // Closed at some time of the exposure, slipping then: "slip", not "open".
+    CHECK(contact_regime(sites.contacts[0], poses, t, 0.04) == Regime::slip);
+  }
+  CHECK(contact_force(sites.contacts[0], poses, 0.3105).normal.norm() == 0.0);
+  CHECK(contact_regime(sites.contacts[0], poses, 0.3105) == Regime::open);
 }

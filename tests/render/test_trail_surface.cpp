@@ -152,7 +152,7 @@ TEST_CASE("trail: on generated tilting belts both at once", "[render][trail]") {
   for (int i = 0; i < 6; ++i) check_trail_on_board(generate(rng, true, true));
 }
 
-TEST_CASE("trail: none where the contact is open (no normal force)", "[render][trail]") {
+TEST_CASE("trail: none where the contact point is off its surface", "[render][trail]") {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
   const SceneDescription scene = describe_scene(*s.network, s.document);
   core::Trajectory tr({"t", "sphere.p.x", "sphere.p.y", "sphere.p.z", "sphere.q.w", "sphere.q.x",
@@ -160,9 +160,11 @@ TEST_CASE("trail: none where the contact is open (no normal force)", "[render][t
                        "contact.slip.z", "contact.n_force"});
   for (int i = 0; i <= 1000; ++i) {
     const double t = 1e-3 * i;
-    // In the air between 0.3 and 0.6 s.
-    const double row[] = {t,   t,   0.0, 0.2, 1.0, 0.0,
-                          0.0, 0.0, 0.1, 0.0, 0.0, t > 0.3 && t < 0.6 ? 0.0 : 2.0};
+    // 5 cm in the air between 0.3 and 0.6 s; micrometre hops (open, but on the surface as
+    // drawn) for 30 ms of every 40 otherwise.
+    const bool hop = std::fmod(t, 0.04) < 0.03;
+    const double z = t > 0.3 && t < 0.6 ? 0.25 : hop ? 0.2 + 1e-6 : 0.2;
+    const double row[] = {t, t, 0.0, z, 1.0, 0.0, 0.0, 0.0, 0.1, 0.0, 0.0, hop ? 0.0 : 2.0};
     tr.append(row);
   }
   const PoseTrack poses(tr, scene);
@@ -172,5 +174,6 @@ TEST_CASE("trail: none where the contact is open (no normal force)", "[render][t
   for (const TrailVertex& v : strip) {
     CHECK_FALSE((v.position.x > 0.31f && v.position.x < 0.59f));
   }
-  CHECK(strip.size() > 100);  // both touching stretches are drawn
+  // Both stretches on the surface are drawn, hops included: (0.3 + 0.4) / 1.0 of 97 pairs.
+  CHECK(strip.size() >= 2 * 66);
 }
