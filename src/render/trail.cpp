@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "render/contact_sites.hpp"
 
@@ -76,6 +77,13 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
       const components::SurfaceState surface = moving->surface(s);
       const core::Vec3 p = poses.position(body, s) - c.radius * surface.frame.n;
       height = surface.frame.n.dot(p - surface.origin);
+      // Beyond a bounded board's edge the plane goes on only in the maths: no trail there.
+      const components::SurfaceExtent& extent = moving->params().extent;
+      const core::Vec3& pivot = moving->motion().pivot;
+      if (extent.bounded() &&
+          !extent.contains(pivot + surface.rotation.conjugate() * (p - pivot) - extent.centre)) {
+        height = std::numeric_limits<double>::infinity();
+      }
       if (moving->motion().belt_speed && i > 0) {
         // Simpson over the step: belt_travel(s) from 0 for every vertex would cost O(s).
         const auto& v = moving->motion().belt_speed;
@@ -95,10 +103,11 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
     side = side.normalized() * half;
     previous = on;
     previous_s = s;
-    // No trail where the contact point is off its surface by more than the ribbon's width:
-    // a ball off a board leaves none on the floor below it, while the micrometre hops of a
-    // stiff contact (open in the events, for a fraction of a millisecond) do not cut it.
-    if (height > 2.0 * half) {
+    // No trail where the contact point is off its surface (or outside its extent) by more than
+    // the ribbon's width: a ball off a board leaves none on the floor below it, while the
+    // micrometre hops of a stiff contact (open in the events, for a fraction of a millisecond) do
+    // not cut it.
+    if (std::abs(height) > 2.0 * half) {
       flush_ribbon(strip, ribbon);
       continue;
     }
