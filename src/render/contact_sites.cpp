@@ -100,6 +100,14 @@ ContactSites describe_contact_sites(const core::Network& network, const toml::ta
   return sites;
 }
 
+std::map<std::string, double> joint_rate_thresholds(const ContactSites& sites) {
+  std::map<std::string, double> out;
+  for (const JointSite& j : sites.joints) {
+    out[j.arm + ".omega." + std::to_string(j.joint)] = j.stick_threshold;
+  }
+  return out;
+}
+
 SurfacePlane surface_plane(const ContactSite& site, double t) {
   if (site.moving != nullptr) {
     const components::SurfaceState st = site.moving->surface(t);

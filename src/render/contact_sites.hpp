@@ -51,6 +51,10 @@ ContactSites describe_contact_sites(const core::Network& network, const toml::ta
                                     const std::map<std::string, double>& thresholds,
                                     double default_threshold);
 
+// "ARM.omega.J" -> the stick threshold of the friction joint J of ARM (for the overlay's
+// values: a stuck joint's rate prints as zero).
+std::map<std::string, double> joint_rate_thresholds(const ContactSites& sites);
+
 // The surface plane at time t: unit normal and a point of it.
 struct SurfacePlane {
   core::Vec3 normal;

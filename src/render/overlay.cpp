@@ -45,7 +45,8 @@ std::string speed_note(double speed) {
   return std::string("  (1/") + buffer + " speed)";
 }
 
-Overlay::Overlay(const OverlaySettings& settings, int image_height, double end_time, bool time_warp)
+Overlay::Overlay(const OverlaySettings& settings, int image_height, double end_time, bool time_warp,
+                 const std::map<std::string, double>& signal_thresholds)
     : settings_(settings), font_(text::Font::open_default()) {
   style_.pixel_size = std::max(11.0, image_height / 30.0);
   style_.colour = {20, 22, 26, 255};
@@ -70,9 +71,12 @@ Overlay::Overlay(const OverlaySettings& settings, int image_height, double end_t
   // Left-aligned labels and one number column for every value, so their digits line up.
   double unit_width = 0.0;
   for (const OverlayValue& v : overlay_values(settings_)) {
-    Line line{
-        v, v.label + " = ",
-        threshold_zero(v.signal, settings_.stick_thresholds, settings_.default_stick_threshold)};
+    const auto given = signal_thresholds.find(v.signal);
+    Line line{v, v.label + " = ",
+              given != signal_thresholds.end()
+                  ? given->second
+                  : threshold_zero(v.signal, settings_.stick_thresholds,
+                                   settings_.default_stick_threshold)};
     value_x_ = std::max(value_x_, width(line.prefix));
     for (const std::string& s : widest_number_candidates(v.unit)) {
       value_number_width_ = std::max(value_number_width_, width(s));

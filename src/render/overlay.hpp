@@ -38,8 +38,10 @@ class Overlay {
  public:
   // Opens the bundled font (text::FontError if missing). `end_time`: the run's last time
   // (sizes the time column). `time_warp`: reserve room for a playback-speed note.
+  // `signal_thresholds`: more signals that print as zero below a threshold (a friction
+  // joint's rate "ARM.omega.J" below the joint's stick threshold: joint_rate_thresholds).
   Overlay(const OverlaySettings& settings, int image_height, double end_time = 1.0,
-          bool time_warp = false);
+          bool time_warp = false, const std::map<std::string, double>& signal_thresholds = {});
   // Draws "t = 1.234 s" and a "LABEL = VALUE UNIT" line per value, then the title and the
   // caption. `speed` < 1 (slow motion around an event) adds "(1/8 speed)" to the time line.
   // Returns the panel's box.

@@ -149,7 +149,8 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
                                         float(settings.width) / float(settings.height));
   if (settings.overlay.enabled) {
     overlay_ = std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
-                                         settings.slow_motion_around_events > 0.0);
+                                         settings.slow_motion_around_events > 0.0,
+                                         joint_rate_thresholds(sites));
   }
   layers_ = ForceRegimeLayers::create(scene_, sites, poses_, settings);
 }

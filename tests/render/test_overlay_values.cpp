@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <random>
 
+#include "render/contact_sites.hpp"
 #include "render/overlay.hpp"
 #include "render/render_settings.hpp"
 #include "render/scene_view.hpp"
@@ -176,4 +177,41 @@ TEST_CASE("overlay: several values, each with its unit and SI prefix, and the 1e
   const PixelBox b1 = overlay_one.draw(one, PoseTrack(tr, scene), 0.5);
   const PixelBox b3 = overlay.draw(three, PoseTrack(tr, scene), 0.5);
   CHECK(b3.y1 - b3.y0 > b1.y1 - b1.y0 + 20);
+}
+
+TEST_CASE("overlay: a friction joint's rate below the joint's stick threshold prints as zero",
+          "[render][overlay_values]") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 5; ++i) {
+    ContactSites sites;
+    const double threshold = 0.001 + 0.05 * u(rng);
+    sites.joints.push_back({"joint1_friction", "arm", 0, 1, threshold});
+    const std::map<std::string, double> rates = joint_rate_thresholds(sites);
+    REQUIRE(rates.size() == 1);
+    CHECK(rates.at("arm.omega.1") == threshold);
+    core::Trajectory tr({"t", "arm.theta.0", "arm.theta.1", "arm.omega.0", "arm.omega.1"});
+    const double stuck = -0.9 * threshold * u(rng), moving = threshold * (1.0 + u(rng));
+    for (double t : {0.0, 1.0}) {
+      const double row[] = {t, 0.0, 0.0, moving, stuck};
+      tr.append(row);
+    }
+    SceneDescription scene;
+    BodyVisual arm;
+    arm.kind = BodyVisual::Kind::arm;
+    arm.name = "arm";
+    arm.lengths = {0.2, 0.2};
+    arm.widths = {0.02, 0.02};
+    scene.bodies.push_back(arm);
+    OverlaySettings o;
+    o.signal = "arm.omega.1";
+    o.label = "joint 1";
+    o.unit = "rad/s";
+    o.layers.values = {{"arm.omega.0", "joint 0", "rad/s"}};
+    Overlay overlay(o, 360, 1.0, false, rates);
+    const std::vector<std::string> lines = overlay.value_lines(PoseTrack(tr, scene), 0.5);
+    REQUIRE(lines.size() == 2);
+    CHECK(lines[0] == "joint 1 = 0.000 rad/s");
+    CHECK(lines[1] != "joint 0 = 0.000 rad/s");  // joint 0 has no friction element here
+  }
 }
