@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "render/title_caption.hpp"
+
 namespace stiction::render {
 
 std::unique_ptr<ForceRegimeLayers> ForceRegimeLayers::create(const SceneDescription& scene,
@@ -26,11 +28,7 @@ ForceRegimeLayers::ForceRegimeLayers(const SceneDescription& scene, const Contac
     legend_.emplace(layers_.forces, layers_.velocities, scales_, settings.height);
   }
   if (layers_.badges) badges_.emplace(scene, sites_, poses, settings.height);
-  if (!layers_.caption.value_or("").empty()) {
-    // The overlay's caption band (overlay.cpp): 0.8 of its text size, 1.95 lines, one pad.
-    const double text = std::max(11.0, settings.height / 30.0);
-    caption_height_ = static_cast<int>(0.6 * text + 1.95 * 0.8 * text) + 2;
-  }
+  caption_height_ = TitleCaption::caption_height(settings.overlay, settings.height);
 }
 
 void ForceRegimeLayers::add_items(std::vector<DrawItem>& items, double t, const Camera& camera,

@@ -118,31 +118,6 @@ std::vector<std::string> Overlay::value_lines(const PoseTrack& poses, double t) 
   return out;
 }
 
-void Overlay::draw_band_text(image::Image& frame, const std::string& text, double pixel_size,
-                             bool top_right) {
-  text::TextStyle style = style_;
-  style.pixel_size = pixel_size;
-  // Shrink a long line until it fits the picture (down to 60%).
-  double w = font_.measure(text, style).width;
-  const double room = frame.width - 4.0 * pad_;
-  if (w > room) {
-    style.pixel_size = std::max(0.6 * pixel_size, pixel_size * room / w);
-    w = font_.measure(text, style).width;
-  }
-  const double pad = 0.6 * style.pixel_size;
-  const double height = 1.35 * style.pixel_size + pad;
-  const double x = top_right ? frame.width - pad_ - pad - w : 0.5 * (frame.width - w);
-  const double y0 = top_right ? pad_ : frame.height - pad_ - height;
-  PixelBox box{static_cast<int>(x - pad), static_cast<int>(y0),
-               static_cast<int>(std::ceil(x + w + pad)), static_cast<int>(std::ceil(y0 + height))};
-  for (int y = std::max(0, box.y0); y < std::min(box.y1, frame.height); ++y) {
-    for (int px = std::max(0, box.x0); px < std::min(box.x1, frame.width); ++px) {
-      frame.blend(px, y, {255, 255, 255, 255}, 0.75f);
-    }
-  }
-  font_.draw(frame, text, x, y0 + 0.5 * pad + 1.0 * style.pixel_size, style);
-}
-
 PixelBox Overlay::draw(image::Image& frame, const PoseTrack& poses, double t, double speed) {
   if (!settings_.enabled) return {};
   auto width = [&](const std::string& s) { return font_.measure(s, style_).width; };
@@ -177,10 +152,6 @@ PixelBox Overlay::draw(image::Image& frame, const PoseTrack& poses, double t, do
     if (!q.unit.empty())
       font_.draw(frame, " " + q.unit, value_x + value_number_width_, baseline, style_);
   }
-  const std::string& title = settings_.layers.title.value_or("");
-  const std::string& caption = settings_.layers.caption.value_or("");
-  if (!title.empty()) draw_band_text(frame, title, style_.pixel_size, true);
-  if (!caption.empty()) draw_band_text(frame, caption, 0.8 * style_.pixel_size, false);
   return box;
 }
 

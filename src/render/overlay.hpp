@@ -1,8 +1,7 @@
 // Text drawn over a read-back frame on the CPU: the simulation time and the chosen signals, in
 // a translucent panel at the top left whose size is fixed for the whole run (numbers are
 // right-aligned in a column as wide as the widest value the format can produce), so the box
-// never changes width from frame to frame; the title at the top right and the caption
-// centred at the bottom, each on its own translucent band.
+// never changes width from frame to frame. (The title and caption: title_caption.hpp.)
 #pragma once
 
 #include <map>
@@ -42,9 +41,8 @@ class Overlay {
   // joint's rate "ARM.omega.J" below the joint's stick threshold: joint_rate_thresholds).
   Overlay(const OverlaySettings& settings, int image_height, double end_time = 1.0,
           bool time_warp = false, const std::map<std::string, double>& signal_thresholds = {});
-  // Draws "t = 1.234 s" and a "LABEL = VALUE UNIT" line per value, then the title and the
-  // caption. `speed` < 1 (slow motion around an event) adds "(1/8 speed)" to the time line.
-  // Returns the panel's box.
+  // Draws "t = 1.234 s" and a "LABEL = VALUE UNIT" line per value. `speed` < 1 (slow motion around
+  // an event) adds "(1/8 speed)" to the time line. Returns the panel's box.
   PixelBox draw(image::Image& frame, const PoseTrack& poses, double t, double speed = 1.0);
   // The text of the value lines at time t, as drawn ("slip speed = 0.000 m/s").
   std::vector<std::string> value_lines(const PoseTrack& poses, double t);
@@ -56,8 +54,6 @@ class Overlay {
     double zero_below = -1.0;  // < 0: measured on the first frame (1e-9 of the largest)
   };
   void measure_zero_levels(const PoseTrack& poses);
-  void draw_band_text(image::Image& frame, const std::string& text, double pixel_size,
-                      bool top_right);
 
   OverlaySettings settings_;
   text::Font font_;

@@ -19,6 +19,7 @@
 #include "render/renderer.hpp"
 #include "render/spin_blur.hpp"
 #include "render/time_warp.hpp"
+#include "render/title_caption.hpp"
 #include "render/trail.hpp"
 #include "render/video_encoder.hpp"
 #include "scene/scene.hpp"
@@ -153,6 +154,7 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
                                          joint_rate_thresholds(sites));
   }
   layers_ = ForceRegimeLayers::create(scene_, sites, poses_, settings);
+  titles_ = TitleCaption::create(settings.overlay, settings.height);
 }
 
 FrameRenderer::~FrameRenderer() {
@@ -183,6 +185,7 @@ void FrameRenderer::render(double t, image::Image& out, double speed) {
   renderer_->draw(items, camera, trail);
   renderer_->read_back(out);
   if (overlay_) overlay_->draw(out, poses_, t, speed);
+  if (titles_) titles_->draw(out);
   if (layers_) layers_->draw(out, t, camera, exposure);
 }
 

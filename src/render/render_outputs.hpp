@@ -75,6 +75,7 @@ class Renderer;
 class CameraRig;
 class Overlay;
 class ForceRegimeLayers;
+class TitleCaption;
 
 // Renders single frames of one run (also used by the tests and the benchmark). Creates its
 // own GL context; use it from one thread.
@@ -105,6 +106,7 @@ class FrameRenderer {
   std::unique_ptr<CameraRig> camera_;
   std::unique_ptr<Overlay> overlay_;
   std::unique_ptr<ForceRegimeLayers> layers_;  // null: forces, velocities, badges off
+  std::unique_ptr<TitleCaption> titles_;       // null: no title and no caption
 };
 
 RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& trajectory,
