@@ -106,8 +106,11 @@ class Pictures {
       throw py::value_error("size: width and height must be 1 to 16384 pixels");
     const std::vector<render::FrameTime> at = with_speeds(times);
     const core::Trajectory& rows = video_rows();
-    const std::vector<image::Image> images = drawing(
-        "frames", [&] { return services::render_frames_at(run_->prepared->scene, rows, s, at); });
+    const std::vector<image::Image> images = drawing("frames", [&] {
+      return services::render_frames_at(run_->prepared->scene, rows, s, at,
+                                        services::slip_event_times(run_->result),
+                                        services::slip_event_kinds(run_->result));
+    });
     py::array_t<std::uint8_t> out({static_cast<py::ssize_t>(images.size()),
                                    static_cast<py::ssize_t>(s.height),
                                    static_cast<py::ssize_t>(s.width), py::ssize_t{4}});

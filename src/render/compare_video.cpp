@@ -104,9 +104,7 @@ CompareFrames::CompareFrames(const std::vector<CompareRun>& runs) {
     auto tile = std::make_unique<Tile>();
     tile->label = r.label;
     if (r.settings.overlay.enabled) tile->overlay = r.settings.overlay;
-    tile->renderer =
-        std::make_unique<FrameRenderer>(describe_scene(*r.scene->network, r.scene->document),
-                                        *r.trajectory, s, r.event_times, r.event_kinds);
+    tile->renderer = frame_renderer_for(*r.scene, *r.trajectory, s, r.event_times, r.event_kinds);
     start_ = std::min(start_, tile->renderer->poses().start_time());
     tile->end = tile->renderer->poses().end_time();
     end_ = std::max(end_, tile->end);

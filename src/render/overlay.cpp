@@ -15,15 +15,38 @@ std::string time_number(double t) {
   return buffer;
 }
 
-std::string speed_note(double speed) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "  (1/%.0f speed)", 1.0 / speed);
-  return buffer;
-}
-
 }  // namespace
 
-Overlay::Overlay(const OverlaySettings& settings, int image_height, double end_time, bool time_warp)
+std::vector<OverlayValue> overlay_values(const OverlaySettings& settings) {
+  std::vector<OverlayValue> values;
+  if (!settings.signal.empty()) values.push_back({settings.signal, settings.label, settings.unit});
+  values.insert(values.end(), settings.layers.values.begin(), settings.layers.values.end());
+  return values;
+}
+
+double threshold_zero(const std::string& signal, const std::map<std::string, double>& thresholds,
+                      double default_threshold) {
+  std::string contact;
+  const std::size_t at = signal.rfind(".slip");
+  if (at == std::string::npos || at == 0) return -1.0;
+  const std::string rest = signal.substr(at + 5);
+  if (!(rest.empty() || rest == ".x" || rest == ".y" || rest == ".z")) return -1.0;
+  contact = signal.substr(0, at);
+  const auto it = thresholds.find(contact);
+  if (it != thresholds.end()) return it->second;
+  // A contact the run gave no threshold of its own (a hand-written trajectory in tests).
+  return thresholds.empty() ? default_threshold : -1.0;
+}
+
+std::string speed_note(double speed) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.0f", 1.0 / speed);
+  if (std::string(buffer) == "1") return "";
+  return std::string("  (1/") + buffer + " speed)";
+}
+
+Overlay::Overlay(const OverlaySettings& settings, int image_height, double end_time, bool time_warp,
+                 const std::map<std::string, double>& signal_thresholds)
     : settings_(settings), font_(text::Font::open_default()) {
   style_.pixel_size = std::max(11.0, image_height / 30.0);
   style_.colour = {20, 22, 26, 255};
@@ -45,24 +68,60 @@ Overlay::Overlay(const OverlaySettings& settings, int image_height, double end_t
   if (time_warp) time_line += width(speed_note(1.0 / 88.0));
   panel_width_ = time_line;
 
-  if (!settings_.signal.empty()) {
-    zero_below_ = -1.0;  // measured on the first frame (the poses are not known here)
-    value_prefix_ = settings_.label + " = ";
-    for (const std::string& s : widest_number_candidates(settings_.unit)) {
+  // Left-aligned labels and one number column for every value, so their digits line up.
+  double unit_width = 0.0;
+  for (const OverlayValue& v : overlay_values(settings_)) {
+    const auto given = signal_thresholds.find(v.signal);
+    Line line{v, v.label + " = ",
+              given != signal_thresholds.end()
+                  ? given->second
+                  : threshold_zero(v.signal, settings_.stick_thresholds,
+                                   settings_.default_stick_threshold)};
+    value_x_ = std::max(value_x_, width(line.prefix));
+    for (const std::string& s : widest_number_candidates(v.unit)) {
       value_number_width_ = std::max(value_number_width_, width(s));
     }
-    for (const std::string& u : possible_units(settings_.unit)) {
-      unit_width_ = std::max(unit_width_, width(u.empty() ? u : " " + u));
+    for (const std::string& u : possible_units(v.unit)) {
+      unit_width = std::max(unit_width, width(u.empty() ? u : " " + u));
     }
-    value_number_width_ = std::max(value_number_width_, width("n/a"));
-    panel_width_ = std::max(panel_width_, width(value_prefix_) + value_number_width_ + unit_width_);
+    lines_.push_back(std::move(line));
   }
+  if (!lines_.empty()) {
+    value_number_width_ = std::max(value_number_width_, width("n/a"));
+    panel_width_ = std::max(panel_width_, value_x_ + value_number_width_ + unit_width);
+  }
+}
+
+void Overlay::measure_zero_levels(const PoseTrack& poses) {
+  // The signal's scale over the run: magnitudes below 1e-9 of it are rounding noise.
+  for (Line& line : lines_) {
+    if (line.zero_below >= 0.0) continue;
+    double largest = 0.0;
+    const double t0 = poses.start_time(), t1 = poses.end_time();
+    for (int i = 0; i <= 512; ++i) {
+      const double v = std::abs(poses.signal(line.value.signal, t0 + (t1 - t0) * i / 512.0));
+      if (std::isfinite(v)) largest = std::max(largest, v);
+    }
+    line.zero_below = 1e-9 * largest;
+  }
+  zero_levels_known_ = true;
+}
+
+std::vector<std::string> Overlay::value_lines(const PoseTrack& poses, double t) {
+  if (!zero_levels_known_) measure_zero_levels(poses);
+  std::vector<std::string> out;
+  for (const Line& line : lines_) {
+    const Quantity q =
+        format_quantity(poses.signal(line.value.signal, t), line.value.unit, line.zero_below);
+    out.push_back(line.prefix + q.number + (q.unit.empty() ? "" : " " + q.unit));
+  }
+  return out;
 }
 
 PixelBox Overlay::draw(image::Image& frame, const PoseTrack& poses, double t, double speed) {
   if (!settings_.enabled) return {};
   auto width = [&](const std::string& s) { return font_.measure(s, style_).width; };
-  const int lines = settings_.signal.empty() ? 1 : 2;
+  const int lines = 1 + static_cast<int>(lines_.size());
   // Translucent white panel so the text reads on any background; its size is the run's.
   PixelBox box;
   box.x0 = static_cast<int>(pad_);
@@ -81,24 +140,14 @@ PixelBox Overlay::draw(image::Image& frame, const PoseTrack& poses, double t, do
   const std::string tn = time_number(t);
   font_.draw(frame, time_prefix_, left, baseline, style_);
   font_.draw(frame, tn, time_x + time_number_width_ - width(tn), baseline, style_);
-  std::string suffix = " s";
-  if (speed < 0.999) suffix += speed_note(speed);
-  font_.draw(frame, suffix, time_x + time_number_width_, baseline, style_);
-  if (!settings_.signal.empty()) {
+  font_.draw(frame, " s" + speed_note(speed), time_x + time_number_width_, baseline, style_);
+  if (!lines_.empty() && !zero_levels_known_) measure_zero_levels(poses);
+  for (const Line& line : lines_) {
     baseline += line_height_;
-    if (zero_below_ < 0.0) {  // first frame: the signal's scale over the run
-      double largest = 0.0;
-      const double t0 = poses.start_time(), t1 = poses.end_time();
-      for (int i = 0; i <= 512; ++i) {
-        const double v = std::abs(poses.signal(settings_.signal, t0 + (t1 - t0) * i / 512.0));
-        if (std::isfinite(v)) largest = std::max(largest, v);
-      }
-      zero_below_ = 1e-9 * largest;
-    }
     const Quantity q =
-        format_quantity(poses.signal(settings_.signal, t), settings_.unit, zero_below_);
-    const double value_x = left + width(value_prefix_);
-    font_.draw(frame, value_prefix_, left, baseline, style_);
+        format_quantity(poses.signal(line.value.signal, t), line.value.unit, line.zero_below);
+    const double value_x = left + value_x_;
+    font_.draw(frame, line.prefix, left, baseline, style_);
     font_.draw(frame, q.number, value_x + value_number_width_ - width(q.number), baseline, style_);
     if (!q.unit.empty())
       font_.draw(frame, " " + q.unit, value_x + value_number_width_, baseline, style_);

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "render/camera.hpp"
+#include "render/force_regime_layers.hpp"
 #include "render/frame_worker.hpp"
 #include "render/gl_context.hpp"
 #include "render/inset_plot.hpp"
@@ -12,6 +13,7 @@
 #include "render/renderer.hpp"
 #include "render/spin_blur.hpp"
 #include "render/time_warp.hpp"
+#include "render/title_caption.hpp"
 #include "render/trail.hpp"
 #include "render/video_encoder.hpp"
 #include "scene/scene.hpp"
@@ -29,8 +31,7 @@ FrameClock frame_clock(double start, double end, double fps, double slow_motion)
 }
 
 FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
-                             const RenderSettings& settings, const std::vector<double>& event_times,
-                             const std::vector<std::string>& event_kinds)
+                             const RenderSettings& settings, const FrameAnnotations& annotations)
     : scene_(std::move(scene)), settings_(settings), poses_(trajectory, scene_) {
   context_ = create_offscreen_context();
   RendererOptions options;
@@ -44,15 +45,35 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
                                         float(settings.width) / float(settings.height));
   if (settings.overlay.enabled) {
     overlay_ = std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
-                                         settings.slow_motion_around_events > 0.0);
+                                         settings.slow_motion_around_events > 0.0,
+                                         joint_rate_thresholds(annotations.sites));
   }
   if (settings.inset.enabled()) {
     std::vector<InsetEvent> events;
-    for (std::size_t i = 0; i < event_times.size(); ++i)
-      events.push_back({event_times[i], i < event_kinds.size() ? event_kinds[i] : ""});
+    const auto& times = annotations.event_times;
+    const auto& kinds = annotations.event_kinds;
+    for (std::size_t i = 0; i < times.size(); ++i)
+      events.push_back({times[i], i < kinds.size() ? kinds[i] : ""});
     inset_ = std::make_unique<InsetPlot>(settings.inset, trajectory, settings.width,
                                          settings.height, std::move(events));
   }
+  layers_ = ForceRegimeLayers::create(scene_, annotations.sites, poses_, settings);
+  titles_ = TitleCaption::create(settings.overlay, settings.height);
+}
+
+std::unique_ptr<FrameRenderer> frame_renderer_for(const scene::Scene& scene,
+                                                  const core::Trajectory& trajectory,
+                                                  const RenderSettings& settings,
+                                                  std::vector<double> event_times,
+                                                  std::vector<std::string> event_kinds) {
+  SceneDescription description = describe_scene(*scene.network, scene.document);
+  FrameAnnotations annotations;
+  annotations.sites = describe_contact_sites(*scene.network, scene.document, description,
+                                             settings.overlay.stick_thresholds,
+                                             settings.overlay.default_stick_threshold);
+  annotations.event_times = std::move(event_times);
+  annotations.event_kinds = std::move(event_kinds);
+  return std::make_unique<FrameRenderer>(std::move(description), trajectory, settings, annotations);
 }
 
 FrameRenderer::~FrameRenderer() {
@@ -67,7 +88,8 @@ void FrameRenderer::render(double t, image::Image& out, double speed) {
   const Bounds focus = camera_->follows_vertically() ? camera_->follow_bounds(t) : Bounds{};
   std::vector<DrawItem> items = build_items(scene_, poses_, t, focus);
   // The frame stands for 1 / fps of video, i.e. this much simulated time (open shutter).
-  apply_spin_blur(items, poses_, t, speed / (settings_.fps * settings_.slow_motion));
+  const double exposure = speed / (settings_.fps * settings_.slow_motion);
+  apply_spin_blur(items, poses_, t, exposure);
   std::vector<TrailVertex> trail;
   if (settings_.overlay.trail) {
     TrailOptions options;
@@ -77,10 +99,14 @@ void FrameRenderer::render(double t, image::Image& out, double speed) {
     options.contacts = settings_.overlay.trail_contacts;
     trail = build_trails(scene_, poses_, t, options);
   }
-  renderer_->draw(items, camera_->at(t), trail);
+  const Camera camera = camera_->at(t);
+  if (layers_) layers_->add_items(items, t, camera, exposure);
+  renderer_->draw(items, camera, trail);
   renderer_->read_back(out);
   if (overlay_) overlay_->draw(out, poses_, t, speed);
   if (inset_) inset_->draw(out, t);
+  if (titles_) titles_->draw(out);
+  if (layers_) layers_->draw(out, t, camera, exposure);
 }
 
 image::Image FrameRenderer::render(double t, double speed) {
@@ -95,8 +121,9 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   RenderResult result;
   if (!request.video && !request.frames) return result;
 
-  FrameRenderer renderer(describe_scene(*scene.network, scene.document), trajectory, settings,
-                         request.event_times, request.event_kinds);
+  const std::unique_ptr<FrameRenderer> run_renderer =
+      frame_renderer_for(scene, trajectory, settings, request.event_times, request.event_kinds);
+  FrameRenderer& renderer = *run_renderer;
   const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                                        settings.fps, settings.slow_motion);
   const std::vector<FrameTime> times =

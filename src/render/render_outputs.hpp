@@ -22,6 +22,7 @@
 
 #include "core/trajectory.hpp"
 #include "image/image.hpp"
+#include "render/contact_sites.hpp"
 #include "render/render_settings.hpp"
 #include "render/scene_view.hpp"
 
@@ -41,8 +42,8 @@ struct RenderProgress {
 
 struct RenderRequest {
   std::filesystem::path out_dir;
-  bool video = true;    // OUT/video.mp4
-  bool frames = false;  // OUT/frames/NNNNNN.png
+  bool video = true;                                    // OUT/video.mp4
+  bool frames = false;                                  // OUT/frames/NNNNNN.png
   std::function<void(const RenderProgress&)> progress;  // called after each frame
   const std::atomic<bool>* cancel = nullptr;
   // Stick/slip event times of the run: the video slows down around them when the settings'
@@ -78,16 +79,25 @@ class Renderer;
 class CameraRig;
 class Overlay;
 class InsetPlot;
+class ForceRegimeLayers;
+class TitleCaption;
 
 // Renders single frames of one run (also used by the tests and the benchmark). Creates its
 // own GL context; use it from one thread.
+// What a run adds to its frames beyond its poses: the contact points and friction joints that
+// carry force arrows and badges (describe_contact_sites; without them those layers show
+// nothing), and the run's events, which the inset plot marks (parallel lists; kinds may be
+// empty).
+struct FrameAnnotations {
+  ContactSites sites;
+  std::vector<double> event_times;
+  std::vector<std::string> event_kinds;
+};
+
 class FrameRenderer {
  public:
-  // `event_times` / `event_kinds` (parallel; kinds may be empty): the run's events, which
-  // the inset plot marks when [inset] is on.
   FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
-                const RenderSettings& settings, const std::vector<double>& event_times = {},
-                const std::vector<std::string>& event_kinds = {});
+                const RenderSettings& settings, const FrameAnnotations& annotations = {});
   ~FrameRenderer();
   FrameRenderer(const FrameRenderer&) = delete;
   FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -109,7 +119,18 @@ class FrameRenderer {
   std::unique_ptr<CameraRig> camera_;
   std::unique_ptr<Overlay> overlay_;
   std::unique_ptr<InsetPlot> inset_;
+  std::unique_ptr<ForceRegimeLayers> layers_;  // null: forces, velocities, badges off
+  std::unique_ptr<TitleCaption> titles_;       // null: no title and no caption
 };
+
+// The renderer of a run of `scene` as the video draws it: its description, its contact sites
+// and the given events. Every path that renders a run's frames (the video, `verify`'s single
+// frames, the tiles of `compare --video`) goes through here, so they show the same layers.
+std::unique_ptr<FrameRenderer> frame_renderer_for(const scene::Scene& scene,
+                                                  const core::Trajectory& trajectory,
+                                                  const RenderSettings& settings,
+                                                  std::vector<double> event_times = {},
+                                                  std::vector<std::string> event_kinds = {});
 
 RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& trajectory,
                             const RenderSettings& settings, const RenderRequest& request);

@@ -59,9 +59,9 @@ extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v3
     stiction::render::FramesCall* call) {
   namespace render = stiction::render;
   guarded(call, [call] {
-    render::FrameRenderer renderer(
-        render::describe_scene(*call->scene->network, call->scene->document), *call->trajectory,
-        *call->settings);
+    const std::unique_ptr<render::FrameRenderer> made = render::frame_renderer_for(
+        *call->scene, *call->trajectory, *call->settings, call->event_times, call->event_kinds);
+    render::FrameRenderer& renderer = *made;
     const render::FrameClock clock =
         render::frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                             call->settings->fps, call->settings->slow_motion);

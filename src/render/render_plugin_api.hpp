@@ -41,6 +41,9 @@ struct FramesCall {
   // The playback speed of each chosen time (FrameTime::speed; the overlay and the motion blur
   // show it as the video does); empty: 1.
   std::vector<double> speeds;
+  // The run's events (the inset marks them), as RenderRequest's.
+  std::vector<double> event_times;
+  std::vector<std::string> event_kinds;
   std::vector<double> times;
   std::vector<image::Image> images;
   PluginError error = PluginError::none;

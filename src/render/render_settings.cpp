@@ -133,6 +133,7 @@ void read_overlay(TableReader& r, OverlaySettings& o, const std::vector<std::str
       }
     }
   }
+  read_overlay_layers(r, o.layers, columns);
   r.finish();
 }
 
@@ -147,6 +148,7 @@ RenderSettings read_render_settings(const toml::table& document,
   if (auto r = table(root, "camera")) read_camera(*r, s.camera, body_names);
   if (auto r = table(root, "overlay")) read_overlay(*r, s.overlay, signal_columns);
   if (auto r = table(root, "inset")) read_inset(*r, s.inset, signal_columns);
+  default_title_and_caption(document, s.overlay.layers);
   return s;
 }
 

@@ -41,6 +41,8 @@
 //                           # green below the contact's stick_threshold, red above
 //   trail_seconds = 0.5
 //   trail_contacts = ["ground"]  # contacts with a trail (default: every contact)
+//   values, title, caption, forces, force_scale, velocities, velocity_scale, badges:
+//                           # see overlay_layers_settings.hpp
 //
 //   [inset]                 # a live plot in a corner of the video: see inset_settings.hpp
 #pragma once
@@ -55,6 +57,7 @@
 #include "core/types.hpp"
 #include "render/camera_preset.hpp"
 #include "render/inset_settings.hpp"
+#include "render/overlay_layers_settings.hpp"
 
 namespace stiction::scene {
 struct Scene;
@@ -83,6 +86,8 @@ struct OverlaySettings {
   // the trails as the events are detected.
   std::map<std::string, double> stick_thresholds;
   double default_stick_threshold = 1e-3;
+  // Several values, title and caption, force/velocity arrows, badges (overlay_layers_settings.hpp).
+  OverlayLayers layers;
 };
 
 // Frames of one video at most (about 4.6 hours at 60 fps); see docs/limits.md.

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "render/contact_sites.hpp"
 
 namespace stiction::render {
 namespace {
@@ -16,6 +19,29 @@ int body_index(const SceneDescription& scene, const std::string& name) {
   return -1;
 }
 
+// The surface a contact touches when it moves (a tilting board, a belt): the contact's own
+// impedance. Null for a fixed surface.
+const components::MovingContact* moving_surface(const SceneDescription& scene,
+                                                const ContactVisual& c) {
+  for (const SurfaceVisual& s : scene.surfaces) {
+    if (s.moving != nullptr && s.moving->name() == c.contact) return s.moving;
+  }
+  return nullptr;
+}
+
+// Appends a ribbon of at least two vertex pairs to the strip and empties it.
+void flush_ribbon(std::vector<TrailVertex>& strip, std::vector<TrailVertex>& ribbon) {
+  if (ribbon.size() >= 4) {
+    if (!strip.empty()) {
+      // Degenerate triangles join this ribbon to the previous one without drawing anything.
+      strip.push_back(strip.back());
+      strip.push_back(ribbon.front());
+    }
+    strip.insert(strip.end(), ribbon.begin(), ribbon.end());
+  }
+  ribbon.clear();
+}
+
 void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scene,
                    const PoseTrack& poses, const ContactVisual& c, int body, double t,
                    double seconds, double threshold) {
@@ -24,36 +50,73 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
   constexpr int kSteps = 96;
   std::vector<TrailVertex> ribbon;
   ribbon.reserve(2 * (kSteps + 1));
+  // A moving surface carries its trail: each point is kept in the surface's frame at its time
+  // and drawn where that surface point is now (on the board as it tilts, moving with a belt).
+  const components::MovingContact* moving = moving_surface(scene, c);
+  core::Vec3 normal = c.normal;
+  double travel_now = 0.0, travel = 0.0;
+  if (moving != nullptr) {
+    normal = moving->surface(t).frame.n;
+    travel_now = moving->belt_travel(t);
+    travel = moving->belt_travel(t0);
+  }
+  double fixed_offset = 0.0;
+  for (const auto& surface : scene.surfaces) {
+    if (surface.moving == nullptr && (surface.normal - c.normal).norm() < 1e-9) {
+      fixed_offset = surface.offset;
+      break;
+    }
+  }
   core::Vec3 previous = core::Vec3::Zero();
+  double previous_s = t0;
   for (int i = 0; i <= kSteps; ++i) {
     const double s = t0 + (t - t0) * i / kSteps;
-    const core::Vec3 p = poses.position(body, s) - c.radius * c.normal;
-    // Project onto the surface plane (slightly above it) so a bounce does not lift the trail.
-    core::Vec3 on = p - c.normal * (c.normal.dot(p));
-    for (const auto& surface : scene.surfaces) {
-      if ((surface.normal - c.normal).norm() < 1e-9) {
-        on += (surface.offset + 1e-3) * c.normal;
-        break;
+    core::Vec3 on;
+    double height = 0.0;  // of the contact point above the surface at s
+    if (moving != nullptr) {
+      const components::SurfaceState surface = moving->surface(s);
+      const core::Vec3 p = poses.position(body, s) - c.radius * surface.frame.n;
+      height = surface.frame.n.dot(p - surface.origin);
+      // Beyond a bounded board's edge the plane goes on only in the maths: no trail there.
+      const components::SurfaceExtent& extent = moving->params().extent;
+      const core::Vec3& pivot = moving->motion().pivot;
+      if (extent.bounded() &&
+          !extent.contains(pivot + surface.rotation.conjugate() * (p - pivot) - extent.centre)) {
+        height = std::numeric_limits<double>::infinity();
       }
+      if (moving->motion().belt_speed && i > 0) {
+        // Simpson over the step: belt_travel(s) from 0 for every vertex would cost O(s).
+        const auto& v = moving->motion().belt_speed;
+        travel += (s - previous_s) / 6.0 * (v(previous_s) + 4.0 * v(0.5 * (previous_s + s)) + v(s));
+      }
+      on = carry_with_surface(*moving, p, s, travel, t, travel_now) + 1e-3 * normal;
+    } else {
+      const core::Vec3 p = poses.position(body, s) - c.radius * c.normal;
+      height = c.normal.dot(p) - fixed_offset;
+      // Onto the surface plane (slightly above it) so a bounce does not lift the trail.
+      on = p - c.normal * (c.normal.dot(p)) + (fixed_offset + 1e-3) * c.normal;
     }
     core::Vec3 dir = i == 0 ? core::Vec3(core::Vec3::UnitX()) : core::Vec3(on - previous);
     if (dir.norm() < 1e-9) dir = core::Vec3::UnitX();
-    core::Vec3 side = c.normal.cross(dir);
-    if (side.norm() < 1e-12) side = c.normal.cross(core::Vec3::UnitY());
+    core::Vec3 side = normal.cross(dir);
+    if (side.norm() < 1e-12) side = normal.cross(core::Vec3::UnitY());
     side = side.normalized() * half;
+    previous = on;
+    previous_s = s;
+    // No trail where the contact point is off its surface (or outside its extent) by more than
+    // the ribbon's width: a ball off a board leaves none on the floor below it, while the
+    // micrometre hops of a stiff contact (open in the events, for a fraction of a millisecond) do
+    // not cut it.
+    if (std::abs(height) > 2.0 * half) {
+      flush_ribbon(strip, ribbon);
+      continue;
+    }
     const double slip = poses.signal(c.contact + ".slip", s);
     const glm::vec3 colour = std::isnan(slip) || sticks(slip, threshold) ? kStick : kSlip;
     ribbon.push_back({to_glm(on - side), colour});
     ribbon.push_back({to_glm(on + side), colour});
-    previous = on;
   }
-  if (ribbon.empty()) return;
-  if (!strip.empty()) {
-    // Degenerate triangles join this ribbon to the previous one without drawing anything.
-    strip.push_back(strip.back());
-    strip.push_back(ribbon.front());
-  }
-  strip.insert(strip.end(), ribbon.begin(), ribbon.end());
+  flush_ribbon(strip, ribbon);
 }
 
 }  // namespace

@@ -118,13 +118,16 @@ render::RenderResult render_outputs_on_demand(const scene::Scene& scene,
 RenderedFrames render_frames_on_demand(
     const scene::Scene& scene, const core::Trajectory& trajectory,
     const render::RenderSettings& settings,
-    const std::function<std::vector<double>(const render::FrameClock&)>& choose_times) {
+    const std::function<std::vector<double>(const render::FrameClock&)>& choose_times,
+    const std::vector<double>& event_times, const std::vector<std::string>& event_kinds) {
   const auto entry = entry_point<render::RenderFramesEntry>(render::kRenderFramesSymbol);
   render::FramesCall call;
   call.scene = &scene;
   call.trajectory = &trajectory;
   call.settings = &settings;
   call.choose = choose_times;
+  call.event_times = event_times;
+  call.event_kinds = event_kinds;
   entry(&call);
   rethrow(call.error, call.message);
   return {std::move(call.times), std::move(call.images)};
@@ -133,12 +136,16 @@ RenderedFrames render_frames_on_demand(
 std::vector<image::Image> render_frames_at(const scene::Scene& scene,
                                            const core::Trajectory& trajectory,
                                            const render::RenderSettings& settings,
-                                           const std::vector<render::FrameTime>& times) {
+                                           const std::vector<render::FrameTime>& times,
+                                           const std::vector<double>& event_times,
+                                           const std::vector<std::string>& event_kinds) {
   const auto entry = entry_point<render::RenderFramesEntry>(render::kRenderFramesSymbol);
   render::FramesCall call;
   call.scene = &scene;
   call.trajectory = &trajectory;
   call.settings = &settings;
+  call.event_times = event_times;
+  call.event_kinds = event_kinds;
   std::vector<double> chosen;
   for (const render::FrameTime& f : times) {
     chosen.push_back(f.t);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "image/image.hpp"
@@ -31,10 +32,13 @@ struct RenderedFrames {
   std::vector<double> times;
   std::vector<image::Image> images;
 };
+// `event_times` / `event_kinds`: the run's events (slip_event_times / slip_event_kinds), which
+// an [inset] plot marks as the video does.
 RenderedFrames render_frames_on_demand(
     const scene::Scene& scene, const core::Trajectory& trajectory,
     const render::RenderSettings& settings,
-    const std::function<std::vector<double>(const render::FrameClock&)>& choose_times);
+    const std::function<std::vector<double>(const render::FrameClock&)>& choose_times,
+    const std::vector<double>& event_times = {}, const std::vector<std::string>& event_kinds = {});
 
 // The frames of one run at the given times, each drawn at its playback speed as the video
 // draws it (the Python module's stiction.frame; services/run_outputs.hpp gives the video's
@@ -42,7 +46,9 @@ RenderedFrames render_frames_on_demand(
 std::vector<image::Image> render_frames_at(const scene::Scene& scene,
                                            const core::Trajectory& trajectory,
                                            const render::RenderSettings& settings,
-                                           const std::vector<render::FrameTime>& times);
+                                           const std::vector<render::FrameTime>& times,
+                                           const std::vector<double>& event_times = {},
+                                           const std::vector<std::string>& event_kinds = {});
 
 // `stiction compare ... --video` through the plugin: the runs side by side in
 // OUT/compare.mp4 (render/compare_video.hpp). Throws as render_outputs_on_demand.

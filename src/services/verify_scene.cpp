@@ -1,7 +1,5 @@
 #include "services/verify_scene.hpp"
 
-#include "services/render_loader.hpp"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,7 +9,6 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "services/run_support.hpp"
 #include "core/simulation.hpp"
 #include "image/compare.hpp"
 #include "image/png.hpp"
@@ -20,6 +17,9 @@
 #include "plot/figure.hpp"
 #include "render/render_outputs.hpp"
 #include "render/scene_view.hpp"
+#include "services/render_loader.hpp"
+#include "services/run_outputs.hpp"
+#include "services/run_support.hpp"
 #include "text/font.hpp"
 
 namespace stiction::services {
@@ -195,7 +195,8 @@ class SceneVerifier {
               SceneVerdict& verdict) {
     const RenderedFrames rendered = render_frames_on_demand(
         job_.scene, result.trajectory, job_.render,
-        [&](const render::FrameClock& clock) { return frame_times(summary, clock); });
+        [&](const render::FrameClock& clock) { return frame_times(summary, clock); },
+        slip_event_times(result), slip_event_kinds(result));
     const std::vector<double>& times = rendered.times;
     std::map<int, double> golden_times;
     if (manifest_.contains("frames")) {

@@ -1,0 +1,191 @@
+#include "render/force_arrows.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/arrow.hpp"
+
+namespace stiction::render {
+namespace {
+
+core::Vec3 vector_signal(const PoseTrack& poses, const std::string& name, double t) {
+  return {poses.signal(name + ".x", t), poses.signal(name + ".y", t), poses.signal(name + ".z", t)};
+}
+
+Material arrow_material(const glm::vec3& colour) {
+  Material m;
+  m.colour = colour;
+  m.specular = 0.35f;
+  return m;
+}
+
+// `v` cut to `max_length` (a spike's arrow would cross the picture).
+core::Vec3 capped(const core::Vec3& v, double max_length) {
+  const double n = v.norm();
+  return n > max_length ? core::Vec3(v * (max_length / n)) : v;
+}
+
+// Distance from a body's centre to its surface along the unit direction d.
+double support(const BodyVisual& b, const core::Quat& q, const core::Vec3& d) {
+  switch (b.kind) {
+    case BodyVisual::Kind::sphere:
+      return b.radius;
+    case BodyVisual::Kind::box:
+    case BodyVisual::Kind::block: {
+      const core::Vec3 local = q.conjugate() * d;
+      return 0.5 * (std::abs(local.x()) * b.size.x() + std::abs(local.y()) * b.size.y() +
+                    std::abs(local.z()) * b.size.z());
+    }
+    case BodyVisual::Kind::arm:
+      return 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+double arrow_body_size(const SceneDescription& scene) {
+  double size = 0.0;
+  for (const BodyVisual& b : scene.bodies) {
+    switch (b.kind) {
+      case BodyVisual::Kind::sphere:
+        size = std::max(size, 2.0 * b.radius);
+        break;
+      case BodyVisual::Kind::box:
+      case BodyVisual::Kind::block:
+        size = std::max(size, b.size.maxCoeff());
+        break;
+      case BodyVisual::Kind::arm:
+        for (double l : b.lengths) size = std::max(size, l);
+        break;
+    }
+  }
+  return size > 0.0 ? size : 0.1;
+}
+
+double round_up_125(double x) {
+  const double decade = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    if (m * decade >= x * (1.0 - 1e-12)) return m * decade;
+  }
+  return 10.0 * decade;
+}
+
+ContactForce contact_force(const ContactSite& site, const PoseTrack& poses, double t,
+                           double exposure) {
+  // Samples 0.5 ms apart or closer resolve a 1 kHz trajectory's one-row spikes.
+  const int samples = exposure > 0.0 ? std::clamp(static_cast<int>(exposure / 5e-4), 4, 64) : 1;
+  core::Vec3 sum = core::Vec3::Zero();
+  for (int i = 0; i < samples; ++i) {
+    const double s = samples == 1 ? t : t + exposure * ((i + 0.5) / samples - 0.5);
+    const core::Vec3 f = vector_signal(poses, site.name + ".f", s);
+    if (!f.allFinite()) return {};
+    sum += f;
+  }
+  const core::Vec3 f = sum / samples;
+  const core::Vec3 n = surface_plane(site, t).normal;
+  ContactForce out;
+  out.normal = n.dot(f) * n;
+  out.friction = f - out.normal;
+  return out;
+}
+
+ArrowScales choose_arrow_scales(const SceneDescription& scene, const ContactSites& sites,
+                                const PoseTrack& poses, const OverlayLayers& layers,
+                                double exposure) {
+  ArrowScales scales;
+  const double size = arrow_body_size(scene);
+  scales.shaft_radius = static_cast<float>(0.025 * size);
+  scales.max_length = 1.5 * size;
+  std::vector<double> largest_forces;  // per sample time, over the contact points
+  double largest_speed = 0.0;
+  constexpr int kSamples = 128;
+  const double t0 = poses.start_time(), t1 = poses.end_time();
+  for (int i = 0; i <= kSamples; ++i) {
+    const double t = t0 + (t1 - t0) * i / kSamples;
+    if (layers.forces && layers.force_scale <= 0.0) {
+      double largest = 0.0;
+      for (const ContactSite& s : sites.contacts) {
+        const ContactForce f = contact_force(s, poses, t, exposure);
+        largest = std::max({largest, f.normal.norm(), f.friction.norm()});
+      }
+      if (largest > 0.0) largest_forces.push_back(largest);
+    }
+    if (layers.velocities && layers.velocity_scale <= 0.0) {
+      for (const BodyVisual& b : scene.bodies) {
+        const double v = poses.signal(b.name + ".v", t);
+        if (std::isfinite(v)) largest_speed = std::max(largest_speed, v);
+      }
+    }
+  }
+  // The 90th percentile of the per-time largest force rather than the largest: the impact
+  // spikes of a stiff contact (a bouncing ball's hundreds of newtons for a fraction of a
+  // millisecond) would otherwise shrink the steady forces to nothing.
+  double largest_force = 0.0;
+  if (!largest_forces.empty()) {
+    const auto at =
+        largest_forces.begin() +
+        static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(largest_forces.size() - 1));
+    std::nth_element(largest_forces.begin(), at, largest_forces.end());
+    largest_force = *at;
+  }
+  // Not rounded: the legend's bar is a round value at whatever scale.
+  scales.force = layers.force_scale > 0.0
+                     ? layers.force_scale
+                     : (largest_force > 0.0 ? largest_force / (0.6 * size) : 1.0);
+  scales.velocity = layers.velocity_scale > 0.0
+                        ? layers.velocity_scale
+                        : (largest_speed > 0.0 ? largest_speed / (0.8 * size) : 1.0);
+  return scales;
+}
+
+core::Vec3 force_arrow_tail(const ContactSite& site, const PoseTrack& poses, double t,
+                            const ArrowScales& scales, const glm::vec3& eye) {
+  const core::Vec3 n = surface_plane(site, t).normal;
+  core::Vec3 tail = contact_point(site, poses, t) + scales.shaft_radius * n;
+  core::Vec3 toward = core::Vec3(eye.x, eye.y, eye.z) - tail;
+  toward -= n.dot(toward) * n;
+  if (toward.norm() > 1e-9) {
+    // Beside a ball; off a box's edge by a shaft's width, so the arrow is not half inside.
+    const double aside = site.radius > 0.0 ? 1.1 * site.radius + 2.0 * scales.shaft_radius
+                                           : 1.5 * scales.shaft_radius;
+    tail += aside * toward.normalized();
+  }
+  return tail;
+}
+
+void add_force_arrows(std::vector<DrawItem>& items, const ContactSites& sites,
+                      const PoseTrack& poses, double t, const ArrowScales& scales,
+                      const glm::vec3& eye, double exposure) {
+  ArrowStyle style;
+  style.shaft_radius = scales.shaft_radius;
+  for (const ContactSite& s : sites.contacts) {
+    const ContactForce f = contact_force(s, poses, t, exposure);
+    if (f.normal.isZero(0.0) && f.friction.isZero(0.0)) continue;
+    const glm::vec3 tail = to_glm(force_arrow_tail(s, poses, t, scales, eye));
+    add_arrow(items, tail, to_glm(capped(f.normal / scales.force, scales.max_length)),
+              arrow_material(kNormalForceColour), style);
+    add_arrow(items, tail, to_glm(capped(f.friction / scales.force, scales.max_length)),
+              arrow_material(kFrictionColour), style);
+  }
+}
+
+void add_velocity_arrows(std::vector<DrawItem>& items, const SceneDescription& scene,
+                         const PoseTrack& poses, double t, const ArrowScales& scales) {
+  ArrowStyle style;
+  style.shaft_radius = scales.shaft_radius;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyVisual& b = scene.bodies[i];
+    if (b.kind == BodyVisual::Kind::arm) continue;
+    const core::Vec3 v = vector_signal(poses, b.name + ".v", t);
+    if (!v.allFinite() || v.norm() <= 0.0) continue;
+    const int index = static_cast<int>(i);
+    const core::Vec3 d = v.normalized();
+    const core::Vec3 tail =
+        poses.position(index, t) + support(b, poses.orientation(index, t), d) * d;
+    add_arrow(items, to_glm(tail), to_glm(capped(v / scales.velocity, scales.max_length)),
+              arrow_material(kVelocityColour), style);
+  }
+}
+
+}  // namespace stiction::render

@@ -1,0 +1,209 @@
+#include "render/regime_badges.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "render/trail.hpp"
+
+namespace stiction::render {
+namespace {
+
+image::Rgba regime_colour(Regime r) {
+  switch (r) {
+    case Regime::stick:
+      return {24, 140, 60, 255};  // the trail's green
+    case Regime::slip:
+      return {205, 30, 30, 255};  // the trail's red
+    case Regime::open:
+      return {115, 118, 124, 255};
+  }
+  return {0, 0, 0, 255};
+}
+
+bool overlaps(const PixelBox& a, const PixelBox& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+void fill(image::Image& frame, const PixelBox& box, image::Rgba colour, float coverage) {
+  for (int y = std::max(0, box.y0); y < std::min(box.y1, frame.height); ++y) {
+    for (int x = std::max(0, box.x0); x < std::min(box.x1, frame.width); ++x) {
+      frame.blend(x, y, colour, coverage);
+    }
+  }
+}
+
+void dot(image::Image& frame, const glm::vec2& c, float radius, image::Rgba colour) {
+  const int r = static_cast<int>(std::ceil(radius + 1.0f));
+  for (int y = static_cast<int>(c.y) - r; y <= static_cast<int>(c.y) + r; ++y) {
+    for (int x = static_cast<int>(c.x) - r; x <= static_cast<int>(c.x) + r; ++x) {
+      if (x < 0 || y < 0 || x >= frame.width || y >= frame.height) continue;
+      const float d = std::hypot(x + 0.5f - c.x, y + 0.5f - c.y);
+      // A white ring around the coloured disc so the dot reads on any background.
+      if (d < radius)
+        frame.blend(x, y, colour, std::clamp(radius - d, 0.0f, 1.0f));
+      else if (d < radius + 1.5f)
+        frame.blend(x, y, {255, 255, 255, 255}, 0.9f);
+    }
+  }
+}
+
+}  // namespace
+
+const char* regime_name(Regime r) {
+  switch (r) {
+    case Regime::stick:
+      return "stick";
+    case Regime::slip:
+      return "slip";
+    case Regime::open:
+      return "open";
+  }
+  return "";
+}
+
+Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t, double exposure) {
+  const int samples = exposure > 0.0 ? std::clamp(static_cast<int>(exposure / 5e-4), 4, 64) : 1;
+  bool closed = false, slipped = false;
+  for (int i = 0; i < samples; ++i) {
+    const double s = samples == 1 ? t : t + exposure * ((i + 0.5) / samples - 0.5);
+    const double normal_force = poses.signal(site.name + ".n_force", s);
+    if (!(std::isnan(normal_force) || normal_force > 0.0)) continue;
+    closed = true;
+    const double slip = poses.signal(site.name + ".slip", s);
+    if (!(std::isnan(slip) || sticks(slip, site.stick_threshold))) slipped = true;
+  }
+  return !closed ? Regime::open : slipped ? Regime::slip : Regime::stick;
+}
+
+Regime joint_regime(const JointSite& site, const PoseTrack& poses, double t) {
+  const double omega = poses.signal(site.arm + ".omega." + std::to_string(site.joint), t);
+  return std::isnan(omega) || sticks(std::abs(omega), site.stick_threshold) ? Regime::stick
+                                                                            : Regime::slip;
+}
+
+std::string Badge::text() const {
+  std::string s = regime_name(regime);
+  if (count > 1) s += " \u00d7" + std::to_string(count);
+  return s;
+}
+
+bool project(const glm::mat4& view_projection, const glm::vec3& p, int width, int height,
+             glm::vec2& pixel) {
+  const glm::vec4 clip = view_projection * glm::vec4(p, 1.0f);
+  if (clip.w <= 1e-6f) return false;
+  const glm::vec2 ndc{clip.x / clip.w, clip.y / clip.w};
+  pixel = {(0.5f * ndc.x + 0.5f) * static_cast<float>(width),
+           (0.5f - 0.5f * ndc.y) * static_cast<float>(height)};
+  return true;
+}
+
+void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& sizes) {
+  // Top to bottom, so pushing down never moves a badge onto one already settled above.
+  std::vector<std::size_t> order(badges.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return badges[a].anchor.y < badges[b].anchor.y;
+  });
+  std::vector<PixelBox> placed;
+  for (std::size_t i : order) {
+    Badge& b = badges[i];
+    const int w = static_cast<int>(std::ceil(sizes[i].x)),
+              h = static_cast<int>(std::ceil(sizes[i].y));
+    PixelBox box{static_cast<int>(b.anchor.x) + 8, static_cast<int>(b.anchor.y) + 4, 0, 0};
+    box.x1 = box.x0 + w;
+    box.y1 = box.y0 + h;
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const PixelBox& p : placed) {
+        if (overlaps(box, p)) {
+          box.y0 = p.y1 + 2;
+          box.y1 = box.y0 + h;
+          moved = true;
+        }
+      }
+    }
+    b.box = box;
+    placed.push_back(box);
+  }
+}
+
+RegimeBadges::RegimeBadges(const SceneDescription& scene, const ContactSites& sites,
+                           const PoseTrack& poses, int image_height)
+    : scene_(scene), font_(text::Font::open_default()) {
+  style_.pixel_size = std::max(10.0, image_height / 40.0);
+  style_.colour = {255, 255, 255, 255};
+  sites_.joints = sites.joints;
+  constexpr int kSamples = 128;
+  const double t0 = poses.start_time(), t1 = poses.end_time();
+  for (const ContactSite& s : sites.contacts) {
+    for (int i = 0; i <= kSamples; ++i) {
+      if (contact_regime(s, poses, t0 + (t1 - t0) * i / kSamples) != Regime::open) {
+        sites_.contacts.push_back(s);
+        break;
+      }
+    }
+  }
+}
+
+std::vector<Badge> RegimeBadges::badges(const PoseTrack& poses, double t,
+                                        const glm::mat4& view_projection, int width, int height,
+                                        double exposure) {
+  std::map<std::pair<std::string, Regime>, Badge> groups;  // ordered: the same every frame
+  for (const ContactSite& s : sites_.contacts) {
+    glm::vec2 pixel;
+    if (!project(view_projection, to_glm(contact_point(s, poses, t)), width, height, pixel)) {
+      continue;
+    }
+    const Regime r = contact_regime(s, poses, t, exposure);
+    Badge& b = groups[{s.group, r}];
+    b.regime = r;
+    b.points.push_back(pixel);
+  }
+  for (const JointSite& j : sites_.joints) {
+    const BodyVisual& arm = scene_.bodies[static_cast<std::size_t>(j.body)];
+    const std::vector<core::Vec3> joints = arm_joints(arm, poses, j.body, t);
+    glm::vec2 pixel;
+    if (j.joint < 0 || j.joint >= static_cast<int>(joints.size()) ||
+        !project(view_projection, to_glm(joints[static_cast<std::size_t>(j.joint)]), width, height,
+                 pixel)) {
+      continue;
+    }
+    const Regime r = joint_regime(j, poses, t);
+    Badge& b = groups[{j.name, r}];
+    b.regime = r;
+    b.points.push_back(pixel);
+  }
+  std::vector<Badge> out;
+  std::vector<glm::vec2> sizes;
+  for (auto& [key, b] : groups) {
+    b.count = static_cast<int>(b.points.size());
+    glm::vec2 sum{0.0f};
+    for (const glm::vec2& p : b.points) sum += p;
+    b.anchor = sum / static_cast<float>(b.count);
+    const text::Extent e = font_.measure(b.text(), style_);
+    const double pad = 0.35 * style_.pixel_size;
+    sizes.emplace_back(e.width + 2.0 * pad, 1.3 * style_.pixel_size + pad);
+    out.push_back(b);
+  }
+  lay_out_badges(out, sizes);
+  return out;
+}
+
+void RegimeBadges::draw(image::Image& frame, const PoseTrack& poses, double t,
+                        const glm::mat4& view_projection, double exposure) {
+  const std::vector<Badge> all =
+      badges(poses, t, view_projection, frame.width, frame.height, exposure);
+  const float radius = static_cast<float>(0.22 * style_.pixel_size);
+  for (const Badge& b : all) {
+    for (const glm::vec2& p : b.points) dot(frame, p, radius, regime_colour(b.regime));
+  }
+  for (const Badge& b : all) {
+    fill(frame, b.box, regime_colour(b.regime), 0.88f);
+    const double pad = 0.35 * style_.pixel_size;
+    font_.draw(frame, b.text(), b.box.x0 + pad, b.box.y0 + 0.5 * pad + 1.0 * style_.pixel_size,
+               style_);
+  }
+}
+
+}  // namespace stiction::render

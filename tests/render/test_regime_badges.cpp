@@ -1,0 +1,164 @@
+// Stick / slip / open badges: the regime against the element's own threshold (random slips
+// on both sides of random thresholds), one badge per contact table and regime, and a layout
+// in which no two badges overlap.
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "render/camera.hpp"
+#include "render/regime_badges.hpp"
+#include "render_fixtures.hpp"
+
+using namespace stiction;
+using namespace stiction::render;
+
+namespace {
+
+// A box of the given size resting on the floor (z = 0), turned about z by `yaw`; at t = 0
+// its bottom corners all stick, at t = 1 they carry `normal` N each (0: open) and slip at
+// `slip` m/s; the top corners never touch.
+core::Trajectory box_trajectory(const core::Vec3& size, double yaw,
+                                const std::vector<double>& normal,
+                                const std::vector<double>& slip) {
+  std::vector<std::string> columns{"t",       "box.p.x", "box.p.y", "box.p.z",
+                                   "box.q.w", "box.q.x", "box.q.y", "box.q.z"};
+  for (int i = 0; i < 8; ++i) {
+    for (const char* a : {".n_force", ".slip.x", ".slip.y", ".slip.z"}) {
+      columns.push_back("floor." + std::to_string(i) + a);
+    }
+  }
+  core::Trajectory tr(columns);
+  for (double t : {0.0, 1.0}) {
+    std::vector<double> row{
+        t, 0.0, 0.0, 0.5 * size.z(), std::cos(0.5 * yaw), 0.0, 0.0, std::sin(0.5 * yaw)};
+    for (int i = 0; i < 8; ++i) {
+      const bool bottom = (i & 4) == 0;
+      const std::size_t k = static_cast<std::size_t>(i);
+      row.insert(row.end(), {bottom ? (t == 0.0 ? 5.0 : normal[k]) : 0.0,
+                             bottom && t == 1.0 ? slip[k] : 0.0, 0.0, 0.0});
+    }
+    tr.append(row.data());
+  }
+  return tr;
+}
+
+std::string box_toml(const core::Vec3& size) {
+  return "name = \"box\"\n[bodies.box]\ntype = \"rigid_body\"\nmass = 1.0\nshape = \"box\"\n"
+         "size = [" +
+         std::to_string(size.x()) + ", " + std::to_string(size.y()) + ", " +
+         std::to_string(size.z()) +
+         "]\n[impedances.floor]\ntype = \"kikuuwe_contact\"\nbody = \"box\"\nstick_threshold = "
+         "0.01\n";
+}
+
+}  // namespace
+
+TEST_CASE("badges: the regime against each element's own stick threshold", "[render][badges]") {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 40; ++i) {
+    ContactSite site;
+    site.name = "c";
+    site.stick_threshold = std::pow(10.0, -5.0 + 4.0 * u(rng));
+    const double slip = site.stick_threshold * (u(rng) < 0.5 ? u(rng) : 1.0 + 10.0 * u(rng));
+    const double normal = u(rng) < 0.25 ? 0.0 : 10.0 * u(rng) + 1e-6;
+    core::Trajectory tr({"t", "c.slip.x", "c.slip.y", "c.slip.z", "c.n_force"});
+    for (double t : {0.0, 1.0}) {
+      // Slip split over two axes: the norm is compared, as the events do.
+      const double row[] = {t, slip * 0.6, slip * 0.8, 0.0, normal};
+      tr.append(row);
+    }
+    const PoseTrack poses(tr, SceneDescription{});
+    const Regime expected = normal == 0.0                 ? Regime::open
+                            : slip < site.stick_threshold ? Regime::stick
+                                                          : Regime::slip;
+    CHECK(contact_regime(site, poses, 0.5) == expected);
+
+    JointSite joint{"j", "arm", 0, 1, site.stick_threshold};
+    core::Trajectory jt({"t", "arm.omega.0", "arm.omega.1"});
+    for (double t : {0.0, 1.0}) {
+      const double row[] = {t, 0.0, -slip};  // a negative rate slips as a positive one
+      jt.append(row);
+    }
+    CHECK(joint_regime(joint, PoseTrack(jt, SceneDescription{}), 0.5) ==
+          (slip < site.stick_threshold ? Regime::stick : Regime::slip));
+  }
+}
+
+TEST_CASE("badges: a box's corners share one badge per regime, none for corners never touching",
+          "[render][badges]") {
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 6; ++trial) {
+    const core::Vec3 size{0.1 + u(rng), 0.1 + u(rng), 0.1 + u(rng)};
+    const scene::Scene s = testing::make_scene(box_toml(size), "box");
+    const SceneDescription scene = describe_scene(*s.network, s.document);
+    const ContactSites sites =
+        describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+    REQUIRE(sites.contacts.size() == 8);
+    CHECK(sites.contacts[0].stick_threshold == 0.01);
+    // Bottom corners: random regimes (open, stick below 0.01 m/s, slip above).
+    std::vector<double> normal(8, 0.0), slip(8, 0.0);
+    for (int i = 0; i < 4; ++i) {
+      const double r = u(rng);
+      normal[static_cast<std::size_t>(i)] = r < 0.33 ? 0.0 : 5.0;
+      slip[static_cast<std::size_t>(i)] = r < 0.66 ? 0.002 : 0.5;
+    }
+    const core::Trajectory tr = box_trajectory(size, 6.0 * u(rng), normal, slip);
+    const PoseTrack poses(tr, scene);
+    RegimeBadges badges(scene, sites, poses, 360);
+    Camera camera;
+    camera.eye = {0.3f, -3.0f, 2.0f};
+    camera.target = {0.0f, 0.0f, 0.2f};
+    const glm::mat4 vp = camera.projection(640.0f / 360.0f) * camera.view();
+    const std::vector<Badge> all = badges.badges(poses, 1.0, vp, 640, 360);
+    int counts[3] = {0, 0, 0};
+    int total = 0;
+    for (const Badge& b : all) {
+      CHECK(b.count == static_cast<int>(b.points.size()));
+      counts[static_cast<int>(b.regime)] += b.count;
+      total += b.count;
+      CHECK(b.text() == (b.count == 1 ? std::string(regime_name(b.regime))
+                                      : std::string(regime_name(b.regime)) + " \u00d7" +
+                                            std::to_string(b.count)));
+    }
+    // The top corners never touch and have no badge.
+    int want[3] = {0, 0, 0};
+    for (int i = 0; i < 4; ++i) {
+      const double n = normal[static_cast<std::size_t>(i)], v = slip[static_cast<std::size_t>(i)];
+      ++want[n == 0.0 ? 2 : v < 0.01 ? 0 : 1];
+    }
+    CHECK(total == 4);
+    for (int r = 0; r < 3; ++r) CHECK(counts[r] == want[r]);
+    CHECK(all.size() <= 3);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      for (std::size_t j = i + 1; j < all.size(); ++j) {
+        const PixelBox &a = all[i].box, &b = all[j].box;
+        CHECK_FALSE((a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1));
+      }
+    }
+  }
+}
+
+TEST_CASE("badges: the layout leaves no two badges overlapping", "[render][badges]") {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> x(0.0f, 200.0f), w(20.0f, 90.0f);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Badge> badges(1 + trial);
+    std::vector<glm::vec2> sizes;
+    for (Badge& b : badges) {
+      b.anchor = {x(rng), 0.5f * x(rng)};  // crowded: many anchors on a small region
+      sizes.emplace_back(w(rng), 18.0f);
+    }
+    lay_out_badges(badges, sizes);
+    for (std::size_t i = 0; i < badges.size(); ++i) {
+      const PixelBox& a = badges[i].box;
+      CHECK(a.x1 - a.x0 == static_cast<int>(std::ceil(sizes[i].x)));
+      CHECK(a.x0 == static_cast<int>(badges[i].anchor.x) + 8);  // beside its point
+      CHECK(a.y0 >= static_cast<int>(badges[i].anchor.y));      // never above it
+      for (std::size_t j = i + 1; j < badges.size(); ++j) {
+        const PixelBox& b = badges[j].box;
+        CHECK_FALSE((a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1));
+      }
+    }
+  }
+}
