@@ -91,7 +91,8 @@ std::vector<InsetEvent> regime_changes(std::vector<InsetEvent> events) {
 }  // namespace
 
 InsetPlot::InsetPlot(const InsetSettings& settings, const core::Trajectory& trajectory,
-                     int frame_width, int frame_height, std::vector<InsetEvent> events)
+                     int frame_width, int frame_height, std::vector<InsetEvent> events,
+                     int reserved_bottom)
     : settings_(settings), events_(regime_changes(std::move(events))) {
   if (trajectory.row_count() == 0) throw RenderError("[inset]: the run has no rows");
   times_ = trajectory.column(0);
@@ -132,7 +133,8 @@ InsetPlot::InsetPlot(const InsetSettings& settings, const core::Trajectory& traj
   const bool top =
       settings_.corner == InsetCorner::top_left || settings_.corner == InsetCorner::top_right;
   box_.x0 = left ? std::min(margin, frame_width - w) : std::max(0, frame_width - margin - w);
-  box_.y0 = top ? std::min(margin, frame_height - h) : std::max(0, frame_height - margin - h);
+  box_.y0 = top ? std::min(margin, frame_height - h)
+                : std::max(0, frame_height - margin - std::max(0, reserved_bottom) - h);
   box_.x1 = box_.x0 + w;
   box_.y1 = box_.y0 + h;
 }

@@ -34,8 +34,10 @@ class InsetPlot {
   // `frame_width` x `frame_height`: the video's frame. Throws RenderError for a signal the
   // trajectory lacks. An inset larger than the frame is cut to it; one smaller than a figure
   // can be (200 x 150 pixels: a compare video's tile) is drawn at that size and scaled down.
+  // `reserved_bottom`: pixels at the bottom of the frame that a bottom inset stays above (the
+  // caption's band).
   InsetPlot(const InsetSettings& settings, const core::Trajectory& trajectory, int frame_width,
-            int frame_height, std::vector<InsetEvent> events = {});
+            int frame_height, std::vector<InsetEvent> events = {}, int reserved_bottom = 0);
 
   // Composites the inset at simulated time t onto `frame` (frame_width x frame_height).
   void draw(image::Image& frame, double t);

@@ -54,8 +54,9 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
     const auto& kinds = annotations.event_kinds;
     for (std::size_t i = 0; i < times.size(); ++i)
       events.push_back({times[i], i < kinds.size() ? kinds[i] : ""});
-    inset_ = std::make_unique<InsetPlot>(settings.inset, trajectory, settings.width,
-                                         settings.height, std::move(events));
+    inset_ = std::make_unique<InsetPlot>(
+        settings.inset, trajectory, settings.width, settings.height, std::move(events),
+        TitleCaption::caption_height(settings.overlay, settings.height));
   }
   layers_ = ForceRegimeLayers::create(scene_, annotations.sites, poses_, settings);
   titles_ = TitleCaption::create(settings.overlay, settings.height);

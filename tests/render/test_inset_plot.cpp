@@ -213,6 +213,25 @@ TEST_CASE("an inset in a frame smaller than a figure is scaled down into it", "[
   CHECK_THROWS_AS(InsetPlot(s, tr, 640, 360), RenderError);
 }
 
+TEST_CASE("a bottom inset stays above the caption's band; a top one ignores it",
+          "[render][inset]") {
+  std::mt19937 rng(7);
+  const core::Trajectory tr = random_run(rng, 1, 1.0);
+  std::uniform_int_distribution<int> band(0, 80);
+  for (int i = 0; i < 20; ++i) {
+    InsetSettings s;
+    s.signals = {"s0"};
+    const int reserved = band(rng);
+    s.corner = i % 2 ? InsetCorner::bottom_left : InsetCorner::bottom_right;
+    InsetPlot bottom(s, tr, 640, 360, {}, reserved);
+    CHECK(bottom.box().y1 <= 360 - reserved);
+    CHECK(bottom.box().y0 >= 0);
+    s.corner = InsetCorner::top_left;
+    InsetPlot top(s, tr, 640, 360, {}, reserved);
+    CHECK(top.box().y0 == InsetPlot(s, tr, 640, 360).box().y0);
+  }
+}
+
 TEST_CASE("golden: sphere_roll with the slip speed inset after the stick",
           "[render][golden][inset]") {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
