@@ -143,6 +143,9 @@ void CompareFrames::render(double t, image::Image& out, double speed) {
     label(out, *font_, style, tile.label, box.x0 + pad, box.y0 + pad);
     if (!tile.overlay.signal.empty()) {
       const PoseTrack& poses = tile.renderer->poses();
+      // Zero below the run's stick threshold where the signal has one (as the video's
+      // overlay prints it), else below 1e-9 of its largest magnitude (rounding noise).
+      if (tile.zero_below < 0.0) tile.zero_below = tile.renderer->stuck_below(tile.overlay.signal);
       if (tile.zero_below < 0.0) {
         double largest = 0.0;
         for (int k = 0; k <= 512; ++k) {

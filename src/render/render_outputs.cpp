@@ -32,7 +32,10 @@ FrameClock frame_clock(double start, double end, double fps, double slow_motion)
 
 FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
                              const RenderSettings& settings, const FrameAnnotations& annotations)
-    : scene_(std::move(scene)), settings_(settings), poses_(trajectory, scene_) {
+    : scene_(std::move(scene)),
+      settings_(settings),
+      joint_rate_thresholds_(joint_rate_thresholds(annotations.sites)),
+      poses_(trajectory, scene_) {
   context_ = create_offscreen_context();
   RendererOptions options;
   options.width = settings.width;
@@ -44,9 +47,9 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
   camera_ = std::make_unique<CameraRig>(settings.camera, scene_, poses_,
                                         float(settings.width) / float(settings.height));
   if (settings.overlay.enabled) {
-    overlay_ = std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
-                                         settings.slow_motion_around_events > 0.0,
-                                         joint_rate_thresholds(annotations.sites));
+    overlay_ =
+        std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
+                                  settings.slow_motion_around_events > 0.0, joint_rate_thresholds_);
   }
   if (settings.inset.enabled()) {
     std::vector<InsetEvent> events;
@@ -75,6 +78,13 @@ std::unique_ptr<FrameRenderer> frame_renderer_for(const scene::Scene& scene,
   annotations.event_times = std::move(event_times);
   annotations.event_kinds = std::move(event_kinds);
   return std::make_unique<FrameRenderer>(std::move(description), trajectory, settings, annotations);
+}
+
+double FrameRenderer::stuck_below(const std::string& signal) const {
+  const auto joint = joint_rate_thresholds_.find(signal);
+  if (joint != joint_rate_thresholds_.end()) return joint->second;
+  return threshold_zero(signal, settings_.overlay.stick_thresholds,
+                        settings_.overlay.default_stick_threshold);
 }
 
 FrameRenderer::~FrameRenderer() {

@@ -16,6 +16,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -109,10 +110,15 @@ class FrameRenderer {
 
   const PoseTrack& poses() const { return poses_; }
   const RenderSettings& settings() const { return settings_; }
+  // The magnitude below which `signal` prints as zero because the run judges it stuck (a
+  // contact's slip speed, a friction joint's rate: their stick thresholds); -1 for a signal
+  // without a stick threshold.
+  double stuck_below(const std::string& signal) const;
 
  private:
   SceneDescription scene_;
   RenderSettings settings_;
+  std::map<std::string, double> joint_rate_thresholds_;
   PoseTrack poses_;
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<Renderer> renderer_;
