@@ -8,6 +8,7 @@
 
 #include "render/frame_worker.hpp"
 #include "render/number_format.hpp"
+#include "render/overlay.hpp"
 #include "render/scene_view.hpp"
 #include "render/video_encoder.hpp"
 #include "scene/scene.hpp"
@@ -38,14 +39,11 @@ void label(image::Image& frame, text::Font& font, const text::TextStyle& style,
   font.draw(frame, text, x + pad, y + 0.5 * pad + 1.0 * style.pixel_size, style);
 }
 
+// The time line with the overlay's speed note (none when the speed prints as 1/1).
 std::string time_line(double t, double speed) {
-  char buffer[96];
-  if (speed < 0.999) {
-    std::snprintf(buffer, sizeof buffer, "t = %.3f s  (1/%.0f speed)", t, 1.0 / speed);
-  } else {
-    std::snprintf(buffer, sizeof buffer, "t = %.3f s", t);
-  }
-  return buffer;
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "t = %.3f s", t);
+  return buffer + speed_note(speed);
 }
 
 }  // namespace
