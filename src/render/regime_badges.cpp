@@ -62,13 +62,27 @@ const char* regime_name(Regime r) {
   return "";
 }
 
-Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t, double exposure) {
+double visible_gap(const SceneDescription& scene, const ContactSite& site) {
+  if (site.body < 0 || site.body >= static_cast<int>(scene.bodies.size())) return 0.0;
+  const BodyVisual& b = scene.bodies[static_cast<std::size_t>(site.body)];
+  const double size = b.kind == BodyVisual::Kind::sphere ? 2.0 * b.radius : b.size.maxCoeff();
+  return 1e-3 * size;
+}
+
+Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t, double exposure,
+                      double visible_gap) {
   const int samples = exposure > 0.0 ? std::clamp(static_cast<int>(exposure / 5e-4), 4, 64) : 1;
   bool closed = false, slipped = false;
   for (int i = 0; i < samples; ++i) {
     const double s = samples == 1 ? t : t + exposure * ((i + 0.5) / samples - 0.5);
     const double normal_force = poses.signal(site.name + ".n_force", s);
-    if (!(std::isnan(normal_force) || normal_force > 0.0)) continue;
+    const bool pressed = std::isnan(normal_force) || normal_force > 0.0;
+    if (!pressed) {
+      if (!(visible_gap > 0.0)) continue;
+      const SurfacePlane plane = surface_plane(site, s);
+      const double gap = plane.normal.dot(contact_point(site, poses, s) - plane.origin);
+      if (!(gap < visible_gap)) continue;
+    }
     closed = true;
     const double slip = poses.signal(site.name + ".slip", s);
     if (!(std::isnan(slip) || sticks(slip, site.stick_threshold))) slipped = true;
@@ -155,7 +169,7 @@ std::vector<Badge> RegimeBadges::badges(const PoseTrack& poses, double t,
     if (!project(view_projection, to_glm(contact_point(s, poses, t)), width, height, pixel)) {
       continue;
     }
-    const Regime r = contact_regime(s, poses, t, exposure);
+    const Regime r = contact_regime(s, poses, t, exposure, visible_gap(scene_, s));
     Badge& b = groups[{s.group, r}];
     b.regime = r;
     b.points.push_back(pixel);

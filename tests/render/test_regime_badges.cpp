@@ -121,12 +121,10 @@ TEST_CASE("badges: a box's corners share one badge per regime, none for corners 
                                       : std::string(regime_name(b.regime)) + " \u00d7" +
                                             std::to_string(b.count)));
     }
-    // The top corners never touch and have no badge.
+    // The top corners never touch and have no badge. A bottom corner without force still
+    // rests on the floor (no visible gap): its badge says whether it slips.
     int want[3] = {0, 0, 0};
-    for (int i = 0; i < 4; ++i) {
-      const double n = normal[static_cast<std::size_t>(i)], v = slip[static_cast<std::size_t>(i)];
-      ++want[n == 0.0 ? 2 : v < 0.01 ? 0 : 1];
-    }
+    for (int i = 0; i < 4; ++i) ++want[slip[static_cast<std::size_t>(i)] < 0.01 ? 0 : 1];
     CHECK(total == 4);
     for (int r = 0; r < 3; ++r) CHECK(counts[r] == want[r]);
     CHECK(all.size() <= 3);
@@ -136,6 +134,45 @@ TEST_CASE("badges: a box's corners share one badge per regime, none for corners 
         CHECK_FALSE((a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1));
       }
     }
+  }
+}
+
+TEST_CASE("badges: a contact without force is open only where its gap can be seen",
+          "[render][badges]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 30; ++i) {
+    const double radius = 0.02 + 0.5 * u(rng);
+    const double threshold = 1e-3;
+    const scene::Scene s = testing::make_scene(
+        "name = \"ball\"\n[bodies.ball]\ntype = \"rigid_body\"\nmass = 1.0\nshape = "
+        "\"sphere\"\nradius = " +
+            std::to_string(radius) +
+            "\n[impedances.ground]\ntype = \"kikuuwe_contact\"\nbody = \"ball\"\n",
+        "ball");
+    const SceneDescription scene = describe_scene(*s.network, s.document);
+    const ContactSites sites =
+        describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, threshold);
+    REQUIRE(sites.contacts.size() == 1);
+    const double gap_limit = visible_gap(scene, sites.contacts[0]);
+    CHECK(gap_limit == Approx(2e-3 * radius));
+    // Airborne by a random fraction of the visible gap or by many times it, no force in any
+    // row, slipping or not.
+    const bool hop = u(rng) < 0.5;
+    const double height = hop ? gap_limit * 0.9 * u(rng) : gap_limit * (1.5 + 100.0 * u(rng));
+    const double slip = u(rng) < 0.5 ? 0.1 * threshold : 10.0 * threshold;
+    core::Trajectory tr({"t", "ball.p.x", "ball.p.y", "ball.p.z", "ball.q.w", "ball.q.x",
+                         "ball.q.y", "ball.q.z", "ground.slip.x", "ground.slip.y", "ground.slip.z",
+                         "ground.n_force"});
+    for (double t : {0.0, 1.0}) {
+      const double row[] = {t, 0.0, 0.0, radius + height, 1.0, 0.0, 0.0, 0.0, slip, 0.0, 0.0, 0.0};
+      tr.append(row);
+    }
+    const PoseTrack poses(tr, scene);
+    const Regime want = !hop ? Regime::open : slip < threshold ? Regime::stick : Regime::slip;
+    CHECK(contact_regime(sites.contacts[0], poses, 0.5, 0.02, gap_limit) == want);
+    // Without the rule, no force is open.
+    CHECK(contact_regime(sites.contacts[0], poses, 0.5, 0.02) == Regime::open);
   }
 }
 
