@@ -92,13 +92,26 @@ CompareFrames::CompareFrames(const std::vector<CompareRun>& runs) {
   }
   std::sort(events_.begin(), events_.end());
   grid_ = tile_grid(static_cast<int>(runs.size()), settings_.width, settings_.height);
+  if (grid_.x0 < 0 || grid_.y0 < 0) {
+    throw RenderError("compare --video: " + std::to_string(runs.size()) + " runs do not fit in " +
+                      std::to_string(settings_.width) + "x" + std::to_string(settings_.height) +
+                      " pixels (tiles of at least 16x16); give the first scene a larger [render] "
+                      "size");
+  }
   start_ = std::numeric_limits<double>::infinity();
   end_ = -start_;
   for (const CompareRun& r : runs) {
     RenderSettings s = r.settings;
     s.width = grid_.tile_width;
     s.height = grid_.tile_height;
-    s.overlay.enabled = false;  // one shared time line instead of one per tile
+    // One shared time line instead of one per tile, the run's label instead of the scene's
+    // title and caption; forces, badges and the inset stay as the scene asks. Every tile is
+    // exposed for the video's own frame interval (spin blur, forces averaged over it).
+    s.overlay.panel = false;
+    s.overlay.layers.title = "";
+    s.overlay.layers.caption = "";
+    s.fps = settings_.fps;
+    s.slow_motion = settings_.slow_motion;
     auto tile = std::make_unique<Tile>();
     tile->label = r.label;
     if (r.settings.overlay.enabled) tile->overlay = r.settings.overlay;
@@ -107,6 +120,13 @@ CompareFrames::CompareFrames(const std::vector<CompareRun>& runs) {
     tile->end = tile->renderer->poses().end_time();
     end_ = std::max(end_, tile->end);
     tiles_.push_back(std::move(tile));
+  }
+  // Each scene passed its own frame limit; the video runs over the longest at the first
+  // scene's rate.
+  if ((end_ - start_) * settings_.fps * settings_.slow_motion > kMaxFrames) {
+    throw RenderError("compare --video: the runs span " + std::to_string(end_ - start_) +
+                      " s, more than " + std::to_string(static_cast<long>(kMaxFrames)) +
+                      " frames at the first scene's fps and slow_motion");
   }
   font_ = std::make_unique<text::Font>(text::Font::open_default());
 }

@@ -5,13 +5,6 @@
 namespace stiction::render {
 namespace {
 
-int body_index(const SceneDescription& scene, const std::string& name) {
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].name == name) return static_cast<int>(i);
-  }
-  return -1;
-}
-
 double threshold_of(const std::map<std::string, double>& thresholds, const std::string& name,
                     double fallback) {
   const auto it = thresholds.find(name);

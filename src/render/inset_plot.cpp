@@ -149,8 +149,10 @@ const InsetPlot::Page& InsetPlot::page(double t) {
   double t0 = start_, t1 = end_;
   if (settings_.window && *settings_.window < end_ - start_) {
     const double w = *settings_.window;
-    const int last = static_cast<int>(std::ceil((end_ - start_) / w - 1e-9)) - 1;
-    index = std::clamp(static_cast<int>(std::floor((t - start_) / w)), 0, std::max(last, 0));
+    // In doubles until clamped: a tiny window over a long run has more pages than an int.
+    const double last = std::max(0.0, std::ceil((end_ - start_) / w - 1e-9) - 1.0);
+    const double at = std::clamp(std::floor((t - start_) / w), 0.0, std::min(last, 1e9));
+    index = static_cast<int>(at);
     t0 = start_ + index * w;
     t1 = t0 + w;
   }

@@ -17,13 +17,6 @@ core::Vec3 vec3_or(const toml::table& t, const char* key, const core::Vec3& fall
   return v;
 }
 
-int body_index(const SceneDescription& scene, const std::string& name) {
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].name == name) return static_cast<int>(i);
-  }
-  return -1;
-}
-
 }  // namespace
 
 void describe_mechanism(const core::Network& network, const toml::table& document,

@@ -41,10 +41,15 @@ int PoseTrack::column(const std::string& name) const {
 }
 
 double PoseTrack::column_peak(int column) const {
+  // Asked for every frame (a source's arrow is scaled by its peak): a pass over the rows
+  // each time made a run's cost grow with frames x rows.
+  const auto known = peaks_.find(column);
+  if (known != peaks_.end()) return known->second;
   double peak = 0.0;
   for (int r = 0; r < trajectory_.row_count(); ++r) {
     peak = std::max(peak, std::abs(trajectory_.at(r, column)));
   }
+  peaks_.emplace(column, peak);
   return peak;
 }
 

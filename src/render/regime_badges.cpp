@@ -152,7 +152,10 @@ RegimeBadges::RegimeBadges(const SceneDescription& scene, const ContactSites& si
   const double t0 = poses.start_time(), t1 = poses.end_time();
   for (const ContactSite& s : sites.contacts) {
     for (int i = 0; i <= kSamples; ++i) {
-      if (contact_regime(s, poses, t0 + (t1 - t0) * i / kSamples) != Regime::open) {
+      // Each sample stands for its stretch of the run (a short landing between samples
+      // counts), with the frames' rule for a gap nobody can see.
+      if (contact_regime(s, poses, t0 + (t1 - t0) * i / kSamples, (t1 - t0) / kSamples,
+                         visible_gap(scene, s)) != Regime::open) {
         sites_.contacts.push_back(s);
         break;
       }

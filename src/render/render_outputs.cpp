@@ -46,7 +46,7 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
   renderer_ = std::make_unique<Renderer>(options);
   camera_ = std::make_unique<CameraRig>(settings.camera, scene_, poses_,
                                         float(settings.width) / float(settings.height));
-  if (settings.overlay.enabled) {
+  if (settings.overlay.enabled && settings.overlay.panel) {
     overlay_ =
         std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
                                   settings.slow_motion_around_events > 0.0, joint_rate_thresholds_);

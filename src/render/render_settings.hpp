@@ -47,12 +47,12 @@
 //   [inset]                 # a live plot in a corner of the video: see inset_settings.hpp
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <toml++/toml.h>
 
 #include "core/types.hpp"
 #include "render/camera_preset.hpp"
@@ -69,8 +69,8 @@ struct CameraSettings {
   std::optional<core::Vec3> position;
   std::optional<core::Vec3> target;
   double fov_degrees = 40.0;
-  std::string follow;  // body name, empty: fixed camera
-  bool follow_vertical = false;  // also follow the body's vertical motion
+  std::string follow;                       // body name, empty: fixed camera
+  bool follow_vertical = false;             // also follow the body's vertical motion
   CameraView view = CameraView::automatic;  // `view`: a preset (camera_preset.hpp)
 };
 
@@ -88,6 +88,9 @@ struct OverlaySettings {
   double default_stick_threshold = 1e-3;
   // Several values, title and caption, force/velocity arrows, badges (overlay_layers_settings.hpp).
   OverlayLayers layers;
+  // Not a key: false leaves out the time and value panel but keeps the other layers (a tile
+  // of `compare --video`, which labels its tiles and shows one shared time line).
+  bool panel = true;
 };
 
 // Frames of one video at most (about 4.6 hours at 60 fps); see docs/limits.md.

@@ -32,6 +32,13 @@ core::Vec3 vec3_of(const toml::node_view<const toml::node>& node, const core::Ve
 
 }  // namespace
 
+int body_index(const SceneDescription& scene, const std::string& name) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
 SceneDescription describe_scene(const core::Network& network, const toml::table& document) {
   SceneDescription scene;
   for (const auto& a : network.admittances()) {
@@ -106,17 +113,14 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
       if (b.kind == BodyVisual::Kind::block) b.up = s.normal;
       if (several) continue;
       ContactVisual c{imp->name(), body, b.kind == BodyVisual::Kind::sphere ? b.radius : 0.0,
-                      s.normal};
+                      s.normal, s.offset};
       if (t && (*t)["radius"].is_number())
         c.radius = (*t)["radius"].value<double>().value_or(c.radius);
       scene.contacts.push_back(c);
     }
   }
-  auto body_index = [&](const core::Admittance* a) {
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      if (a != nullptr && scene.bodies[i].name == a->name()) return static_cast<int>(i);
-    }
-    return -1;
+  auto index_of = [&](const core::Admittance* a) {
+    return a != nullptr ? body_index(scene, a->name()) : -1;
   };
   const toml::table* imps = document["impedances"].as_table();
   for (std::size_t i = 0; i < network.impedances().size(); ++i) {
@@ -127,8 +131,8 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
     const auto wired = network.map_of(static_cast<int>(i)).admittances();
     JointVisual j;
     j.name = joint->name();
-    j.child = wired.empty() ? -1 : body_index(wired[0]);
-    j.parent = wired.size() > 1 ? body_index(wired[1]) : -1;
+    j.child = wired.empty() ? -1 : index_of(wired[0]);
+    j.parent = wired.size() > 1 ? index_of(wired[1]) : -1;
     if (j.child < 0 || (wired.size() > 1 && j.parent < 0)) continue;
     const toml::table* t = imps ? (*imps)[j.name].as_table() : nullptr;
     if (t) {

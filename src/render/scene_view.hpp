@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include <glm/glm.hpp>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,7 @@ struct ContactVisual {
   std::string body;
   double radius = 0.0;
   core::Vec3 normal{0.0, 0.0, 1.0};
+  double offset = 0.0;  // its surface's plane n . x = offset (at rest for a moving one)
 };
 
 // A revolute joint between two rigid bodies (penalty_joint), drawn like a planar arm's joint:
@@ -109,6 +111,9 @@ struct SceneDescription {
 // penalty_joint impedances (bodies from their maps, axes from their params, articulation
 // points from the document's `point` and `parent_point`).
 SceneDescription describe_scene(const core::Network& network, const toml::table& document);
+
+// Index of the body named `name` in scene.bodies, -1 if there is none.
+int body_index(const SceneDescription& scene, const std::string& name);
 
 enum class Shape { sphere, box, cylinder, plane, trail, cone };
 
@@ -188,6 +193,8 @@ class PoseTrack {
   const core::Trajectory& trajectory_;
   std::vector<double> t_;
   std::vector<Columns> columns_;
+  // column_peak's results. A PoseTrack belongs to one FrameRenderer, used from one thread.
+  mutable std::map<int, double> peaks_;
 };
 
 // Everything to draw at time t: surfaces, bodies (arms as boxes plus joint cylinders; box

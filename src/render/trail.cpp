@@ -12,13 +12,6 @@ namespace {
 const glm::vec3 kStick{0.05f, 0.55f, 0.15f};
 const glm::vec3 kSlip{0.85f, 0.05f, 0.05f};
 
-int body_index(const SceneDescription& scene, const std::string& name) {
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].name == name) return static_cast<int>(i);
-  }
-  return -1;
-}
-
 // The surface a contact touches when it moves (a tilting board, a belt): the contact's own
 // impedance. Null for a fixed surface.
 const components::MovingContact* moving_surface(const SceneDescription& scene,
@@ -60,13 +53,9 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
     travel_now = moving->belt_travel(t);
     travel = moving->belt_travel(t0);
   }
-  double fixed_offset = 0.0;
-  for (const auto& surface : scene.surfaces) {
-    if (surface.moving == nullptr && (surface.normal - c.normal).norm() < 1e-9) {
-      fixed_offset = surface.offset;
-      break;
-    }
-  }
+  // The contact's own plane: another surface with the same normal (a floor under a
+  // platform) is at another height.
+  const double fixed_offset = c.offset;
   core::Vec3 previous = core::Vec3::Zero();
   double previous_s = t0;
   for (int i = 0; i <= kSteps; ++i) {

@@ -143,3 +143,28 @@ TEST_CASE("golden: two arms side by side in a compare tile frame", "[render][gol
   INFO(r.message);
   CHECK(r.matches);
 }
+
+TEST_CASE("compare video: runs that do not fit the frame, or too many frames, are refused",
+          "[render][compare]") {
+  const scene::Scene s = testing::make_scene(testing::two_link_toml(), "two_link");
+  const core::Trajectory run = arm_run(1.0, 0.2);
+  RenderSettings settings = read_render_settings(s);
+  settings.msaa = 1;
+  std::mt19937 rng(9);
+  for (int trial = 0; trial < 20; ++trial) {
+    // Tiles of at least 16 pixels with 2-pixel gaps: n runs in a row need 18 n - 2 pixels.
+    const int runs_count = 2 + trial % 7;
+    const int columns = runs_count <= 2 ? runs_count : int(std::ceil(std::sqrt(runs_count)));
+    settings.width = 2 * std::uniform_int_distribution<int>(8, (18 * columns - 4) / 2)(rng);
+    settings.height = 180;
+    std::vector<CompareRun> runs(static_cast<std::size_t>(runs_count),
+                                 CompareRun{"arm", &s, &run, settings, {}, {}});
+    INFO(runs_count << " runs in " << settings.width << " px");
+    CHECK_THROWS_AS(CompareFrames(runs), RenderError);
+  }
+  settings.width = 320;
+  settings.fps = 240;
+  settings.slow_motion = 1e5;  // 0.2 s at 2.4e7 frames per simulated second
+  std::vector<CompareRun> runs(2, CompareRun{"arm", &s, &run, settings, {}, {}});
+  CHECK_THROWS_AS(CompareFrames(runs), RenderError);
+}

@@ -177,3 +177,36 @@ TEST_CASE("trail: none where the contact point is off its surface", "[render][tr
   // Both stretches on the surface are drawn, hops included: (0.3 + 0.4) / 1.0 of 97 pairs.
   CHECK(strip.size() >= 2 * 66);
 }
+
+TEST_CASE(
+    "trail: a ball on a raised platform leaves its trail on the platform, not on the floor "
+    "under it",
+    "[render][trail]") {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 10; ++i) {
+    const double radius = 0.05 + 0.2 * u(rng), height = 0.1 + u(rng), speed = 0.2 + u(rng);
+    std::ostringstream s;
+    s.precision(17);
+    s << "name = \"platform\"\n[bodies.ball]\ntype = \"rigid_body\"\nmass = 1.0\nshape = "
+         "\"sphere\"\nradius = "
+      << radius << "\n[impedances.floor]\ntype = \"kikuuwe_contact\"\nbody = \"ball\"\n"
+      << "[impedances.platform]\ntype = \"kikuuwe_contact\"\nbody = \"ball\"\noffset = " << height
+      << "\nextent = { min = [-10.0, -10.0], max = [10.0, 10.0] }\n";
+    const scene::Scene sc = testing::make_scene(s.str(), "platform");
+    const SceneDescription scene = describe_scene(*sc.network, sc.document);
+    core::Trajectory tr(
+        {"t", "ball.p.x", "ball.p.y", "ball.p.z", "ball.q.w", "ball.q.x", "ball.q.y", "ball.q.z"});
+    for (int r = 0; r <= 100; ++r) {
+      const double t = 0.01 * r;
+      const double row[] = {t, speed * t, 0.0, height + radius, 1.0, 0.0, 0.0, 0.0};
+      tr.append(row);
+    }
+    const PoseTrack poses(tr, scene);
+    TrailOptions options;
+    options.contacts = {"platform"};
+    const std::vector<TrailVertex> trail = build_trails(scene, poses, 1.0, options);
+    REQUIRE_FALSE(trail.empty());
+    for (const TrailVertex& v : trail) CHECK(std::abs(v.position.z - height) < 2e-3);
+  }
+}
