@@ -210,49 +210,14 @@ RenderResult render_compare_video(const std::vector<CompareRun>& runs,
   RenderResult result;
   CompareFrames frames(runs);
   const std::vector<FrameTime> times = frames.frame_times();
-  const int count = static_cast<int>(times.size());
   std::error_code ec;
   fs::create_directories(request.out_dir, ec);
   if (ec) throw VideoError("cannot create " + request.out_dir.string() + ": " + ec.message());
   const RenderSettings& settings = frames.settings();
-  VideoOptions v;
-  v.width = settings.width;
-  v.height = settings.height;
-  v.fps = settings.fps;
-  v.crf = settings.crf;
-  v.preset = settings.preset;
-  v.threads = settings.encoder_threads;
-  VideoEncoder encoder(request.out_dir / "compare.mp4", v);
-  {
-    FrameWorker worker(&encoder, std::nullopt);
-    image::Image frame;
-    for (int i = 0; i < count; ++i) {
-      if (request.cancel && request.cancel->load()) {
-        result.interrupted = true;
-        break;
-      }
-      worker.recycle(frame);
-      const FrameTime& ft = times[static_cast<std::size_t>(i)];
-      frames.render(ft.t, frame, ft.speed);
-      worker.push(i, std::move(frame));
-      frame = image::Image();
-      result.frames = i + 1;
-      if (request.progress) {
-        RenderProgress p;
-        p.frames_done = i + 1;
-        p.frame_count = count;
-        p.elapsed_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        p.frames_per_second = p.elapsed_seconds > 0.0 ? p.frames_done / p.elapsed_seconds : 0.0;
-        p.eta_seconds =
-            p.frames_per_second > 0.0 ? (count - p.frames_done) / p.frames_per_second : 0.0;
-        request.progress(p);
-      }
-    }
-    worker.stop();
-    worker.rethrow();
-    result.worker_cpu_seconds = worker.cpu_seconds();
-  }
+  VideoEncoder encoder(request.out_dir / "compare.mp4", video_options(settings));
+  render_frame_sequence(
+      times, [&](const FrameTime& f, image::Image& frame) { frames.render(f.t, frame, f.speed); },
+      &encoder, std::nullopt, request.cancel, request.progress, started, result);
   result.video = encoder.finish(result.interrupted ? request.out_dir / "compare.partial.mp4"
                                                    : request.out_dir / "compare.mp4");
   result.wall_seconds =

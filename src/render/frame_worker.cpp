@@ -85,4 +85,51 @@ void FrameWorker::run() {
   }
 }
 
+VideoOptions video_options(const RenderSettings& settings) {
+  VideoOptions v;
+  v.width = settings.width;
+  v.height = settings.height;
+  v.fps = settings.fps;
+  v.crf = settings.crf;
+  v.preset = settings.preset;
+  v.threads = settings.encoder_threads;
+  return v;
+}
+
+void render_frame_sequence(const std::vector<FrameTime>& times,
+                           const std::function<void(const FrameTime&, image::Image&)>& draw,
+                           VideoEncoder* encoder, std::optional<std::filesystem::path> frames_dir,
+                           const std::atomic<bool>* cancel,
+                           const std::function<void(const RenderProgress&)>& progress,
+                           std::chrono::steady_clock::time_point started, RenderResult& result) {
+  const int count = static_cast<int>(times.size());
+  FrameWorker worker(encoder, std::move(frames_dir));
+  image::Image frame;
+  for (int i = 0; i < count; ++i) {
+    if (cancel && cancel->load()) {
+      result.interrupted = true;
+      break;
+    }
+    worker.recycle(frame);
+    draw(times[static_cast<std::size_t>(i)], frame);
+    worker.push(i, std::move(frame));
+    frame = image::Image();
+    result.frames = i + 1;
+    if (progress) {
+      RenderProgress p;
+      p.frames_done = i + 1;
+      p.frame_count = count;
+      p.elapsed_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      p.frames_per_second = p.elapsed_seconds > 0.0 ? p.frames_done / p.elapsed_seconds : 0.0;
+      p.eta_seconds =
+          p.frames_per_second > 0.0 ? (count - p.frames_done) / p.frames_per_second : 0.0;
+      progress(p);
+    }
+  }
+  worker.stop();
+  worker.rethrow();
+  result.worker_cpu_seconds = worker.cpu_seconds();
+}
+
 }  // namespace stiction::render

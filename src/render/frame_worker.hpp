@@ -4,20 +4,24 @@
 // bounded and the renderer is paced by the encoder when it is slower.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <thread>
 #include <vector>
 
 #include "image/image.hpp"
+#include "render/render_outputs.hpp"
+#include "render/time_warp.hpp"
+#include "render/video_encoder.hpp"
 
 namespace stiction::render {
-
-class VideoEncoder;
 
 class FrameWorker {
  public:
@@ -56,5 +60,19 @@ class FrameWorker {
   double cpu_seconds_ = 0.0;
   std::thread thread_;  // last: starts after everything above is built
 };
+
+// The encoder's options from a video's [render] settings.
+VideoOptions video_options(const RenderSettings& settings);
+
+// The loop both videos share (`run`'s video.mp4, `compare --video`'s compare.mp4): draws the
+// frame of each time with `draw` and hands it to a worker over `encoder` (and `frames_dir`),
+// reporting progress, until done or *cancel. Sets result.frames, .interrupted and
+// .worker_cpu_seconds; rethrows the worker's error.
+void render_frame_sequence(const std::vector<FrameTime>& times,
+                           const std::function<void(const FrameTime&, image::Image&)>& draw,
+                           VideoEncoder* encoder, std::optional<std::filesystem::path> frames_dir,
+                           const std::atomic<bool>* cancel,
+                           const std::function<void(const RenderProgress&)>& progress,
+                           std::chrono::steady_clock::time_point started, RenderResult& result);
 
 }  // namespace stiction::render

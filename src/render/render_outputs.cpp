@@ -140,7 +140,6 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   const std::vector<FrameTime> times =
       warped_frame_times(clock.start, renderer.poses().end_time(), clock.step, request.event_times,
                          settings.slow_motion_around_events, settings.event_slow_motion);
-  const int count = static_cast<int>(times.size());
   std::error_code ec;
   fs::create_directories(request.out_dir, ec);
   if (ec) throw VideoError("cannot create " + request.out_dir.string() + ": " + ec.message());
@@ -152,46 +151,12 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   }
   std::unique_ptr<VideoEncoder> encoder;
   if (request.video) {
-    VideoOptions v;
-    v.width = settings.width;
-    v.height = settings.height;
-    v.fps = settings.fps;
-    v.crf = settings.crf;
-    v.preset = settings.preset;
-    v.threads = settings.encoder_threads;
-    encoder = std::make_unique<VideoEncoder>(request.out_dir / "video.mp4", v);
+    encoder =
+        std::make_unique<VideoEncoder>(request.out_dir / "video.mp4", video_options(settings));
   }
-
-  {
-    FrameWorker worker(encoder.get(), frames_dir);
-    image::Image frame;
-    for (int i = 0; i < count; ++i) {
-      if (request.cancel && request.cancel->load()) {
-        result.interrupted = true;
-        break;
-      }
-      worker.recycle(frame);
-      renderer.render(times[static_cast<std::size_t>(i)].t, frame,
-                      times[static_cast<std::size_t>(i)].speed);
-      worker.push(i, std::move(frame));
-      frame = image::Image();
-      result.frames = i + 1;
-      if (request.progress) {
-        RenderProgress p;
-        p.frames_done = i + 1;
-        p.frame_count = count;
-        p.elapsed_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-        p.frames_per_second = p.elapsed_seconds > 0.0 ? p.frames_done / p.elapsed_seconds : 0.0;
-        p.eta_seconds =
-            p.frames_per_second > 0.0 ? (count - p.frames_done) / p.frames_per_second : 0.0;
-        request.progress(p);
-      }
-    }
-    worker.stop();
-    worker.rethrow();
-    result.worker_cpu_seconds = worker.cpu_seconds();
-  }
+  render_frame_sequence(
+      times, [&](const FrameTime& f, image::Image& frame) { renderer.render(f.t, frame, f.speed); },
+      encoder.get(), frames_dir, request.cancel, request.progress, started, result);
   if (encoder) {
     result.video = encoder->finish(result.interrupted ? request.out_dir / "video.partial.mp4"
                                                       : request.out_dir / "video.mp4");
