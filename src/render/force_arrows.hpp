@@ -16,7 +16,9 @@ namespace stiction::render {
 // Linear RGB of the arrows (the legend shows them in sRGB).
 inline const glm::vec3 kNormalForceColour{0.05f, 0.22f, 0.85f};
 inline const glm::vec3 kFrictionColour{0.95f, 0.42f, 0.02f};
-inline const glm::vec3 kVelocityColour{0.45f, 0.08f, 0.60f};
+// Velocities in charcoal: the force and torque sources' arrows are purple (mechanism_items),
+// and a velocity must not read as an applied load.
+inline const glm::vec3 kVelocityColour{0.03f, 0.03f, 0.035f};
 
 struct ArrowScales {
   double force = 1.0;           // N per metre of arrow
