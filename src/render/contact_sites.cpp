@@ -1,6 +1,7 @@
 #include "render/contact_sites.hpp"
 
 #include "components/impedance/kikuuwe_contact.hpp"
+#include "components/impedance/pair_contact.hpp"
 
 namespace stiction::render {
 namespace {
@@ -64,6 +65,23 @@ ContactSites describe_contact_sites(const core::Network& network, const toml::ta
       sites.joints.push_back(j);
       continue;
     }
+    if (dynamic_cast<const components::PairContact*>(imp) != nullptr) {
+      const auto* map = dynamic_cast<const components::PairContactMap*>(
+          &network.map_of(static_cast<int>(i)));
+      const int other = wired.size() > 1 ? body_index(scene, wired[1]->name()) : -1;
+      if (map == nullptr || other < 0) continue;
+      ContactSite s;
+      s.name = imp->name();
+      const std::size_t dot = s.name.rfind('.');
+      const bool table = tables && (*tables)[s.name].as_table();
+      s.group = table || dot == std::string::npos ? s.name : s.name.substr(0, dot);
+      s.body = body;
+      s.other = other;
+      s.pair = map->shape();
+      s.stick_threshold = threshold_of(thresholds, s.name, default_threshold);
+      sites.contacts.push_back(s);
+      continue;
+    }
     const auto* fixed = dynamic_cast<const components::KikuuweContact*>(imp);
     const auto* moving = dynamic_cast<const components::MovingContact*>(imp);
     if (!fixed && !moving) continue;
@@ -109,7 +127,27 @@ SurfacePlane surface_plane(const ContactSite& site, double t) {
   return {site.normal, site.offset * site.normal};
 }
 
+namespace {
+
+components::PairProbe probe_at(const ContactSite& site, const PoseTrack& poses, double t) {
+  core::BodyMotion a, b;
+  a.p = poses.position(site.body, t);
+  a.q = poses.orientation(site.body, t);
+  b.p = poses.position(site.other, t);
+  b.q = poses.orientation(site.other, t);
+  return components::probe_pair(site.pair, a, b);
+}
+
+}  // namespace
+
+SurfacePlane surface_plane(const ContactSite& site, const PoseTrack& poses, double t) {
+  if (site.other < 0) return surface_plane(site, t);
+  const components::PairProbe probe = probe_at(site, poses, t);
+  return {probe.n, probe.point + probe.depth * probe.n};
+}
+
 core::Vec3 contact_point(const ContactSite& site, const PoseTrack& poses, double t) {
+  if (site.other >= 0) return probe_at(site, poses, t).point;
   const core::Vec3 centre =
       poses.position(site.body, t) + poses.orientation(site.body, t) * site.local;
   return centre - site.radius * surface_plane(site, t).normal;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "components/impedance/moving_contact.hpp"
+#include "components/maps/pair_contact_map.hpp"
 #include "core/network.hpp"
 #include "core/types.hpp"
 #include "render/scene_view.hpp"
@@ -28,6 +29,10 @@ struct ContactSite {
   double offset = 0.0;                    // surface plane n . x = offset at rest
   const components::MovingContact* moving = nullptr;  // null: fixed surface
   double stick_threshold = 1e-3;                      // m/s
+  // A contact between two bodies (`other`): the second body's index and the pair's shape;
+  // its normal and point come from both poses (probe_pair), not from a plane.
+  int other = -1;
+  components::PairShape pair{};
 };
 
 // A friction element on a planar arm's joint: its slip speed is |ARM.omega.JOINT|.
@@ -61,6 +66,9 @@ struct SurfacePlane {
   core::Vec3 origin;
 };
 SurfacePlane surface_plane(const ContactSite& site, double t);
+// The same for any site: a pair contact's normal at the contact point (pushing `body`), with
+// origin such that the gap is minus the penetration.
+SurfacePlane surface_plane(const ContactSite& site, const PoseTrack& poses, double t);
 
 // The contact point at time t: the body point minus radius times the surface normal.
 core::Vec3 contact_point(const ContactSite& site, const PoseTrack& poses, double t);

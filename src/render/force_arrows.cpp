@@ -83,7 +83,7 @@ ContactForce contact_force(const ContactSite& site, const PoseTrack& poses, doub
     sum += f;
   }
   const core::Vec3 f = sum / samples;
-  const core::Vec3 n = surface_plane(site, t).normal;
+  const core::Vec3 n = surface_plane(site, poses, t).normal;
   ContactForce out;
   out.normal = n.dot(f) * n;
   out.friction = f - out.normal;
@@ -141,7 +141,7 @@ ArrowScales choose_arrow_scales(const SceneDescription& scene, const ContactSite
 
 core::Vec3 force_arrow_tail(const ContactSite& site, const PoseTrack& poses, double t,
                             const ArrowScales& scales, const glm::vec3& eye) {
-  const core::Vec3 n = surface_plane(site, t).normal;
+  const core::Vec3 n = surface_plane(site, poses, t).normal;
   core::Vec3 tail = contact_point(site, poses, t) + scales.shaft_radius * n;
   core::Vec3 toward = core::Vec3(eye.x, eye.y, eye.z) - tail;
   toward -= n.dot(toward) * n;

@@ -79,7 +79,7 @@ Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t,
     const bool pressed = std::isnan(normal_force) || normal_force > 0.0;
     if (!pressed) {
       if (!(visible_gap > 0.0)) continue;
-      const SurfacePlane plane = surface_plane(site, s);
+      const SurfacePlane plane = surface_plane(site, poses, s);
       const double gap = plane.normal.dot(contact_point(site, poses, s) - plane.origin);
       if (!(gap < visible_gap)) continue;
     }

@@ -66,6 +66,8 @@ class ComponentBuilder {
   };
   // kikuuwe_contact (contact_builder.cpp): one element per contact point.
   void add_contact(TableReader& table, const std::string& name);
+  // kikuuwe_contact with `other`: a contact between two bodies (pair_contact_builder.cpp).
+  void add_pair_contact(TableReader& table, const std::string& name);
 
   void check_name(TableReader& table);
   const BodyInfo& body(TableReader& table, std::string_view key);

@@ -94,6 +94,7 @@ components::SurfaceExtent read_extent(TableReader& contact, const Vec3& n, doubl
 }  // namespace
 
 void ComponentBuilder::add_contact(TableReader& table, const std::string& name) {
+  if (table.has("other")) return add_pair_contact(table, name);  // between two bodies
   const BodyInfo& info = body(table, "body");
   core::Body* b = const_cast<core::Body*>(pose_body(table, "body"));
   components::KikuuweContactParams p;

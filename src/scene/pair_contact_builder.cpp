@@ -1,0 +1,78 @@
+// [impedances.NAME] of type kikuuwe_contact with `other = "<body>"`: a contact between two
+// bodies (issue 23) instead of a body and a plane. Pairs are declared, one table per pair:
+// no broad phase looks for them (docs/components.md says what that costs). Sphere-sphere and
+// sphere-box make one element NAME; box-box makes 16, NAME.0-7 for the corners of `body`
+// against `other`'s faces and NAME.8-15 the other way round (pair_contact_map.hpp).
+// The law's keys are a plane contact's; the plane's own keys are refused here.
+#include <stdexcept>
+
+#include "components/impedance/pair_contact.hpp"
+#include "components/maps/pair_contact_map.hpp"
+#include "scene/components.hpp"
+
+namespace stiction::scene {
+
+using core::Vec3;
+
+void ComponentBuilder::add_pair_contact(TableReader& table, const std::string& name) {
+  for (const char* key : {"normal", "offset", "extent", "belt_speed", "belt_direction", "tilt",
+                          "tilt_axis", "tilt_pivot", "points", "radius", "settle", "initial_e"}) {
+    if (table.has(key)) {
+      table.fail(key, std::string("`") + key +
+                          "` describes a contact with a plane; a contact between bodies "
+                          "(`other`) takes its geometry from the two bodies' shapes");
+    }
+  }
+  const BodyInfo& a = body(table, "body");
+  const core::Body* body_a = pose_body(table, "body");
+  const BodyInfo& b = body(table, "other");
+  const core::Body* body_b = pose_body(table, "other");
+  if (body_a == body_b) table.fail("other", "must name a body other than `body`");
+  auto shape_of = [&](const BodyInfo& info, std::string_view key) {
+    if (info.sphere_radius > 0.0) return 's';
+    if (info.box_size != Vec3::Zero()) return 'b';
+    table.fail(key, "'" + info.admittance->name() +
+                        "' has no shape a contact between bodies supports (supported: a "
+                        "rigid_body of shape sphere, hollow_sphere or box)");
+  };
+  const char sa = shape_of(a, "body"), sb = shape_of(b, "other");
+
+  components::PairContactParams p;
+  p.stiffness = table.positive("stiffness", p.stiffness);
+  p.damping = table.non_negative("damping", p.damping);
+  p.mu = table.non_negative("mu", p.mu);
+  if (table.has("tangential_stiffness"))
+    p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
+  if (table.has("tangential_damping"))
+    p.tangential_damping = table.non_negative("tangential_damping", 0.0);
+  const double threshold = table.positive("stick_threshold", 1e-3);
+  table.finish();
+
+  components::PairShape shape;
+  shape.radius_a = a.sphere_radius;
+  shape.radius_b = b.sphere_radius;
+  shape.half_a = 0.5 * a.box_size;
+  shape.half_b = 0.5 * b.box_size;
+  shape.kind = sa == 's' ? (sb == 's' ? components::PairKind::sphere_sphere
+                                      : components::PairKind::sphere_box)
+                         : (sb == 's' ? components::PairKind::box_sphere
+                                      : components::PairKind::box_box);
+  const int count = shape.kind == components::PairKind::box_box ? 16 : 1;
+  for (int i = 0; i < count; ++i) {
+    const std::string element = count > 1 ? name + "." + std::to_string(i) : name;
+    shape.corner = i;
+    std::unique_ptr<core::Impedance> contact;
+    try {
+      contact = std::make_unique<components::PairContact>(element, p);
+    } catch (const std::invalid_argument& e) {
+      throw InputError::at(table.table().source(), table.path() + ": " + e.what());
+    }
+    stick_thresholds_[element] = threshold;
+    impedance_types_.emplace(element, "kikuuwe_contact");
+    add_element(std::move(contact),
+                std::make_unique<components::PairContactMap>(*body_a, *body_b, shape));
+  }
+  impedance_types_.emplace(name, "kikuuwe_contact");
+}
+
+}  // namespace stiction::scene
