@@ -60,6 +60,7 @@ struct PairAxis {
 
 PairAxis box_axis(const Vec3& ha, const Vec3& hb, const BodyMotion& a, const BodyMotion& b) {
   const Vec3 d = a.p - b.p;
+  const double kFaceTie = 1e-9 * std::max(ha.maxCoeff(), hb.maxCoeff());
   PairAxis best{Vec3::UnitZ(), true};
   double least = 0.0;
   bool first = true;
@@ -70,7 +71,10 @@ PairAxis box_axis(const Vec3& ha, const Vec3& hb, const BodyMotion& a, const Bod
       const Vec3 axis = q * Vec3::Unit(k);
       const double overlap =
           support(a.q, ha, axis) + support(b.q, hb, axis) - std::abs(axis.dot(d));
-      if (first || overlap < least) {
+      // The first box's face must be clearly better: rounding would otherwise flip the
+      // choice between two parallel faces (a stack), and the contact with it.
+      const bool better = side == 0 ? overlap < least : overlap < least - kFaceTie;
+      if (first || better) {
         least = overlap;
         best = {axis.dot(d) >= 0.0 ? axis : Vec3(-axis), side == 0};
         first = false;
