@@ -116,7 +116,7 @@ TEST_CASE("spatial_tree scene: runs as the same planar_arm, friction on a named 
     INFO("n = " << n << ": largest angle difference " << worst << " rad, rates up to "
                 << motion);
     CHECK(motion > 0.1);
-    CHECK(worst < 1e-9);
+    CHECK(worst < 1e-12);  // measured: about 1e-14
   }
 }
 
