@@ -35,7 +35,9 @@ struct Random {
   double between(double lo, double hi) {
     return std::uniform_real_distribution<double>(lo, hi)(rng);
   }
-  core::Vec3 vec(double size) { return {between(-size, size), between(-size, size), between(-size, size)}; }
+  core::Vec3 vec(double size) {
+    return {between(-size, size), between(-size, size), between(-size, size)};
+  }
   core::Vec3 unit() {
     core::Vec3 v;
     do v = vec(1.0);

@@ -74,8 +74,9 @@ TEST_CASE("spatial_tree scene: runs as the same planar_arm, friction on a named 
       const double yaw = between(-3, 3), theta = between(-2, 2), omega = between(-2, 2);
       arm << "{ length = " << length << ", mass = " << mass << ", com = " << com
           << ", inertia = " << inertia << " },\n";
-      tree << "{ name = \"j" << i << "\"" << (i ? ", parent = \"j" + std::to_string(i - 1) + "\"" : "")
-           << ", origin = [" << previous_length << ", 0, " << between(-0.1, 0.1) << "]"
+      tree << "{ name = \"j" << i << "\""
+           << (i ? ", parent = \"j" + std::to_string(i - 1) + "\"" : "") << ", origin = ["
+           << previous_length << ", 0, " << between(-0.1, 0.1) << "]"
            << ", rpy = [0, 0, " << yaw << "], mass = " << mass << ", com = [" << com
            << ", 0, 0], inertia = [0.02, 0.03, " << inertia << "] },\n";
       angles << (i ? ", " : "") << theta;
@@ -83,19 +84,20 @@ TEST_CASE("spatial_tree scene: runs as the same planar_arm, friction on a named 
       rates << (i ? ", " : "") << omega;
       previous_length = length;
     }
-    const std::string text = "gravity = [0.5, -3.0, -9.8]\n"
-                             "[simulation]\ndt = 1e-3\nduration = 0.3\n"
-                             "[bodies.arm]\ntype = \"planar_arm\"\naxis = " + vec(axis) +
-                             "\nbase = " + vec(base) + "\nangles = [" + angles.str() +
-                             "]\nrates = [" + rates.str() + "]\nlinks = [\n" + arm.str() +
-                             "]\n[bodies.tree]\ntype = \"spatial_tree\"\nbase = " + vec(base) +
-                             "\nbase_rpy = " + vec({ypr[2], ypr[1], ypr[0]}) + "\nangles = [" +
-                             tree_angles.str() + "]\nrates = [" + rates.str() + "]\njoints = [\n" +
-                             tree.str() + "]\n"
-                             "[impedances.arm_friction]\ntype = \"kikuuwe_friction\"\n"
-                             "body = \"arm\"\njoint = 0\nstiffness = 100\nforce_limit = 0.3\n"
-                             "[impedances.tree_friction]\ntype = \"kikuuwe_friction\"\n"
-                             "body = \"tree\"\njoint = \"j0\"\nstiffness = 100\nforce_limit = 0.3\n";
+    const std::string text =
+        "gravity = [0.5, -3.0, -9.8]\n"
+        "[simulation]\ndt = 1e-3\nduration = 0.3\n"
+        "[bodies.arm]\ntype = \"planar_arm\"\naxis = " +
+        vec(axis) + "\nbase = " + vec(base) + "\nangles = [" + angles.str() + "]\nrates = [" +
+        rates.str() + "]\nlinks = [\n" + arm.str() +
+        "]\n[bodies.tree]\ntype = \"spatial_tree\"\nbase = " + vec(base) +
+        "\nbase_rpy = " + vec({ypr[2], ypr[1], ypr[0]}) + "\nangles = [" + tree_angles.str() +
+        "]\nrates = [" + rates.str() + "]\njoints = [\n" + tree.str() +
+        "]\n"
+        "[impedances.arm_friction]\ntype = \"kikuuwe_friction\"\n"
+        "body = \"arm\"\njoint = 0\nstiffness = 100\nforce_limit = 0.3\n"
+        "[impedances.tree_friction]\ntype = \"kikuuwe_friction\"\n"
+        "body = \"tree\"\njoint = \"j0\"\nstiffness = 100\nforce_limit = 0.3\n";
     INFO(text);
     scene::Scene s = from_text(text);
     const core::RunResult result = core::simulate(*s.network, s.run);
@@ -113,8 +115,7 @@ TEST_CASE("spatial_tree scene: runs as the same planar_arm, friction on a named 
         motion = std::max(motion, std::abs(t.at(row, w)));
       }
     }
-    INFO("n = " << n << ": largest angle difference " << worst << " rad, rates up to "
-                << motion);
+    INFO("n = " << n << ": largest angle difference " << worst << " rad, rates up to " << motion);
     CHECK(motion > 0.1);
     CHECK(worst < 1e-12);  // measured: about 1e-14
   }
@@ -173,13 +174,15 @@ TEST_CASE("spatial_tree scene: bad input gives located errors") {
   const std::string a = "{ name = \"a\", mass = 1, size = [0.1, 0.1, 0.1] }";
   // A misspelt key in the second joint: its line and the key's path.
   std::string e;
-  e = error_of(head + "joints = [\n" + a + ",\n{ name = \"b\", parent = \"a\", mass = 1,"
-                                                      " size = [0.1, 0.1, 0.1], colour = 1 } ]\n");
+  e = error_of(head + "joints = [\n" + a +
+               ",\n{ name = \"b\", parent = \"a\", mass = 1,"
+               " size = [0.1, 0.1, 0.1], colour = 1 } ]\n");
   INFO(e);
   CHECK(e.find("gen.toml:5:") != std::string::npos);
   CHECK(e.find("unknown key 'bodies.robot.joints[1].colour'") != std::string::npos);
-  e = error_of(head + "joints = [\n" + a + ",\n{ name = \"b\", parent = \"c\", mass = 1,"
-                                           " size = [0.1, 0.1, 0.1] } ]\n");
+  e = error_of(head + "joints = [\n" + a +
+               ",\n{ name = \"b\", parent = \"c\", mass = 1,"
+               " size = [0.1, 0.1, 0.1] } ]\n");
   INFO(e);
   CHECK(e.find("gen.toml:5:") != std::string::npos);
   CHECK(e.find("no earlier joint named 'c'") != std::string::npos);
@@ -189,20 +192,24 @@ TEST_CASE("spatial_tree scene: bad input gives located errors") {
   CHECK(e.find("joints[0].inertia") != std::string::npos);
   e = error_of(head + "joints = [\n{ name = \"a\", mass = 1, inertia = [1, 1, 1, 5, 0, 0] } ]\n");
   CHECK(e.find("positive semi-definite") != std::string::npos);
-  e = error_of(head + "joints = [\n{ name = \"a\", type = \"ball\", mass = 1, size = [1, 1, 1] } ]\n");
+  e = error_of(head +
+               "joints = [\n{ name = \"a\", type = \"ball\", mass = 1, size = [1, 1, 1] } ]\n");
   CHECK(e.find("joints[0].type") != std::string::npos);
   e = error_of(head + "angles = [1, 2]\njoints = [\n" + a + " ]\n");
   CHECK(e.find("bodies.robot.angles") != std::string::npos);
   // Joint elements: a name the tree does not have, and an element on a body without joints.
-  e = error_of(head + "joints = [\n" + a + " ]\n[impedances.f]\ntype = \"kikuuwe_friction\"\n"
-                      "body = \"robot\"\njoint = \"elbow\"\n");
+  e = error_of(head + "joints = [\n" + a +
+               " ]\n[impedances.f]\ntype = \"kikuuwe_friction\"\n"
+               "body = \"robot\"\njoint = \"elbow\"\n");
   INFO(e);
   CHECK(e.find("gen.toml:8:") != std::string::npos);
   CHECK(e.find("no joint named 'elbow' (joints: a)") != std::string::npos);
-  e = error_of("[bodies.m]\ntype = \"point_mass\"\nmass = 1\n[impedances.f]\ntype = \"lugre\"\n"
-               "body = \"m\"\n");
+  e = error_of(
+      "[bodies.m]\ntype = \"point_mass\"\nmass = 1\n[impedances.f]\ntype = \"lugre\"\n"
+      "body = \"m\"\n");
   CHECK(e.find("an arm (planar_arm, spatial_tree or urdf)") != std::string::npos);
-  e = error_of("[bodies.arm]\ntype = \"planar_arm\"\nlinks = [{ length = 1, mass = 1 }]\n"
-               "[impedances.f]\ntype = \"dahl\"\nbody = \"arm\"\njoint = \"shoulder\"\n");
+  e = error_of(
+      "[bodies.arm]\ntype = \"planar_arm\"\nlinks = [{ length = 1, mass = 1 }]\n"
+      "[impedances.f]\ntype = \"dahl\"\nbody = \"arm\"\njoint = \"shoulder\"\n");
   CHECK(e.find("numbers its joints") != std::string::npos);
 }
