@@ -64,6 +64,8 @@ class ComponentBuilder {
     double sphere_radius = 0.0;  // for the default contact radius; 0 if not a sphere
     core::Vec3 box_size = core::Vec3::Zero();  // a box's sides (its corners are contact points)
   };
+  // type = "spatial_tree" (spatial_body.cpp).
+  std::unique_ptr<core::Admittance> add_spatial_tree(TableReader& table, const std::string& name);
   // kikuuwe_contact (contact_builder.cpp): one element per contact point.
   void add_contact(TableReader& table, const std::string& name);
   // kikuuwe_contact with `other`: a contact between two bodies (pair_contact_builder.cpp).
