@@ -30,6 +30,7 @@ Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double
       case BodyVisual::Kind::sphere:
         r = glm::vec3(static_cast<float>(b.radius));
         break;
+      case BodyVisual::Kind::cylinder:
       case BodyVisual::Kind::box:
         r = box_half_extent(b.size, poses.orientation(index, t));
         break;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "components/impedance/moving_contact.hpp"
+#include "render/cylinder_items.hpp"
 #include "render/mechanism_items.hpp"
 #include "render/scene_geometry.hpp"
 #include "render/scene_view.hpp"
@@ -208,6 +209,9 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
         items.push_back(item);
         break;
       }
+      case BodyVisual::Kind::cylinder:
+        add_cylinder(items, b, index, poses.position(index, t), poses.orientation(index, t));
+        break;
       case BodyVisual::Kind::block: {
         core::Vec3 t1, t2;
         tangents(b.up, t1, t2);

@@ -30,6 +30,7 @@ double support(const BodyVisual& b, const core::Quat& q, const core::Vec3& d) {
   switch (b.kind) {
     case BodyVisual::Kind::sphere:
       return b.radius;
+    case BodyVisual::Kind::cylinder:
     case BodyVisual::Kind::box:
     case BodyVisual::Kind::block: {
       const core::Vec3 local = q.conjugate() * d;
@@ -51,6 +52,7 @@ double arrow_body_size(const SceneDescription& scene) {
       case BodyVisual::Kind::sphere:
         size = std::max(size, 2.0 * b.radius);
         break;
+      case BodyVisual::Kind::cylinder:
       case BodyVisual::Kind::box:
       case BodyVisual::Kind::block:
         size = std::max(size, b.size.maxCoeff());

@@ -37,6 +37,7 @@ std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrac
       case BodyVisual::Kind::sphere:
         add_cube(points, to_glm(poses.position(index, t)), glm::vec3(static_cast<float>(b.radius)));
         break;
+      case BodyVisual::Kind::cylinder:
       case BodyVisual::Kind::box: {
         const core::Vec3 c = poses.position(index, t);
         const core::Quat q = poses.orientation(index, t);
@@ -78,6 +79,7 @@ float piece_size(const SceneDescription& scene) {
       case BodyVisual::Kind::sphere:
         s = 2.0 * b.radius;
         break;
+      case BodyVisual::Kind::cylinder:
       case BodyVisual::Kind::box:
         s = link ? b.size.minCoeff() : b.size.maxCoeff();
         break;

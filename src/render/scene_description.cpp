@@ -30,6 +30,20 @@ core::Vec3 vec3_of(const toml::node_view<const toml::node>& node, const core::Ve
   return v;
 }
 
+// A cylinder's visual: radius, length, body-frame axis, and the body-frame box around it
+// (what the box-like parts of framing and bounds use).
+void describe_cylinder(const toml::table& table, BodyVisual& b) {
+  b.kind = BodyVisual::Kind::cylinder;
+  b.radius = table["radius"].value<double>().value_or(0.1);
+  b.length = table["length"].value<double>().value_or(0.1);
+  b.hollow = table["hollow"].value<bool>().value_or(false);
+  b.axis = vec3_of(table["axis"], core::Vec3::UnitZ()).normalized();
+  for (int i = 0; i < 3; ++i) {
+    const double a = std::abs(b.axis[i]);
+    b.size[i] = b.length * a + 2.0 * b.radius * std::sqrt(std::max(0.0, 1.0 - a * a));
+  }
+}
+
 }  // namespace
 
 int body_index(const SceneDescription& scene, const std::string& name) {
@@ -68,6 +82,8 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
       if (shape == "box") {
         b.kind = BodyVisual::Kind::box;
         b.size = vec3_of((*table)["size"], b.size);
+      } else if (shape == "cylinder") {
+        describe_cylinder(*table, b);
       } else {
         b.kind = BodyVisual::Kind::sphere;
         b.radius = table ? (*table)["radius"].value<double>().value_or(0.1) : 0.1;

@@ -72,6 +72,7 @@ double body_scale(const SceneDescription& scene) {
       case BodyVisual::Kind::sphere:
         s = std::min(s, b.radius);
         break;
+      case BodyVisual::Kind::cylinder:
       case BodyVisual::Kind::box:
         // A jointed link counts as an arm's link does: half its length.
         s = std::min(s, (is_link(scene, static_cast<int>(i)) ? 0.5 : 1.0) * b.size.maxCoeff());
@@ -91,6 +92,7 @@ double piece_size(const BodyVisual& b) {
   switch (b.kind) {
     case BodyVisual::Kind::sphere:
       return 2.0 * b.radius;
+    case BodyVisual::Kind::cylinder:
     case BodyVisual::Kind::box:
     case BodyVisual::Kind::block:
       return b.size.maxCoeff();

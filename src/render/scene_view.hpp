@@ -27,14 +27,18 @@ class RenderError : public std::runtime_error {
 };
 
 struct BodyVisual {
-  enum class Kind { sphere, box, block, arm };
+  enum class Kind { sphere, box, block, arm, cylinder };
   Kind kind = Kind::sphere;
   std::string name;
-  double radius = 0.0;                   // sphere
-  core::Vec3 size{0.1, 0.1, 0.1};        // box, block: full side lengths
+  double radius = 0.0;                   // sphere, cylinder
+  core::Vec3 size{0.1, 0.1, 0.1};        // box, block: full side lengths; cylinder: its
+                                         // body-frame bounding box (bounds, framing, arrows)
+  double length = 0.0;                   // cylinder (along `axis`, body frame)
+  bool hollow = false;                   // cylinder: a ring (drawn with dark bores)
   core::Vec3 up{0.0, 0.0, 1.0};          // block: normal of the surface it rests on
   core::Vec3 base = core::Vec3::Zero();  // arm
-  // arm: its plane of motion, e1 and e2 (theta_0 from e1 towards e2), and the joint axis
+  // arm: its plane of motion, e1 and e2 (theta_0 from e1 towards e2), and the joint axis;
+  // cylinder: `axis` is its axis in the body frame
   core::Vec3 plane_x{1.0, 0.0, 0.0}, plane_y{0.0, 1.0, 0.0}, axis{0.0, 0.0, 1.0};
   std::vector<double> lengths, widths;  // arm links
 };

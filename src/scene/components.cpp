@@ -84,6 +84,26 @@ long joint_number(TableReader& table, const core::JointSpace& arm) {
                           join(names) + ")");
 }
 
+// shape = "cylinder": radius, length, axis (body frame, normalized), hollow (a thin wall).
+components::CylinderShape read_cylinder(TableReader& table) {
+  components::CylinderShape c;
+  c.radius = table.positive("radius", table.required_number("radius"));
+  c.length = table.positive("length", table.required_number("length"));
+  c.axis = unit(table, "axis", c.axis);
+  c.hollow = table.boolean("hollow", false);
+  return c;
+}
+
+// About the centre of mass, body frame: I_perp Id + (I_axis - I_perp) a a^T, a full matrix
+// when the axis is oblique. Solid: I_axis = m r^2 / 2, I_perp = m (3 r^2 + L^2) / 12; thin
+// wall (hollow): I_axis = m r^2, I_perp = m r^2 / 2 + m L^2 / 12.
+core::Mat3 cylinder_inertia(const components::CylinderShape& c, double m) {
+  const double r2 = c.radius * c.radius, l2 = c.length * c.length;
+  const double axial = (c.hollow ? 1.0 : 0.5) * m * r2;
+  const double perp = c.hollow ? m * r2 / 2.0 + m * l2 / 12.0 : m * (3.0 * r2 + l2) / 12.0;
+  return perp * core::Mat3::Identity() + (axial - perp) * c.axis * c.axis.transpose();
+}
+
 }  // namespace
 
 std::vector<TableReader> ComponentBuilder::entries(TableReader& section) {
@@ -171,16 +191,26 @@ void ComponentBuilder::add_body(TableReader& table) {
           s.x() * s.x() + s.y() * s.y();
       diagonal *= p.mass / 12.0;
       info.box_size = s;
+    } else if (shape == "cylinder") {
+      info.cylinder = read_cylinder(table);
     } else if (!shape.empty()) {
-      table.fail("shape", "unknown shape '" + shape + "' (expected sphere, hollow_sphere or box)");
+      table.fail("shape",
+                 "unknown shape '" + shape + "' (expected sphere, hollow_sphere, box or cylinder)");
     }
+    if (shape != "cylinder") {
+      for (const char* key : {"length", "axis", "hollow"}) {
+        if (table.has(key)) table.fail(key, "only a shape = \"cylinder\" has this key");
+      }
+    }
+    p.inertia = info.cylinder ? cylinder_inertia(*info.cylinder, p.mass)
+                              : core::Mat3(diagonal.asDiagonal());
     if (table.has("inertia")) {
       diagonal = table.vec3("inertia", Vec3::Zero());
       if (!(diagonal.minCoeff() > 0.0)) table.fail("inertia", "every principal moment must be > 0");
+      p.inertia = diagonal.asDiagonal();
     } else if (shape.empty()) {
       table.fail("inertia", "missing (give `shape` or `inertia = [Jxx, Jyy, Jzz]`)");
     }
-    p.inertia = diagonal.asDiagonal();
     p.position = table.vec3("position", p.position);
     p.velocity = table.vec3("velocity", p.velocity);
     if (table.has("orientation")) {

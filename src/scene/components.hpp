@@ -5,9 +5,11 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "components/maps/cylinder_rim_map.hpp"
 #include "components/maps/observing_map.hpp"
 #include "core/body.hpp"
 #include "core/network.hpp"
@@ -63,6 +65,8 @@ class ComponentBuilder {
     core::Admittance* admittance = nullptr;
     double sphere_radius = 0.0;  // for the default contact radius; 0 if not a sphere
     core::Vec3 box_size = core::Vec3::Zero();  // a box's sides (its corners are contact points)
+    // A cylinder's geometry: its contacts are rim points (components/maps/cylinder_rim_map).
+    std::optional<components::CylinderShape> cylinder{};
   };
   // type = "spatial_tree" (spatial_body.cpp).
   std::unique_ptr<core::Admittance> add_spatial_tree(TableReader& table, const std::string& name);

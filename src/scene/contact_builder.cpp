@@ -1,7 +1,7 @@
 // [impedances.NAME] of type kikuuwe_contact: a contact surface (plane, optional extent,
 // optional belt and tilt) and the body points that touch it. One Kikuuwe contact element per
 // point, each with its own friction state and events: `NAME` for a single point, `NAME.i`
-// for the points of a `points` list or of a box's corners. docs/scene_format.md lists the keys.
+// for the points of a `points` list, a box's corners or a cylinder's rim points. docs/scene_format.md lists the keys.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -15,6 +15,7 @@
 #include "components/impedance/kikuuwe_contact.hpp"
 #include "components/impedance/moving_contact.hpp"
 #include "components/maps/contact_point_map.hpp"
+#include "components/maps/cylinder_rim_map.hpp"
 #include "components/maps/surface_point_map.hpp"
 #include "scene/components.hpp"
 #include "scene/expression.hpp"
@@ -91,6 +92,16 @@ components::SurfaceExtent read_extent(TableReader& contact, const Vec3& n, doubl
   return extent;
 }
 
+// A cylinder's rim points follow its orientation (cylinder_rim_map.hpp): the moving surfaces'
+// maps and `settle` work on fixed body points, so neither takes a cylinder yet.
+void reject_for_cylinder(TableReader& table, bool moving, bool settle) {
+  if (moving) {
+    table.fail(table.has("belt_speed") ? "belt_speed" : "tilt",
+               "a moving surface does not support a cylinder body yet (fixed planes only)");
+  }
+  if (settle) table.fail("settle", "not supported for a cylinder body (start it at rest on the plane)");
+}
+
 }  // namespace
 
 void ComponentBuilder::add_contact(TableReader& table, const std::string& name) {
@@ -141,9 +152,14 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
       points.emplace_back((i & 1 ? 1 : -1) * h.x(), (i & 2 ? 1 : -1) * h.y(),
                           (i & 4 ? 1 : -1) * h.z());
     }
+  } else if (info.cylinder) {
+    points.assign(components::CylinderRimMap::kPoints, Vec3::Zero());  // rim points: the map's
   } else {
     points.emplace_back(Vec3::Zero());
   }
+  const bool rim = info.cylinder && !listed;
+  if (rim && table.has("radius"))
+    table.fail("radius", "a cylinder's contact points are on its rims (no rounding radius)");
   const bool several = listed || points.size() > 1;
   const double radius = table.non_negative("radius", several ? 0.0 : info.sphere_radius);
 
@@ -201,6 +217,7 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   const bool moving = static_cast<bool>(motion.belt_speed) || static_cast<bool>(motion.tilt);
   const bool settle = table.boolean("settle", false);
   const double threshold = table.positive("stick_threshold", 1e-3);
+  if (rim) reject_for_cylinder(table, moving, settle);
   table.finish();
 
   if (moving && clock_ == nullptr) {
@@ -251,7 +268,12 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
       };
       sp.set_e = [c = contact.get()](const Eigen::Vector2d& e) { c->set_initial_e(e); };
       impedance = std::move(contact);
-      map = std::make_unique<components::ContactPointMap>(*b, radius, p.normal, points[i]);
+      if (rim) {
+        map = std::make_unique<components::CylinderRimMap>(*b, *info.cylinder, p.normal,
+                                                           static_cast<int>(i));
+      } else {
+        map = std::make_unique<components::ContactPointMap>(*b, radius, p.normal, points[i]);
+      }
     }
     if (settling != nullptr) {
       sp.local = points[i];
