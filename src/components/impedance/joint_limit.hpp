@@ -21,7 +21,7 @@ struct JointLimitParams {
   double lower = -std::numeric_limits<double>::infinity();
   double upper = std::numeric_limits<double>::infinity();
   double stiffness = 1e4;  // K (Nm/rad or N/m)
-  double damping = 10.0;   // B (Nms/rad or Ns/m)
+  double damping = 1.0;    // B (Nms/rad or Ns/m): small, explicit (light wrist links)
 };
 
 class JointLimit final : public core::Impedance,
