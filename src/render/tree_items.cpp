@@ -1,6 +1,8 @@
 #include "render/tree_items.hpp"
 
+#include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
+#include <utility>
 
 #include "render/scene_geometry.hpp"
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <memory>
+#include <optional>
 
 #include "components/admittance/spatial_tree.hpp"
 #include "components/impedance/joint_limit.hpp"
@@ -32,7 +33,8 @@ core::Vec joint_values(TableReader& table, std::string_view key,
   const auto n = static_cast<Eigen::Index>(links.size());
   core::Vec out = core::Vec::Zero(n);
   if (!table.has(key)) return out;
-  if (auto sub = table.subtable(key)) {
+  const toml::node* node = table.node(key);
+  if (auto sub = node->is_table() ? table.subtable(key) : std::nullopt) {
     for (Eigen::Index i = 0; i < n; ++i) {
       const std::string& joint = links[static_cast<std::size_t>(i)].joint_name;
       if (sub->has(joint)) out[i] = sub->number(joint, 0.0);

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <unistd.h>
 
 #include "components/admittance/spatial_tree.hpp"
 #include "scene/scene.hpp"
