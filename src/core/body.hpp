@@ -3,6 +3,8 @@
 // to compute x_hat (Psi) and to turn impedance outputs into admittance inputs (Phi).
 #pragma once
 
+#include <string>
+
 #include "core/admittance.hpp"
 
 namespace stiction::core {
@@ -37,6 +39,9 @@ class JointSpace : public Admittance {
   virtual double joint_angle(ConstVecRef x, int joint) const = 0;
   virtual double joint_rate(ConstVecRef x, int joint) const = 0;
   virtual void add_joint_torque(int joint, double torque, VecRef u_hat) const = 0;
+  // The joint's name, by which a scene may name it (`joint = "NAME"`); empty: the joints
+  // are known by index only.
+  virtual std::string joint_name(int /*joint*/) const { return {}; }
 };
 
 }  // namespace stiction::core

@@ -27,7 +27,8 @@ using core::Vec3;
 
 namespace {
 
-const std::vector<std::string> kBodyTypes{"point_mass", "rigid_body", "planar_arm", "urdf"};
+const std::vector<std::string> kBodyTypes{"point_mass", "rigid_body", "planar_arm",
+                                          "spatial_tree", "urdf"};
 const std::vector<std::string> kImpedanceTypes{
     "kikuuwe_contact", "kikuuwe_friction", "lugre",        "dahl",    "spring_damper",
     "penalty_joint",   "torque_source",    "force_source", "external"};
@@ -66,6 +67,21 @@ auto construct(TableReader& table, Make make) {
   } catch (const std::invalid_argument& e) {
     throw InputError::at(table.table().source(), table.path() + ": " + e.what());
   }
+}
+
+// `joint`: the joint's index, or its name (a string) when the arm names its joints.
+long joint_number(TableReader& table, const core::JointSpace& arm) {
+  const toml::node* node = table.node("joint");
+  if (node == nullptr || !node->is_string()) return table.integer("joint", 0);
+  const std::string wanted = node->as_string()->get();
+  std::vector<std::string> names;
+  for (int i = 0; i < arm.joint_count(); ++i) {
+    if (arm.joint_name(i) == wanted) return i;
+    if (!arm.joint_name(i).empty()) names.push_back(arm.joint_name(i));
+  }
+  if (names.empty()) table.fail("joint", "'" + arm.name() + "' numbers its joints: give an index");
+  table.fail("joint", "'" + arm.name() + "' has no joint named '" + wanted + "' (joints: " +
+                          join(names) + ")");
 }
 
 }  // namespace
@@ -179,6 +195,8 @@ void ComponentBuilder::add_body(TableReader& table) {
     p.angular_velocity = table.vec3("angular_velocity", p.angular_velocity);
     p.gravity = gravity_;
     admittance = construct(table, [&] { return std::make_unique<components::RigidBody>(name, p); });
+  } else if (type == "spatial_tree") {
+    admittance = add_spatial_tree(table, name);
   } else {  // planar_arm
     components::PlanarArmParams p;
     std::vector<TableReader> links = table.array_of_tables("links");
@@ -230,7 +248,7 @@ void ComponentBuilder::add_impedance(TableReader& table) {
       return nullptr;
     }
     if (!table.has("joint")) table.fail("joint", "missing (which joint of '" + arm->name() + "')");
-    const long joint = table.integer("joint", 0);
+    const long joint = joint_number(table, *arm);
     if (joint < 0 || joint >= arm->joint_count()) {
       table.fail("joint", "must be in 0.." + std::to_string(arm->joint_count() - 1));
     }
@@ -247,7 +265,11 @@ void ComponentBuilder::add_impedance(TableReader& table) {
   };
   auto joint_only = [&]() {
     auto m = joint_map();
-    if (!m) table.fail("body", "a " + type + " element acts on a joint: `body` must be a planar_arm");
+    if (!m) {
+      table.fail("body", "a " + type +
+                             " element acts on a joint: `body` must be an arm (planar_arm, "
+                             "spatial_tree or urdf)");
+    }
     return m;
   };
 

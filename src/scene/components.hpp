@@ -72,6 +72,8 @@ class ComponentBuilder {
   };
   // type = "urdf" (urdf_body.cpp): the tree, its joint elements queued in pending_.
   std::unique_ptr<core::Admittance> add_urdf_body(TableReader& table, const std::string& name);
+  // type = "spatial_tree" (spatial_body.cpp).
+  std::unique_ptr<core::Admittance> add_spatial_tree(TableReader& table, const std::string& name);
   // kikuuwe_contact (contact_builder.cpp): one element per contact point.
   void add_contact(TableReader& table, const std::string& name);
 

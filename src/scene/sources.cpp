@@ -101,7 +101,9 @@ std::unique_ptr<core::CoordinateMap> ComponentBuilder::axis_torque_map(TableRead
   const core::Body* child = pose_body(table, "body");
   const core::Body* parent = table.has("parent") ? pose_body(table, "parent") : nullptr;
   if (!child->can_rotate() || (parent != nullptr && !parent->can_rotate())) {
-    table.fail("body", "a torque needs bodies that rotate (rigid_body) or a planar_arm joint");
+    table.fail("body",
+               "a torque needs bodies that rotate (rigid_body) or a joint of an arm "
+               "(planar_arm, spatial_tree or urdf)");
   }
   if (parent == child) table.fail("parent", "must differ from `body`");
   const Vec3 axis = table.vec3("axis", Vec3::UnitZ());

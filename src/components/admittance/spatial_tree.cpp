@@ -68,7 +68,8 @@ SpatialTree::SpatialTree(std::string name, const SpatialTreeParams& params)
   const std::string who = "spatial_tree '" + this->name() + "'";
   if (n < 1) throw std::invalid_argument(who + ": no joints");
   if (!params_.gravity.allFinite() || !finite(params_.base_position) ||
-      !(params_.base_orientation.norm() > 1e-12) || !params_.base_orientation.coeffs().allFinite()) {
+      !(params_.base_orientation.norm() > 1e-12) ||
+      !params_.base_orientation.coeffs().allFinite()) {
     throw std::invalid_argument(who + ": gravity, base position and orientation must be finite");
   }
   params_.base_orientation.normalize();
@@ -161,10 +162,16 @@ std::vector<core::SignalInfo> SpatialTree::signals() const {
     all_revolute = all_revolute && l.type == SpatialJointType::revolute;
   }
   // One signal holds every joint, so a tree with prismatic joints mixes units.
-  return {{.name = "theta", .axes = axes, .unit = all_revolute ? "rad" : "rad or m",
-           .frame = "joint", .description = "joint angle (revolute) or travel (prismatic)"},
-          {.name = "omega", .axes = axes, .unit = all_revolute ? "rad/s" : "rad/s or m/s",
-           .frame = "joint", .description = "joint rate"}};
+  return {{.name = "theta",
+           .axes = axes,
+           .unit = all_revolute ? "rad" : "rad or m",
+           .frame = "joint",
+           .description = "joint angle (revolute) or travel (prismatic)"},
+          {.name = "omega",
+           .axes = axes,
+           .unit = all_revolute ? "rad/s" : "rad/s or m/s",
+           .frame = "joint",
+           .description = "joint rate"}};
 }
 
 void SpatialTree::write_signals(core::ConstVecRef x, core::VecRef out) const { out = x; }

@@ -78,6 +78,7 @@ class SpatialTree final : public core::JointSpace {
   }
   // Index of the joint named `name`, -1 if none.
   int joint_index(const std::string& name) const;
+  std::string joint_name(int joint) const override { return params_.links[joint].joint_name; }
 
   // qdd = H^-1 (tau - c) in O(n), articulated-body algorithm.
   void forward_dynamics(core::ConstVecRef q, core::ConstVecRef qd, core::ConstVecRef tau,

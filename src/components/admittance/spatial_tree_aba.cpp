@@ -15,8 +15,8 @@
 
 namespace stiction::components {
 
-void SpatialTree::forward_dynamics(core::ConstVecRef q, core::ConstVecRef qd,
-                                   core::ConstVecRef tau, core::VecRef qdd) const {
+void SpatialTree::forward_dynamics(core::ConstVecRef q, core::ConstVecRef qd, core::ConstVecRef tau,
+                                   core::VecRef qdd) const {
   const int n = joint_count();
   Scratch& s = *scratch_;
   s.kinematics(params_, q);

@@ -14,15 +14,15 @@ namespace stiction::components {
 struct SpatialTree::Scratch {
   explicit Scratch(int n)
       : R(n), p(n), com(n), S(n), I(n), v(n), c(n), a(n), pA(n), IA(n), U(n), D(n), u(n) {}
-  std::vector<core::Mat3> R;          // link frame orientation, link to world
-  std::vector<core::Vec3> p;          // link frame origin (world)
-  std::vector<core::Vec3> com;        // centre of mass (world)
-  std::vector<spatial::Vec6> S;       // joint motion subspace (world, at the origin)
-  std::vector<spatial::Mat6> I;       // link spatial inertia (world, at the origin)
+  std::vector<core::Mat3> R;               // link frame orientation, link to world
+  std::vector<core::Vec3> p;               // link frame origin (world)
+  std::vector<core::Vec3> com;             // centre of mass (world)
+  std::vector<spatial::Vec6> S;            // joint motion subspace (world, at the origin)
+  std::vector<spatial::Mat6> I;            // link spatial inertia (world, at the origin)
   std::vector<spatial::Vec6> v, c, a, pA;  // velocity, velocity-product accel., accel., bias force
-  std::vector<spatial::Mat6> IA;      // articulated (or composite) inertia
-  std::vector<spatial::Vec6> U;       // IA S
-  std::vector<double> D, u;           // S^T IA S, tau - S^T pA
+  std::vector<spatial::Mat6> IA;           // articulated (or composite) inertia
+  std::vector<spatial::Vec6> U;            // IA S
+  std::vector<double> D, u;                // S^T IA S, tau - S^T pA
 
   // Fills R, p, com, S and I at joint positions q (spatial_tree.cpp).
   void kinematics(const SpatialTreeParams& params, core::ConstVecRef q);
