@@ -3,6 +3,7 @@
 
 #include "render/scene_geometry.hpp"
 #include "render/scene_view.hpp"
+#include "render/tree_items.hpp"
 
 namespace stiction::render {
 
@@ -16,6 +17,14 @@ Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyVisual& b = scene.bodies[i];
     const int index = static_cast<int>(i);
+    if (b.kind == BodyVisual::Kind::tree) {
+      const double w = *std::max_element(b.widths.begin(), b.widths.end());
+      for (const auto& p : tree_points(b, poses, index, t)) {
+        bounds.add(to_glm(p) - glm::vec3(float(w)));
+        bounds.add(to_glm(p) + glm::vec3(float(w)));
+      }
+      continue;
+    }
     if (b.kind == BodyVisual::Kind::arm) {
       const double w = *std::max_element(b.widths.begin(), b.widths.end());
       for (const auto& p : arm_pose(b, poses, index, t).joints) {

@@ -65,7 +65,7 @@ glm::vec3 front_direction(const SceneDescription& scene) {
 // The first body with a pose of its own (a planar arm has none to follow).
 int first_followable(const SceneDescription& scene) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (scene.bodies[i].kind != BodyVisual::Kind::arm) return static_cast<int>(i);
+    if (!jointed(scene.bodies[i])) return static_cast<int>(i);
   }
   return -1;
 }
@@ -113,7 +113,7 @@ CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& sce
   if (view == CameraView::automatic || view == CameraView::follow) {
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       if (!settings.follow.empty() && scene.bodies[i].name == settings.follow &&
-          scene.bodies[i].kind != BodyVisual::Kind::arm) {
+          !jointed(scene.bodies[i])) {
         follow_ = static_cast<int>(i);
       }
     }

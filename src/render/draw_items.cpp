@@ -11,6 +11,7 @@
 #include "render/mechanism_items.hpp"
 #include "render/scene_geometry.hpp"
 #include "render/scene_view.hpp"
+#include "render/tree_items.hpp"
 
 namespace stiction::render {
 namespace {
@@ -224,6 +225,9 @@ std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack
         items.push_back(item);
         break;
       }
+      case BodyVisual::Kind::tree:
+        add_tree_items(items, b, poses, index, t);
+        break;
       case BodyVisual::Kind::arm: {
         const ArmPose pose = arm_pose(b, poses, index, t);
         const float w0 = static_cast<float>(b.widths.front());

@@ -38,6 +38,7 @@ double support(const BodyVisual& b, const core::Quat& q, const core::Vec3& d) {
                     std::abs(local.z()) * b.size.z());
     }
     case BodyVisual::Kind::arm:
+    case BodyVisual::Kind::tree:
       return 0.0;
   }
   return 0.0;
@@ -58,6 +59,7 @@ double arrow_body_size(const SceneDescription& scene) {
         size = std::max(size, b.size.maxCoeff());
         break;
       case BodyVisual::Kind::arm:
+      case BodyVisual::Kind::tree:
         for (double l : b.lengths) size = std::max(size, l);
         break;
     }
@@ -178,7 +180,7 @@ void add_velocity_arrows(std::vector<DrawItem>& items, const SceneDescription& s
   style.shaft_radius = scales.shaft_radius;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyVisual& b = scene.bodies[i];
-    if (b.kind == BodyVisual::Kind::arm) continue;
+    if (jointed(b)) continue;
     const core::Vec3 v = vector_signal(poses, b.name + ".v", t);
     if (!v.allFinite() || v.norm() <= 0.0) continue;
     const int index = static_cast<int>(i);

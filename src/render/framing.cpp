@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/mechanism_items.hpp"
+#include "render/tree_items.hpp"
 
 namespace stiction::render {
 namespace {
@@ -32,6 +33,11 @@ std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrac
           const double width = b.widths[k == 0 ? 0 : k - 1];
           add_cube(points, to_glm(joints[k]), glm::vec3(static_cast<float>(width)));
         }
+        break;
+      }
+      case BodyVisual::Kind::tree: {
+        const float w = static_cast<float>(*std::max_element(b.widths.begin(), b.widths.end()));
+        for (const core::Vec3& p : tree_points(b, poses, index, t)) add_cube(points, to_glm(p), glm::vec3(w));
         break;
       }
       case BodyVisual::Kind::sphere:
@@ -87,6 +93,7 @@ float piece_size(const SceneDescription& scene) {
         s = b.size.maxCoeff();
         break;
       case BodyVisual::Kind::arm:
+      case BodyVisual::Kind::tree:
         s = *std::max_element(b.widths.begin(), b.widths.end());
         break;
     }

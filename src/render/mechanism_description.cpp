@@ -29,14 +29,14 @@ void describe_mechanism(const core::Network& network, const toml::table& documen
     const int body = body_index(scene, (*t)["body"].value_or(std::string()));
     if (body < 0) continue;
     const BodyVisual::Kind kind = scene.bodies[static_cast<std::size_t>(body)].kind;
-    const bool on_arm = kind == BodyVisual::Kind::arm;
+    const bool on_arm = kind == BodyVisual::Kind::arm || kind == BodyVisual::Kind::tree;
     const bool spring = dynamic_cast<const components::SpringDamper*>(imp.get()) != nullptr ||
                         dynamic_cast<const components::LineSpringDamper*>(imp.get()) != nullptr;
     if (spring && !on_arm) {
       // An end on an arm has no pose of its own to hang a coil on: not drawn.
       const int other = body_index(scene, (*t)["other"].value_or(std::string()));
       if (other >= 0 &&
-          scene.bodies[static_cast<std::size_t>(other)].kind == BodyVisual::Kind::arm) {
+          jointed(scene.bodies[static_cast<std::size_t>(other)])) {
         continue;
       }
       SpringVisual s;

@@ -9,6 +9,7 @@
 #include "render/arrow.hpp"
 #include "render/scene_geometry.hpp"
 #include "render/spring_coil.hpp"
+#include "render/tree_items.hpp"
 
 namespace stiction::render {
 namespace {
@@ -188,7 +189,15 @@ std::optional<TorqueArc> torque_arc(const SceneDescription& scene, const PoseTra
   const auto held = std::find_if(scene.joints.begin(), scene.joints.end(),
                                  [&](const JointVisual& j) { return j.child == s.body; });
   float tube = 0.07f;
-  if (b.kind == BodyVisual::Kind::arm) {
+  if (b.kind == BodyVisual::Kind::tree) {
+    const std::vector<components::LinkPose> links = tree_poses(b, poses, s.body, t);
+    const std::size_t j =
+        static_cast<std::size_t>(std::clamp(s.joint, 0, static_cast<int>(links.size()) - 1));
+    arc.centre = to_glm(links[j].p);
+    arc.axis = glm::normalize(to_glm(links[j].q * b.tree->params().links[j].axis));
+    arc.radius = static_cast<float>(4.0 * b.widths[j]);
+    tube = 0.09f;
+  } else if (b.kind == BodyVisual::Kind::arm) {
     const std::vector<core::Vec3> joints = arm_joints(b, poses, s.body, t);
     const std::size_t j =
         static_cast<std::size_t>(std::clamp(s.joint, 0, static_cast<int>(b.widths.size()) - 1));

@@ -21,7 +21,11 @@ PoseTrack::PoseTrack(const core::Trajectory& trajectory, const SceneDescription&
   };
   for (const auto& b : scene.bodies) {
     Columns c;
-    if (b.kind == BodyVisual::Kind::arm) {
+    if (b.kind == BodyVisual::Kind::tree) {
+      for (const auto& link : b.tree->params().links) {
+        c.theta.push_back(need(b.name + ".theta." + link.joint_name));
+      }
+    } else if (b.kind == BodyVisual::Kind::arm) {
       for (std::size_t i = 0; i < b.lengths.size(); ++i) {
         c.theta.push_back(need(b.name + ".theta." + std::to_string(i)));
       }

@@ -70,7 +70,7 @@ std::unique_ptr<FrameRenderer> frame_renderer_for(const scene::Scene& scene,
                                                   const RenderSettings& settings,
                                                   std::vector<double> event_times,
                                                   std::vector<std::string> event_kinds) {
-  SceneDescription description = describe_scene(*scene.network, scene.document);
+  SceneDescription description = describe_scene(*scene.network, scene.document, &scene.robot_visuals);
   FrameAnnotations annotations;
   annotations.sites = describe_contact_sites(*scene.network, scene.document, description,
                                              settings.overlay.stick_thresholds,

@@ -1,10 +1,12 @@
 // describe_scene: what to draw, from the network's components and the scene document.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "components/admittance/planar_arm.hpp"
 #include "components/admittance/point_mass.hpp"
 #include "components/admittance/rigid_body.hpp"
+#include "components/admittance/spatial_tree.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
 #include "components/impedance/moving_contact.hpp"
 #include "components/impedance/penalty_joint.hpp"
@@ -44,6 +46,24 @@ void describe_cylinder(const toml::table& table, BodyVisual& b) {
   }
 }
 
+// A tree's links: each one's reach (the farthest of its children's joints and its centre
+// of mass, at least 2 cm) and a thickness a tenth of it, for the stick figure and framing.
+void describe_tree(BodyVisual& b, const components::SpatialTree& tree) {
+  b.kind = BodyVisual::Kind::tree;
+  b.tree = &tree;
+  const auto& links = tree.params().links;
+  b.lengths.assign(links.size(), 0.0);
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    b.lengths[i] = std::max(b.lengths[i], 2.0 * links[i].com.norm());
+    if (links[i].parent >= 0) {
+      auto& reach = b.lengths[static_cast<std::size_t>(links[i].parent)];
+      reach = std::max(reach, links[i].origin.norm());
+    }
+  }
+  for (double& l : b.lengths) l = std::max(l, 0.02);
+  for (double l : b.lengths) b.widths.push_back(std::clamp(0.12 * l, 0.01, 0.08));
+}
+
 }  // namespace
 
 int body_index(const SceneDescription& scene, const std::string& name) {
@@ -53,7 +73,9 @@ int body_index(const SceneDescription& scene, const std::string& name) {
   return -1;
 }
 
-SceneDescription describe_scene(const core::Network& network, const toml::table& document) {
+SceneDescription describe_scene(
+    const core::Network& network, const toml::table& document,
+    const std::map<std::string, std::vector<scene::UrdfVisual>>* robot_visuals) {
   SceneDescription scene;
   for (const auto& a : network.admittances()) {
     BodyVisual b;
@@ -76,6 +98,24 @@ SceneDescription describe_scene(const core::Network& network, const toml::table&
         }
         b.lengths.push_back(length);
         b.widths.push_back(width > 0.0 ? width : 0.1 * length);
+      }
+    } else if (const auto* tree = dynamic_cast<const components::SpatialTree*>(a.get())) {
+      describe_tree(b, *tree);
+      if (robot_visuals) {
+        if (const auto it = robot_visuals->find(b.name); it != robot_visuals->end()) {
+          b.visuals = it->second;
+          // Meshes are not drawn (no mesh import yet): say so once per file.
+          std::vector<std::string> told;
+          for (const auto& v : b.visuals) {
+            if (v.shape != scene::UrdfVisual::Shape::mesh ||
+                std::find(told.begin(), told.end(), v.mesh) != told.end()) {
+              continue;
+            }
+            told.push_back(v.mesh);
+            std::fprintf(stderr, "warning: %s: mesh visual '%s' not drawn (meshes are not supported)\n",
+                         b.name.c_str(), v.mesh.c_str());
+          }
+        }
       }
     } else if (dynamic_cast<const components::RigidBody*>(a.get())) {
       const std::string shape = table ? (*table)["shape"].value_or(std::string()) : "";

@@ -81,6 +81,7 @@ double body_scale(const SceneDescription& scene) {
         s = std::min(s, b.size.maxCoeff());
         break;
       case BodyVisual::Kind::arm:
+      case BodyVisual::Kind::tree:
         for (double l : b.lengths) s = std::min(s, 0.5 * l);
         break;
     }
@@ -97,6 +98,7 @@ double piece_size(const BodyVisual& b) {
     case BodyVisual::Kind::block:
       return b.size.maxCoeff();
     case BodyVisual::Kind::arm:
+    case BodyVisual::Kind::tree:
       return *std::max_element(b.widths.begin(), b.widths.end());
   }
   return 0.1;
@@ -107,7 +109,7 @@ double floor_height(const SceneDescription& scene, const Bounds& all, double sca
   // Arms and jointed rigid bodies: three link widths below the lowest joint.
   double link_width = 0.0;
   for (const auto& b : scene.bodies) {
-    if (b.kind == BodyVisual::Kind::arm) {
+    if (jointed(b)) {
       link_width = std::max(link_width, *std::max_element(b.widths.begin(), b.widths.end()));
     }
   }

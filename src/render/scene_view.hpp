@@ -12,11 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "components/admittance/spatial_tree.hpp"
 #include "components/impedance/moving_contact.hpp"
 #include "components/impedance/surface_extent.hpp"
 #include "core/network.hpp"
 #include "core/trajectory.hpp"
 #include "core/types.hpp"
+#include "scene/urdf_loader.hpp"
 
 namespace stiction::render {
 
@@ -27,7 +29,8 @@ class RenderError : public std::runtime_error {
 };
 
 struct BodyVisual {
-  enum class Kind { sphere, box, block, arm, cylinder };
+  // tree: a components::SpatialTree (a urdf or spatial_tree body), drawn from its link poses.
+  enum class Kind { sphere, box, block, arm, cylinder, tree };
   Kind kind = Kind::sphere;
   std::string name;
   double radius = 0.0;                   // sphere, cylinder
@@ -40,8 +43,15 @@ struct BodyVisual {
   // arm: its plane of motion, e1 and e2 (theta_0 from e1 towards e2), and the joint axis;
   // cylinder: `axis` is its axis in the body frame
   core::Vec3 plane_x{1.0, 0.0, 0.0}, plane_y{0.0, 1.0, 0.0}, axis{0.0, 0.0, 1.0};
-  std::vector<double> lengths, widths;  // arm links
+  std::vector<double> lengths, widths;  // arm links; tree: per link, its reach and thickness
+  const components::SpatialTree* tree = nullptr;  // tree
+  std::vector<scene::UrdfVisual> visuals;         // tree: its URDF's shapes (none: a stick figure)
 };
+
+// True for the jointed bodies, which have no pose columns of their own (arm, tree).
+inline bool jointed(const BodyVisual& b) {
+  return b.kind == BodyVisual::Kind::arm || b.kind == BodyVisual::Kind::tree;
+}
 
 // A contact's surface. With an extent only that rectangle (or half-plane, strip) of the plane
 // is drawn; a moving surface is drawn at its tilt at time t, its checker carried along by the
@@ -114,7 +124,10 @@ struct SceneDescription {
 // (shape, radius, size, link widths); surfaces from kikuuwe_contact impedances; joints from
 // penalty_joint impedances (bodies from their maps, axes from their params, articulation
 // points from the document's `point` and `parent_point`).
-SceneDescription describe_scene(const core::Network& network, const toml::table& document);
+// `robot_visuals`: the urdf bodies' shapes by body name (Scene::robot_visuals), if any.
+SceneDescription describe_scene(
+    const core::Network& network, const toml::table& document,
+    const std::map<std::string, std::vector<scene::UrdfVisual>>* robot_visuals = nullptr);
 
 // Index of the body named `name` in scene.bodies, -1 if there is none.
 int body_index(const SceneDescription& scene, const std::string& name);

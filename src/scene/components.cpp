@@ -28,7 +28,7 @@ using core::Vec3;
 namespace {
 
 const std::vector<std::string> kBodyTypes{"point_mass", "rigid_body", "planar_arm",
-                                          "spatial_tree"};
+                                          "spatial_tree", "urdf"};
 const std::vector<std::string> kImpedanceTypes{
     "kikuuwe_contact", "kikuuwe_friction", "lugre",        "dahl",    "spring_damper",
     "penalty_joint",   "torque_source",    "force_source", "external"};
@@ -167,7 +167,9 @@ void ComponentBuilder::add_body(TableReader& table) {
   BodyInfo info;
   std::unique_ptr<core::Admittance> admittance;
 
-  if (type == "point_mass") {
+  if (type == "urdf") {
+    admittance = add_urdf_body(table, name);  // urdf_body.cpp
+  } else if (type == "point_mass") {
     components::PointMassParams p;
     p.mass = table.positive("mass", table.required_number("mass"));
     p.position = table.vec3("position", p.position);

@@ -3,6 +3,7 @@
 // of every key (docs/scene_format.md lists them).
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "scene/external_elements.hpp"
 #include "scene/settle.hpp"
 #include "scene/toml_reader.hpp"
+#include "scene/urdf_loader.hpp"
 
 namespace stiction::scene {
 
@@ -59,6 +61,10 @@ class ComponentBuilder {
   void locate_observed();
 
   const std::map<std::string, double>& stick_thresholds() const { return stick_thresholds_; }
+  // The directory a urdf body's relative `file` is found from (the scene file's).
+  void set_directory(std::filesystem::path directory) { directory_ = std::move(directory); }
+  // The visuals of each urdf body, by body name, for drawing.
+  std::map<std::string, std::vector<UrdfVisual>>& robot_visuals() { return robot_visuals_; }
 
  private:
   struct BodyInfo {
@@ -68,6 +74,8 @@ class ComponentBuilder {
     // A cylinder's geometry: its contacts are rim points (components/maps/cylinder_rim_map).
     std::optional<components::CylinderShape> cylinder{};
   };
+  // type = "urdf" (urdf_body.cpp): the tree, its joint elements queued in pending_.
+  std::unique_ptr<core::Admittance> add_urdf_body(TableReader& table, const std::string& name);
   // type = "spatial_tree" (spatial_body.cpp).
   std::unique_ptr<core::Admittance> add_spatial_tree(TableReader& table, const std::string& name);
   // kikuuwe_contact (contact_builder.cpp): one element per contact point.
@@ -110,6 +118,8 @@ class ComponentBuilder {
   std::map<std::string, BodyInfo> bodies_;
   std::map<std::string, std::string> impedance_types_;
   std::map<std::string, double> stick_thresholds_;
+  std::filesystem::path directory_;
+  std::map<std::string, std::vector<UrdfVisual>> robot_visuals_;
   core::Admittance* clock_ = nullptr;  // time for moving surfaces, made on first use
   std::vector<SettleBody> settle_;     // bodies to start in equilibrium (settle.cpp)
   std::vector<Pending> pending_;       // impedances not yet in the network

@@ -195,6 +195,10 @@ Scene build_scene(toml::table document, const fs::path& path,
 
   scene.network = std::make_unique<core::Network>();
   ComponentBuilder builder(*scene.network, gravity, scene.externals.get());
+  // A urdf body's `file` is relative to the scene file; a scene given as text (no such
+  // file) reads it from the working directory.
+  std::error_code ec;
+  builder.set_directory(fs::is_regular_file(path, ec) ? path.parent_path() : fs::current_path());
   if (auto bodies = root.subtable("bodies")) {
     for (TableReader& body : builder.entries(*bodies)) builder.add_body(body);
     bodies->finish();
@@ -208,6 +212,7 @@ Scene build_scene(toml::table document, const fs::path& path,
   if (scene.network->admittances().empty()) {
     throw InputError::at(scene.document.source(), "the scene has no [bodies]");
   }
+  scene.robot_visuals = std::move(builder.robot_visuals());
   scene.run.stick_thresholds = builder.stick_thresholds();  // per contact or joint
   scene.network->finalize();
   builder.locate_observed();                      // sources reading other elements' signals

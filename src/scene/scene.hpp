@@ -18,6 +18,7 @@
 #include "core/simulation.hpp"
 #include "scene/plausibility.hpp"
 #include "scene/toml_reader.hpp"
+#include "scene/urdf_loader.hpp"
 
 namespace stiction::scene {
 
@@ -54,6 +55,8 @@ struct Scene {
   double authored_dt = 0.0;
   // Plausibility warnings (scene/plausibility.hpp): valid values that look like a mistake.
   std::vector<Warning> warnings;
+  // The visual primitives of each urdf body, by body name (drawing).
+  std::map<std::string, std::vector<UrdfVisual>> robot_visuals;
   // The elements supplied in code it was built with (null: none).
   std::shared_ptr<const ExternalElements> externals;
 
