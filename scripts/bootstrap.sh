@@ -15,7 +15,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pandas python3-pytest python3-matplotlib
   python3-nbconvert python3-nbclient python3-ipykernel
   clang-14 libclang-rt-14-dev
-  liburdfdom-dev libassimp-dev
+  liburdfdom-dev libtinyxml-dev libassimp-dev
 )
 missing=()
 for p in "${packages[@]}"; do
