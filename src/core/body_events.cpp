@@ -86,7 +86,7 @@ double BodyEventHistory::first(std::string_view kind) const {
 }
 
 BodyState body_state(const std::vector<Vec3>& points, const std::vector<std::string>& states,
-                     double tolerance) {
+                     double tolerance, bool rolling) {
   std::vector<Vec3> touching, open;
   bool any_stick = false, any_slip = false;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -99,7 +99,7 @@ BodyState body_state(const std::vector<Vec3>& points, const std::vector<std::str
     any_slip |= states[i] == "slip";
   }
   if (touching.empty()) return BodyState::open;
-  if (on_edge(touching, open, tolerance)) return BodyState::tip;
+  if (!rolling && on_edge(touching, open, tolerance)) return BodyState::tip;
   if (any_stick && any_slip) return BodyState::partial_slip;
   return any_slip ? BodyState::slide : BodyState::stick;
 }
@@ -107,25 +107,36 @@ BodyState body_state(const std::vector<Vec3>& points, const std::vector<std::str
 std::vector<BodyEventHistory> body_events(const std::vector<SlipHistory>& histories) {
   // The bodies' points, in the order of each body's first point.
   std::vector<std::string> order;
-  std::map<std::string, std::vector<const SlipHistory*>> by_body;
+  // A pair's contact is a point of both its bodies, at its own place in each one's frame.
+  struct Member {
+    const SlipHistory* history;
+    Vec3 local;
+  };
+  std::map<std::string, std::vector<Member>> by_body;
+  const auto add = [&](const std::string& body, const SlipHistory& h, const Vec3& local) {
+    auto& list = by_body[body];
+    if (list.empty()) order.push_back(body);
+    list.push_back({&h, local});
+  };
   for (const SlipHistory& h : histories) {
     if (h.body.empty() || h.monitor.initial_state().empty()) continue;
-    auto& list = by_body[h.body];
-    if (list.empty()) order.push_back(h.body);
-    list.push_back(&h);
+    add(h.body, h, h.point);
+    if (!h.other_body.empty()) add(h.other_body, h, h.other_point);
   }
   std::vector<BodyEventHistory> out;
   for (const std::string& name : order) {
-    const std::vector<const SlipHistory*>& members = by_body[name];
+    const std::vector<Member>& members = by_body[name];
     if (members.size() < 2) continue;
     BodyEventHistory body;
     body.body = name;
     std::vector<Point> points;
     std::vector<Vec3> local;
-    for (const SlipHistory* h : members) {
-      body.points.push_back(h->component);
-      points.push_back({h, h->monitor.intervals()});
-      local.push_back(h->point);
+    bool rolling = false;
+    for (const Member& m : members) {
+      body.points.push_back(m.history->component);
+      points.push_back({m.history, m.history->monitor.intervals()});
+      local.push_back(m.local);
+      rolling |= m.history->rolling;
     }
     double extent = 0.0;
     for (const Vec3& p : local) extent = std::max(extent, (p - local.front()).norm());
@@ -142,7 +153,7 @@ std::vector<BodyEventHistory> body_events(const std::vector<SlipHistory>& histor
     const auto state_now = [&] {
       for (std::size_t i = 0; i < points.size(); ++i)
         states[i] = points[i].intervals[points[i].at].kind;
-      return body_state(local, states, tolerance);
+      return body_state(local, states, tolerance, rolling);
     };
     std::vector<Segment> segments{{state_now(), points.front().intervals.front().start}};
     for (double t : times) {

@@ -63,11 +63,14 @@ struct BodyEventHistory {
 // The body's state from its points: `points` in the body frame, `states` the points' element
 // states ("stick", "slip" or "open"), one per point; `tolerance` the distance below which a
 // point counts as on a line or at a point (body_events: 1e-6 of the points' extent).
+// `rolling`: some points travel over the body (a cylinder's rim points): their place at t = 0
+// says nothing about an edge, so the body is never in `tip`.
 BodyState body_state(const std::vector<Vec3>& points, const std::vector<std::string>& states,
-                     double tolerance);
+                     double tolerance, bool rolling = false);
 
-// One history per body with at least two contact points (SlipHistory::body set), in the order
-// of their first point.
+// One history per body with at least two contact points (SlipHistory::body set; a contact
+// between two bodies counts for both, SlipHistory::other_body), in the order of their first
+// point.
 std::vector<BodyEventHistory> body_events(const std::vector<SlipHistory>& histories);
 
 }  // namespace stiction::core

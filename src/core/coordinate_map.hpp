@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/coupling.hpp"
@@ -32,6 +33,17 @@ class CoordinateMap {
   // with their slots in the same order once the layout is known.
   virtual std::vector<const Admittance*> admittances() const = 0;
   virtual void bind(const std::vector<Slot>& slots) = 0;
+
+  // Where a contact element touches, for the bodies' events (body_events.hpp): the world
+  // contact point at state x, and whether it is one fixed point of the bodies (a corner) or
+  // one that travels over their surface as they roll (a cylinder rim's lowest point), which
+  // tells nothing about the edge a body rests on. nullopt: the map does not say (a contact
+  // on one body then reads the point from x_hat's first three entries, fixed).
+  struct ContactSite {
+    Vec3 world = Vec3::Zero();
+    bool rolling = false;
+  };
+  virtual std::optional<ContactSite> contact_site(ConstVecRef /*x*/) const { return std::nullopt; }
 
   // Psi: x (whole system state) -> x_hat.
   virtual void motion(ConstVecRef x, VecRef x_hat) const = 0;

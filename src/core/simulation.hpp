@@ -47,6 +47,11 @@ struct SlipHistory {
   // (body_events.hpp groups a body's points and reads their geometry); empty otherwise.
   std::string body{};
   Vec3 point = Vec3::Zero();
+  // A contact between two bodies: the second body and the same point in its frame.
+  std::string other_body{};
+  Vec3 other_point = Vec3::Zero();
+  // The point travels over the body as it rolls (contact_site): not an edge or corner.
+  bool rolling = false;
 };
 
 struct Instability {

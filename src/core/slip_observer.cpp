@@ -3,32 +3,49 @@
 #include "core/body.hpp"
 #include "core/body_events.hpp"
 
+#include <optional>
+
 namespace stiction::core {
 namespace {
 
-// For a contact whose map moves exactly one body: that body's name and the contact point in
-// its frame at x0 (a contact's x_hat starts with the contact point's world position).
+// The body (or the two bodies of a pair) a contact acts on and its contact point in each
+// body's frame at x0: from the map's contact_site, else from x_hat's first three entries (a
+// contact's x_hat starts with the contact point's world position) for a one-body contact.
 void locate_on_body(Network& network, int impedance, const Vec& x0, SlipHistory& history) {
-  const Body* body = nullptr;
-  int slot = -1;
-  for (const Admittance* a : network.map_of(impedance).admittances()) {
-    const auto* b = dynamic_cast<const Body*>(a);
-    if (b == nullptr) continue;
-    if (body != nullptr) return;  // between two bodies: not a point of one
-    body = b;
+  const CoordinateMap& map = network.map_of(impedance);
+  std::vector<const Body*> bodies;
+  for (const Admittance* a : map.admittances()) {
+    if (const auto* b = dynamic_cast<const Body*>(a)) bodies.push_back(b);
   }
-  if (body == nullptr) return;
-  const auto& admittances = network.admittances();
-  for (std::size_t k = 0; k < admittances.size(); ++k) {
-    if (admittances[k].get() == body) slot = static_cast<int>(k);
+  if (bodies.empty() || bodies.size() > 2) return;
+  const auto motion_of = [&](const Body* body) -> std::optional<BodyMotion> {
+    const auto& admittances = network.admittances();
+    for (std::size_t k = 0; k < admittances.size(); ++k) {
+      if (admittances[k].get() != body) continue;
+      const Slot s = network.admittance_slot(static_cast<int>(k));
+      return body->motion(x0.segment(s.state_offset, s.state_size));
+    }
+    return std::nullopt;
+  };
+  Vec3 world;
+  if (const auto site = map.contact_site(x0)) {
+    world = site->world;
+    history.rolling = site->rolling;
+  } else {
+    const ConstVecRef x_hat = network.impedance_input(impedance, x0);
+    if (bodies.size() != 1 || x_hat.size() < 3) return;
+    world = x_hat.head<3>();
   }
-  if (slot < 0) return;
-  const Slot s = network.admittance_slot(slot);
-  const BodyMotion m = body->motion(x0.segment(s.state_offset, s.state_size));
-  const ConstVecRef x_hat = network.impedance_input(impedance, x0);
-  if (x_hat.size() < 3) return;
-  history.body = body->name();
-  history.point = m.q.conjugate() * (Vec3(x_hat.head<3>()) - m.p);
+  const std::optional<BodyMotion> m = motion_of(bodies[0]);
+  if (!m) return;
+  history.body = bodies[0]->name();
+  history.point = m->q.conjugate() * (world - m->p);
+  if (bodies.size() == 2) {
+    if (const std::optional<BodyMotion> o = motion_of(bodies[1])) {
+      history.other_body = bodies[1]->name();
+      history.other_point = o->q.conjugate() * (world - o->p);
+    }
+  }
 }
 
 }  // namespace

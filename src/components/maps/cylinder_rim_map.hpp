@@ -46,6 +46,12 @@ class CylinderRimMap final : public core::CoordinateMap {
   std::vector<const core::Admittance*> admittances() const override { return {&body_}; }
   void bind(const std::vector<core::Slot>& slots) override { slot_ = slots.at(0); }
   void motion(core::ConstVecRef x, core::VecRef x_hat) const override;
+  // The rim point nearest the plane travels over the rim as the cylinder rolls.
+  std::optional<ContactSite> contact_site(core::ConstVecRef x) const override {
+    Eigen::Matrix<double, 6, 1> x_hat;
+    motion(x, x_hat);
+    return ContactSite{x_hat.head<3>(), true};
+  }
   void apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const override;
 
   // The rim point minus the body origin, world frame, for a body at orientation q.

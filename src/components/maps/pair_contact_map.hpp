@@ -63,6 +63,10 @@ class PairContactMap final : public core::CoordinateMap {
     slot_b_ = slots.at(1);
   }
   void motion(core::ConstVecRef x, core::VecRef x_hat) const override;
+  // The pair's contact point, a point of both bodies (body events count it for each).
+  std::optional<ContactSite> contact_site(core::ConstVecRef x) const override {
+    return ContactSite{probe_pair(shape_, motion_a(x), motion_b(x)).point, false};
+  }
   void apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const override;
   const PairShape& shape() const { return shape_; }
 
