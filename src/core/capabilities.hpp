@@ -67,6 +67,11 @@ class ClampedFriction : public PiecewiseLaw {
                                       ConstVecRef u_ref, ConstVecRef y_dot_ref, VecRef u,
                                       VecRef y_dot) const = 0;
   virtual double friction_cap_energy(ConstVecRef x_hat) const = 0;
+  // The slip velocity at which the law's force before clamping is zero, -K e / (B + tau K),
+  // in the frame slip_velocity() uses: the middle of the band of slip velocities in which the
+  // element holds. An implicit step whose Newton iteration reverses a sliding element's slip
+  // puts it there first (core/implicit_euler.hpp).
+  virtual Vec3 unloaded_slip(ConstVecRef x_hat, ConstVecRef y, double tau) const = 0;
 };
 
 // The largest |y| (max over the entries) the exact model keeps from an initial state within

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/hermite.hpp"
+#include "core/implicit_euler.hpp"
 
 namespace stiction::core {
 
@@ -35,7 +36,7 @@ const Tableau& rk4_tableau() {
 }
 
 std::vector<std::string> integrator_names() {
-  return {"euler", "symplectic_euler", "heun", "rk4", "rk4_adaptive"};
+  return {"euler", "symplectic_euler", "heun", "rk4", "rk4_adaptive", "implicit"};
 }
 
 const Tableau* find_tableau(const std::string& name) {
@@ -56,6 +57,7 @@ std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, do
     return std::make_unique<RungeKuttaStepper>(*t, state_dim, dt);
   }
   if (name == "symplectic_euler") return std::make_unique<SymplecticEulerStepper>(state_dim, dt);
+  if (name == "implicit") return std::make_unique<ImplicitEulerStepper>(state_dim, dt);
   if (name == "rk4_adaptive") {
     if (!(tolerance > 0.0)) throw std::invalid_argument("rk4_adaptive needs a tolerance > 0");
     return std::make_unique<AdaptiveRk4Stepper>(state_dim, dt, tolerance, max_step);

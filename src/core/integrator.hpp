@@ -172,7 +172,8 @@ class AdaptiveRk4Stepper final : public Stepper {
   long switches_ = 0;
 };
 
-// euler | symplectic_euler | heun | rk4 use dt; rk4_adaptive uses dt as its first step and
+// euler | symplectic_euler | heun | rk4 | implicit use dt (implicit: core/implicit_euler.hpp);
+// rk4_adaptive uses dt as its first step and
 // needs tolerance > 0. Throws std::invalid_argument naming the known integrators.
 // max_step bounds rk4_adaptive's step (the others ignore it).
 std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/energy_budget.hpp"
+#include "core/implicit_euler.hpp"
 #include "core/integrator.hpp"
 
 namespace stiction::core {
@@ -245,6 +246,48 @@ std::optional<double> symplectic_step_radius(Network& network, double t, const V
   return radius;
 }
 
+// How much the linearization itself grows over a step whose h J is given: exp(max Re of
+// h J's eigenvalues), at least 1. A state where the system grows (a sliding contact about a
+// point of its path, at several 1/s) amplifies its modes under any method; the explicit
+// methods' limits lie far below where that shows against kUnstableGrowth, the implicit
+// step's do not, so its radius is taken relative to this growth.
+double own_growth(const Eigen::MatrixXd& hJ) {
+  if (!hJ.allFinite()) return 1.0;
+  const double abscissa =
+      Eigen::EigenSolver<Eigen::MatrixXd>(hJ, false).eigenvalues().real().maxCoeff();
+  return std::exp(std::max(0.0, abscissa));
+}
+
+// The implicit step (core/implicit_euler.hpp): x' = x + h F(x*; h), x* = x' in the solved
+// entries and x in the states of clamped friction (P selects the solved ones), linearized:
+// (I - h J P) dx' = (I + h J (I - P)) dx, its radius relative to own_growth. Backward
+// Euler damps every decaying mode at any h, so what is left to find is the clamped friction
+// states' explicit part. Group by group as above.
+std::optional<double> implicit_step_radius(Network& network, double t, const Vec& x, double h,
+                                           bool friction_held, const Groups* groups) {
+  const int n = static_cast<int>(x.size());
+  auto J = jacobian(network, t, x, h, friction_held, groups);
+  if (!J) return std::nullopt;
+  const std::vector<bool> solved = implicitly_solved_slots(network);
+  double radius = 0.0;
+  for (const std::vector<int>& group : coupled_groups({&*J}, n)) {
+    const int m = static_cast<int>(group.size());
+    const Eigen::MatrixXd hJ = h * (*J)(group, group);
+    Eigen::MatrixXd lhs = Eigen::MatrixXd::Identity(m, m);
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Identity(m, m);
+    for (int c = 0; c < m; ++c) {
+      if (solved[static_cast<std::size_t>(group[static_cast<std::size_t>(c)])]) {
+        lhs.col(c) -= hJ.col(c);
+      } else {
+        rhs.col(c) += hJ.col(c);
+      }
+    }
+    const Eigen::MatrixXd phi = lhs.partialPivLu().solve(rhs);
+    radius = std::max(radius, spectral_radius(phi) / own_growth(hJ));
+  }
+  return radius;
+}
+
 }  // namespace
 
 std::vector<TimedState> sample_states(Network& network, const RunOptions& options,
@@ -338,6 +381,7 @@ StepRadius step_radius(Network& network, const std::string& integrator, double t
     if (integrator == "symplectic_euler") {
       return symplectic_step_radius(network, t, x, h, held, groups);
     }
+    if (integrator == "implicit") return implicit_step_radius(network, t, x, h, held, groups);
     return rk_step_radius(network, tableau_by_name(integrator), t, x, h, held, groups);
   };
   StepRadius r;

@@ -53,7 +53,7 @@ struct StepRadius {
 };
 
 // Spectral radii of the linearized step map of `integrator` with step h at (t, x).
-// Fixed-step integrators only (euler, symplectic_euler, heun, rk4).
+// Fixed-step integrators only (euler, symplectic_euler, heun, rk4, implicit).
 StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
                        double h);
 

@@ -55,7 +55,8 @@ nlohmann::json number_or_null(double v) {
 }  // namespace
 
 const std::vector<std::string>& checked_integrators() {
-  static const std::vector<std::string> names = {"euler", "symplectic_euler", "heun", "rk4"};
+  static const std::vector<std::string> names = {"euler", "symplectic_euler", "heun", "rk4",
+                                                   "implicit"};
   return names;
 }
 

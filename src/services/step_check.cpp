@@ -69,7 +69,8 @@ StepCheck check_step(scene::Scene& scene) {
   StepCheck c;
   c.integrator = scene.run.integrator;
   c.dt = scene.run.dt;
-  if (core::find_tableau(c.integrator) == nullptr && c.integrator != "symplectic_euler") {
+  if (core::find_tableau(c.integrator) == nullptr && c.integrator != "symplectic_euler" &&
+      c.integrator != "implicit") {
     c.applies = false;  // rk4_adaptive: its step follows its tolerance
     return c;
   }

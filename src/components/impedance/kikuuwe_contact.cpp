@@ -56,6 +56,10 @@ Vec3 KikuuweContact::slip_velocity(ConstVecRef x_hat) const {
   return v_c - n_.dot(v_c) * n_;
 }
 
+Vec3 KikuuweContact::unloaded_slip(ConstVecRef /*x_hat*/, ConstVecRef y, double tau) const {
+  return -kt_ / (bt_ + tau * kt_) * (y[0] * t1_ + y[1] * t2_);
+}
+
 double KikuuweContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
   const Vec3 p_c = x_hat.segment<3>(0);
   const bool inside = !bounded_ || params_.extent.contains(p_c - params_.extent.centre);

@@ -61,6 +61,8 @@ class KikuuweContact final : public core::Impedance, public ContactCapabilities 
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
+  core::Vec3 unloaded_slip(core::ConstVecRef x_hat, core::ConstVecRef y,
+                           double tau) const override;
   // The tangential force and e's rate held, the normal force live.
   void evaluate_friction_held(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
                               core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref, core::VecRef u,

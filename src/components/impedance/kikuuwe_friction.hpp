@@ -62,6 +62,13 @@ class KikuuweFriction final : public core::Impedance,
   double friction_cap_energy(core::ConstVecRef /*x_hat*/) const override {
     return params_.force_limit * params_.force_limit / params_.stiffness;
   }
+  core::Vec3 unloaded_slip(core::ConstVecRef /*x_hat*/, core::ConstVecRef y,
+                           double tau) const override {
+    core::Vec3 v = core::Vec3::Zero();
+    v.head(params_.dimension) =
+        -params_.stiffness / (params_.damping + tau * params_.stiffness) * y;
+    return v;
+  }
   const KikuuweFrictionParams& params() const { return params_; }
 
  private:

@@ -127,6 +127,12 @@ Vec3 MovingContact::slip_velocity(ConstVecRef x_hat) const {
   return c.v_rel - n.dot(c.v_rel) * n;
 }
 
+Vec3 MovingContact::unloaded_slip(ConstVecRef x_hat, ConstVecRef y, double tau) const {
+  const ContactFrame& f = touch(x_hat).surface.frame;
+  const double kt = coefficients_.kt;
+  return -kt / (coefficients_.bt + tau * kt) * (y[0] * f.t1 + y[1] * f.t2);
+}
+
 double MovingContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
   const Touch c = touch(x_hat);
   const double depth = c.inside ? std::max(0.0, c.depth) : 0.0;

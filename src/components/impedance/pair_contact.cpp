@@ -73,6 +73,11 @@ Vec3 PairContact::slip_velocity(ConstVecRef x_hat) const {
   return tangential(x_hat.segment<3>(4), normal_of(x_hat));
 }
 
+Vec3 PairContact::unloaded_slip(ConstVecRef x_hat, ConstVecRef y, double tau) const {
+  const double kt = coefficients_.kt;
+  return -kt / (coefficients_.bt + tau * kt) * tangential(y.head<3>(), normal_of(x_hat));
+}
+
 double PairContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
   const double d = std::max(0.0, x_hat[0]);
   const Vec3 e_t = tangential(y.head<3>(), normal_of(x_hat));

@@ -86,6 +86,11 @@ class PenaltyJoint final : public core::Impedance,
   }
   // The relative rate about the axis (in the x entry, as for joints).
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
+  core::Vec3 unloaded_slip(core::ConstVecRef /*x_hat*/, core::ConstVecRef y,
+                           double tau) const override {
+    const double kf = params_.friction_stiffness;
+    return {-kf / (params_.friction_damping + tau * kf) * y[0], 0.0, 0.0};
+  }
   const PenaltyJointParams& params() const { return params_; }
 
   // Relative rotation angle about the axis in [-pi, pi), from an input x_hat.

@@ -1,0 +1,202 @@
+#include "core/implicit_euler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace stiction::core {
+
+std::vector<bool> implicitly_solved_slots(const Network& network) {
+  std::vector<bool> solved(static_cast<std::size_t>(network.state_dim()), true);
+  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
+    if (network.capabilities(i).friction == nullptr) continue;
+    const Slot s = network.impedance_slot(i);
+    for (int k = 0; k < s.state_size; ++k) {
+      solved[static_cast<std::size_t>(s.state_offset + k)] = false;
+    }
+  }
+  return solved;
+}
+
+ImplicitEulerStepper::ImplicitEulerStepper(int state_dim, double dt)
+    : dt_(dt),
+      start_(state_dim),
+      iterate_(state_dim),
+      eval_(state_dim),
+      f_(state_dim),
+      probe_(state_dim),
+      f_probe_(state_dim),
+      last_eval_(state_dim) {}
+
+void ImplicitEulerStepper::prepare(Network& network) {
+  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
+    const Capabilities& c = network.capabilities(i);
+    if (c.friction != nullptr && c.slip != nullptr) friction_elements_.push_back(i);
+  }
+  const std::vector<bool> solved = implicitly_solved_slots(network);
+  for (int i = 0; i < static_cast<int>(solved.size()); ++i) {
+    if (solved[static_cast<std::size_t>(i)]) solved_.push_back(i);
+  }
+  const auto n = static_cast<Eigen::Index>(solved_.size());
+  residual_ = Vec::Zero(n);
+  delta_ = Vec::Zero(n);
+  matrix_ = Eigen::MatrixXd::Identity(n, n);
+  prepared_ = true;
+}
+
+double ImplicitEulerStepper::advance(Network& network, double t, double limit, Vec& x) {
+  if (!prepared_) prepare(network);
+  const double h = std::min(dt_, limit);
+  if (solve(network, t, h, x) || split(network, t, h, x, 1)) return h;
+  std::ostringstream message;
+  message << "implicit: Newton's iteration did not converge in a step of " << h << " s at t = "
+          << t << " s, nor in steps " << (1 << kMaxSplits)
+          << " times shorter (a stiff element switching faster than the step can follow, "
+             "or a state that is running away)";
+  throw std::runtime_error(message.str());
+}
+
+void ImplicitEulerStepper::merge(const Vec& iterate, const Vec& start) {
+  eval_ = start;
+  for (int i : solved_) eval_[i] = iterate[i];
+}
+
+double ImplicitEulerStepper::scaled_norm(const Vec& residual, const Vec& x) const {
+  double norm = 0.0;
+  for (Eigen::Index r = 0; r < residual.size(); ++r) {
+    const double scale = kRelative * std::abs(x[solved_[static_cast<std::size_t>(r)]]) + kAbsolute;
+    norm = std::max(norm, std::abs(residual[r]) / scale);
+  }
+  return std::isfinite(norm) ? norm : std::numeric_limits<double>::infinity();
+}
+
+void ImplicitEulerStepper::refresh_matrix(Network& network, double t_eval, double h) {
+  const auto n = static_cast<Eigen::Index>(solved_.size());
+  matrix_.setIdentity();
+  for (Eigen::Index c = 0; c < n; ++c) {
+    const int j = solved_[static_cast<std::size_t>(c)];
+    probe_ = eval_;
+    // A perturbation of about sqrt(eps) relative, taken as the difference actually stored,
+    // so that the quotient divides by the step the state really made.
+    probe_[j] += 1.5e-8 * std::max(std::abs(eval_[j]), 1e-3);
+    const double delta = probe_[j] - eval_[j];
+    network.derivative(t_eval, probe_, h, f_probe_);
+    ++evaluations_;
+    for (Eigen::Index r = 0; r < n; ++r) {
+      const int i = solved_[static_cast<std::size_t>(r)];
+      matrix_(r, c) -= h * (f_probe_[i] - f_[i]) / delta;
+    }
+  }
+  lu_.compute(matrix_);
+  lu_valid_ = true;
+  lu_h_ = h;
+  ++jacobians_;
+}
+
+void ImplicitEulerStepper::evaluate_iterate(Network& network, double t_end, double h) {
+  merge(iterate_, start_);
+  network.derivative(t_end, eval_, h, f_);
+  ++evaluations_;
+  for (Eigen::Index r = 0; r < residual_.size(); ++r) {
+    const int i = solved_[static_cast<std::size_t>(r)];
+    residual_[r] = iterate_[i] - start_[i] - h * f_[i];
+  }
+}
+
+bool ImplicitEulerStepper::move_into_stuck_band(Network& network, double h) {
+  // Along the last Newton step (from last_eval_ to eval_), the first point where a sliding
+  // element's slip, reversed at the step's end, reaches the middle of its stuck band.
+  double alpha = 1.0;
+  for (int i : friction_elements_) {
+    const Capabilities& c = network.capabilities(i);
+    const Slot s = network.impedance_slot(i);
+    const auto y = start_.segment(s.state_offset, s.state_size);
+    const ConstVecRef before = network.impedance_input(i, last_eval_);
+    if (c.friction->regime(before, y, h) != 2) continue;
+    const Vec3 s0 = c.slip->slip_velocity(before);
+    const Vec3 target = c.friction->unloaded_slip(before, y, h);
+    const Vec3 s1 = network.slip_velocity(i, eval_);
+    const Vec3 d = s1 - s0;
+    if (s0.dot(s1) >= 0.0 || !(d.squaredNorm() > 0.0)) continue;
+    alpha = std::min(alpha, std::clamp((target - s0).dot(d) / d.squaredNorm(), 0.0, 1.0));
+  }
+  if (!(alpha < 1.0)) return false;
+  for (int i : solved_) iterate_[i] = last_eval_[i] + alpha * (iterate_[i] - last_eval_[i]);
+  ++band_moves_;
+  return true;
+}
+
+bool ImplicitEulerStepper::solve(Network& network, double t, double h, Vec& x) {
+  const double t_end = t + h;
+  start_ = x;
+  eval_ = x;
+  // F at the step's start: the first Newton residual, and (for the run loop) the evaluation
+  // that reads the state's own slips.
+  network.derivative(t_end, x, h, f_);
+  ++evaluations_;
+  const auto n = static_cast<Eigen::Index>(solved_.size());
+  for (Eigen::Index r = 0; r < n; ++r) residual_[r] = -h * f_[solved_[static_cast<std::size_t>(r)]];
+  bool fresh = false;  // the matrix was formed during this step
+  if (!lu_valid_ || lu_h_ != h) {
+    refresh_matrix(network, t_end, h);
+    fresh = true;
+  }
+  iterate_ = x;
+  delta_.noalias() = lu_.solve(residual_);
+  double previous = scaled_norm(delta_, start_);
+  int moves = 0;
+  for (int k = 0; k < kMaxIterations; ++k) {
+    last_eval_ = eval_;
+    for (Eigen::Index r = 0; r < n; ++r) iterate_[solved_[static_cast<std::size_t>(r)]] -= delta_[r];
+    evaluate_iterate(network, t_end, h);
+    ++iterations_;
+    // Converged when the next Newton correction is below the tolerance: measured on the
+    // correction, not the residual, since a stiff element's residual carries its stiffness
+    // times the rounding of the position (K = 1e7 N/m turns 3e-17 m into 1e-9 m/s^2).
+    delta_.noalias() = lu_.solve(residual_);
+    double norm = scaled_norm(delta_, start_);
+    if (norm > 0.1 * previous && norm > 1.0 && std::isfinite(norm)) {
+      // Slow contraction. Either the step crossed a friction element's stuck band (Newton
+      // from the sliding side overshoots it, from the other side back: a cycle around the
+      // kinks of the clamp), so the iterate goes to the band's middle first; or the matrix
+      // is from another regime (an element stuck, sliding, touching or lifting off since)
+      // or stale. Either way the matrix is formed anew at the iterate.
+      const bool moved = moves < kMaxBandMoves && move_into_stuck_band(network, h);
+      if (moved) {
+        ++moves;
+        evaluate_iterate(network, t_end, h);
+      }
+      if (moved || !fresh) {
+        refresh_matrix(network, t_end, h);
+        fresh = true;
+        delta_.noalias() = lu_.solve(residual_);
+        norm = scaled_norm(delta_, start_);
+      }
+    }
+    if (norm <= 1.0) {
+      // Every entry moves by h times F at the solution: the positions by the new velocities
+      // and a stuck friction state by the slip velocity there, alike (no drift).
+      x = start_ + h * f_;
+      network.project(x);
+      return true;
+    }
+    if (!std::isfinite(norm)) return false;
+    previous = norm;
+  }
+  return false;
+}
+
+bool ImplicitEulerStepper::split(Network& network, double t, double h, Vec& x, int depth) {
+  if (depth > kMaxSplits) return false;
+  ++splits_;
+  const double half = 0.5 * h;
+  for (int part = 0; part < 2; ++part) {
+    const double at = t + part * half;
+    if (!solve(network, at, half, x) && !split(network, at, half, x, depth + 1)) return false;
+  }
+  return true;
+}
+
+}  // namespace stiction::core
