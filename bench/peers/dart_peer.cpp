@@ -50,7 +50,7 @@ class DartPeer final : public Peer {
     Eigen::Isometry3d below = Eigen::Isometry3d::Identity();
     below.translation() = Eigen::Vector3d(0, 0, -0.5);
     weld->setTransformFromParentBodyNode(below);
-    add_shape(floor, std::make_shared<dynamics::BoxShape>(Eigen::Vector3d(10, 10, 1)), mu);
+    add_shape(floor, std::make_shared<dynamics::BoxShape>(Eigen::Vector3d(100, 100, 1)), mu);
     world_->addSkeleton(ground);
 
     auto skeleton = dynamics::Skeleton::create("body");
