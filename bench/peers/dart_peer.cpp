@@ -1,7 +1,7 @@
 // DART 6.12: its default world (boxed LCP constraint solver with Dantzig, its default contact
 // ERP and CFM) at 1/60 and 1/240 s, with DART's own collision detector instead of the default
-// FCL (see reset()). The ground is a welded 100 x 100 x 1 m
-// box whose top face is z = 0; friction mu and restitution 0 on both shape nodes.
+// FCL (see reset()). The ground is a welded 100 x 100 x 1 m box whose top face is z = 0;
+// friction mu and restitution 0 on both shape nodes.
 // Not <dart/dart.hpp>: Debian's package lacks the ikfast header it includes.
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/constraint/ConstraintSolver.hpp>
