@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
                   describe(kProblems[q], r.errors).c_str(), 1e3 * per_second, 1e6 * per_step,
                   per_second / reference[q]);
       if (csv) {
-        std::fprintf(csv, "%s,%s,%.17g,%s,%.6g,%.6g,%.6g,%.6g,%.6g\n", peer.engine().c_str(),
+        std::fprintf(csv, "\"%s\",\"%s\",%.17g,%s,%.6g,%.6g,%.6g,%.6g,%.6g\n", peer.engine().c_str(),
                      peer.settings().c_str(), peer.dt(), name.c_str(), r.errors.first,
                      r.errors.second, per_second, per_step, per_second / reference[q]);
       }
