@@ -30,10 +30,13 @@ class StictionPeer final : public Peer {
     stepper_ = core::make_stepper(integrator_, scene_.network->state_dim(), dt_);
     x_ = scene_.network->initial_state();
     t_ = 0.0;
+    steps_ = 0;
     body_ = scene_.network->admittance_slot(0).state_offset;
   }
+  // One step of dt_; a stepper that takes shorter steps is advanced until it gets there.
   void step() override {
-    t_ += stepper_->advance(*scene_.network, t_, dt_, x_);
+    const double target = static_cast<double>(++steps_) * dt_;
+    while (t_ < target - 1e-9 * dt_) t_ += stepper_->advance(*scene_.network, t_, target - t_, x_);
   }
   void read(Sample& s) const override {
     // rigid_body state: p, v, q (w x y z), angular velocity in the body frame.
@@ -53,6 +56,7 @@ class StictionPeer final : public Peer {
   std::unique_ptr<core::Stepper> stepper_;
   core::Vec x_;
   double t_ = 0.0;
+  long steps_ = 0;
   int body_ = 0;
 };
 
