@@ -1,8 +1,9 @@
 // Bullet 3.24, its double-precision build (bullet-float64): btDiscreteDynamicsWorld with its
-// defaults (sequential-impulse solver, 10 iterations, split impulse off, sleeping on) at
+// defaults (sequential-impulse solver, 10 iterations, split impulse on, sleeping on) at
 // 1/60 s (its default fixed step) and 1/240 s, one substep per call. Friction: Bullet
 // multiplies the two bodies' coefficients, so the ground has 1 and the body mu; restitution
-// 0. Shapes: btStaticPlaneShape, btSphereShape, btBoxShape (its margin lies inside the box).
+// 0. A third row at 1/60 s turns sleeping off, to show what holds the box when it is awake.
+// Shapes: btStaticPlaneShape, btSphereShape, btBoxShape (its margin lies inside the box).
 #include <btBulletDynamicsCommon.h>
 
 #include <memory>
@@ -30,9 +31,11 @@ struct BulletWorld {
 
 class BulletPeer final : public Peer {
  public:
-  explicit BulletPeer(double dt) : dt_(dt) {}
+  BulletPeer(double dt, bool sleeping) : dt_(dt), sleeping_(sleeping) {}
   std::string engine() const override { return "Bullet 3.24 (double)"; }
-  std::string settings() const override { return "btDiscreteDynamicsWorld defaults"; }
+  std::string settings() const override {
+    return sleeping_ ? "btDiscreteDynamicsWorld defaults" : "defaults, sleeping off";
+  }
   double dt() const override { return dt_; }
 
   void reset(Problem problem) override {
@@ -65,6 +68,7 @@ class BulletPeer final : public Peer {
     info.m_restitution = 0.0;
     w_->body = std::make_unique<btRigidBody>(info);
     if (problem == Problem::sphere) w_->body->setLinearVelocity(btVector3(kSphere.v0, 0, 0));
+    if (!sleeping_) w_->body->setActivationState(DISABLE_DEACTIVATION);
     w_->world.addRigidBody(w_->body.get());
   }
 
@@ -83,13 +87,15 @@ class BulletPeer final : public Peer {
 
  private:
   double dt_;
+  bool sleeping_;
   std::unique_ptr<BulletWorld> w_;
 };
 
 }  // namespace
 
 void add_bullet_peers(Peers& peers) {
-  for (double dt : {1.0 / 60, 1.0 / 240}) peers.push_back(std::make_unique<BulletPeer>(dt));
+  for (double dt : {1.0 / 60, 1.0 / 240}) peers.push_back(std::make_unique<BulletPeer>(dt, true));
+  peers.push_back(std::make_unique<BulletPeer>(1.0 / 60, false));
 }
 
 }  // namespace stiction::peers
