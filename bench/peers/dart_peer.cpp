@@ -21,7 +21,8 @@ using namespace dart;
 
 dynamics::ShapeNode* add_shape(dynamics::BodyNode* body, const dynamics::ShapePtr& shape,
                                double mu) {
-  auto* node = body->createShapeNodeWith<dynamics::CollisionAspect, dynamics::DynamicsAspect>(shape);
+  auto* node =
+      body->createShapeNodeWith<dynamics::CollisionAspect, dynamics::DynamicsAspect>(shape);
   node->getDynamicsAspect()->setFrictionCoeff(mu);
   node->getDynamicsAspect()->setRestitutionCoeff(0.0);
   return node;

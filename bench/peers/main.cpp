@@ -77,7 +77,8 @@ std::string step_text(double dt) {
   const double p = std::log10(dt);
   if (std::abs(p - std::round(p)) < 1e-9) {
     std::snprintf(text, sizeof text, "1e%d s", static_cast<int>(std::round(p)));
-  } else if (std::abs(n - std::round(n)) < 1e-6 && std::abs(1e3 * dt - std::round(1e3 * dt)) > 1e-9) {
+  } else if (std::abs(n - std::round(n)) < 1e-6 &&
+             std::abs(1e3 * dt - std::round(1e3 * dt)) > 1e-9) {
     std::snprintf(text, sizeof text, "1/%d s", static_cast<int>(std::round(n)));
   } else {
     std::snprintf(text, sizeof text, "%g s", dt);
@@ -132,7 +133,8 @@ int main(int argc, char** argv) {
   std::vector<Result> results(peers.size() * kCount);
   for (int round = 0; round < options.rounds; ++round) {
     for (std::size_t p = 0; p < peers.size(); ++p) {
-      for (int q = 0; q < kCount; ++q) run(*peers[p], kProblems[q], options.quick, results[p * kCount + q]);
+      for (int q = 0; q < kCount; ++q)
+        run(*peers[p], kProblems[q], options.quick, results[p * kCount + q]);
     }
   }
 
@@ -145,9 +147,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cannot write %s\n", options.csv.c_str());
     return 1;
   }
-  if (csv) std::fprintf(csv, "engine,settings,dt,problem,error1,error2,cpu_per_simulated_s,cpu_per_step,ratio_to_reference\n");
-  std::printf("\n| engine | settings | step | problem | error | CPU per simulated s | CPU per step | x %s %s |\n",
-              peers[0]->engine().c_str(), peers[0]->settings().c_str());
+  if (csv)
+    std::fprintf(csv,
+                 "engine,settings,dt,problem,error1,error2,cpu_per_simulated_s,cpu_per_step,ratio_"
+                 "to_reference\n");
+  std::printf(
+      "\n| engine | settings | step | problem | error | CPU per simulated s | CPU per step | x %s "
+      "%s |\n",
+      peers[0]->engine().c_str(), peers[0]->settings().c_str());
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (std::size_t p = 0; p < peers.size(); ++p) {
     for (int q = 0; q < kCount; ++q) {
@@ -167,9 +174,10 @@ int main(int argc, char** argv) {
                   describe(kProblems[q], r.errors).c_str(), 1e3 * per_second, 1e6 * per_step,
                   per_second / reference[q]);
       if (csv) {
-        std::fprintf(csv, "\"%s\",\"%s\",%.17g,%s,%.6g,%.6g,%.6g,%.6g,%.6g\n", peer.engine().c_str(),
-                     peer.settings().c_str(), peer.dt(), name.c_str(), r.errors.first,
-                     r.errors.second, per_second, per_step, per_second / reference[q]);
+        std::fprintf(csv, "\"%s\",\"%s\",%.17g,%s,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+                     peer.engine().c_str(), peer.settings().c_str(), peer.dt(), name.c_str(),
+                     r.errors.first, r.errors.second, per_second, per_step,
+                     per_second / reference[q]);
       }
     }
   }

@@ -21,19 +21,23 @@ std::string model_xml(Problem problem, double dt, const char* integrator) {
   const double mu = mu_of(problem);
   char geom[200];
   if (problem == Problem::sphere) {
-    std::snprintf(geom, sizeof geom, "pos='0 0 %.17g'><freejoint/><geom type='sphere' size='%.17g' mass='%.17g'",
+    std::snprintf(geom, sizeof geom,
+                  "pos='0 0 %.17g'><freejoint/><geom type='sphere' size='%.17g' mass='%.17g'",
                   kSphere.radius, kSphere.radius, kSphere.mass);
   } else {
     const double* s = kBox.size;
-    std::snprintf(geom, sizeof geom, "pos='0 0 %.17g'><freejoint/><geom type='box' size='%.17g %.17g %.17g' mass='%.17g'",
-                  s[2] / 2, s[0] / 2, s[1] / 2, s[2] / 2, kBox.mass);
+    std::snprintf(
+        geom, sizeof geom,
+        "pos='0 0 %.17g'><freejoint/><geom type='box' size='%.17g %.17g %.17g' mass='%.17g'",
+        s[2] / 2, s[0] / 2, s[1] / 2, s[2] / 2, kBox.mass);
   }
   char xml[1000];
-  std::snprintf(xml, sizeof xml,
-                "<mujoco><option timestep='%.17g' gravity='%.17g %.17g %.17g' integrator='%s'/>"
-                "<worldbody><geom type='plane' size='0 0 1' condim='3' friction='%.17g 0.005 0.0001'/>"
-                "<body %s condim='3' friction='%.17g 0.005 0.0001'/></body></worldbody></mujoco>",
-                dt, g[0], g[1], g[2], integrator, mu, geom, mu);
+  std::snprintf(
+      xml, sizeof xml,
+      "<mujoco><option timestep='%.17g' gravity='%.17g %.17g %.17g' integrator='%s'/>"
+      "<worldbody><geom type='plane' size='0 0 1' condim='3' friction='%.17g 0.005 0.0001'/>"
+      "<body %s condim='3' friction='%.17g 0.005 0.0001'/></body></worldbody></mujoco>",
+      dt, g[0], g[1], g[2], integrator, mu, geom, mu);
   return xml;
 }
 
@@ -91,7 +95,8 @@ class MujocoPeer final : public Peer {
 
 void add_mujoco_peers(Peers& peers) {
   for (const char* integrator : {"Euler", "implicit"}) {
-    for (double dt : {0.002, 1.0 / 60}) peers.push_back(std::make_unique<MujocoPeer>(integrator, dt));
+    for (double dt : {0.002, 1.0 / 60})
+      peers.push_back(std::make_unique<MujocoPeer>(integrator, dt));
   }
 }
 

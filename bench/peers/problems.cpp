@@ -43,9 +43,12 @@ double stick_time(const std::vector<Sample>& samples) {
 
 std::string problem_name(Problem problem) {
   switch (problem) {
-    case Problem::sphere: return "sphere";
-    case Problem::slope_hold: return "slope_hold";
-    case Problem::slope_slide: return "slope_slide";
+    case Problem::sphere:
+      return "sphere";
+    case Problem::slope_hold:
+      return "slope_hold";
+    case Problem::slope_slide:
+      return "slope_slide";
   }
   return "?";
 }
@@ -61,9 +64,12 @@ void gravity_of(Problem problem, double g[3]) {
 
 double mu_of(Problem problem) {
   switch (problem) {
-    case Problem::sphere: return kSphere.mu;
-    case Problem::slope_hold: return 0.5;
-    case Problem::slope_slide: return 0.2;
+    case Problem::sphere:
+      return kSphere.mu;
+    case Problem::slope_hold:
+      return 0.5;
+    case Problem::slope_slide:
+      return 0.2;
   }
   return 0.0;
 }
@@ -76,9 +82,12 @@ double slide_acceleration() {
 
 Plan plan_of(Problem problem, bool quick) {
   switch (problem) {
-    case Problem::sphere: return {quick ? 0.7 : 1.0, 0.0};
-    case Problem::slope_hold: return {quick ? 2.0 : 100.0, 0.1};
-    case Problem::slope_slide: return {quick ? 1.0 : 3.0, 0.01};
+    case Problem::sphere:
+      return {quick ? 0.7 : 1.0, 0.0};
+    case Problem::slope_hold:
+      return {quick ? 2.0 : 100.0, 0.1};
+    case Problem::slope_slide:
+      return {quick ? 1.0 : 3.0, 0.01};
   }
   return {0.0, 0.0};
 }
@@ -115,8 +124,7 @@ std::string describe(Problem problem, const Errors& e) {
                     e.second);
       break;
     case Problem::slope_hold:
-      std::snprintf(text, sizeof text, "creep %.2g m, after settling %.2g m", e.first,
-                    e.second);
+      std::snprintf(text, sizeof text, "creep %.2g m, after settling %.2g m", e.first, e.second);
       break;
     case Problem::slope_slide:
       std::snprintf(text, sizeof text, "acceleration %+.2g rel", e.first);

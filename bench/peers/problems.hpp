@@ -25,8 +25,7 @@
 namespace stiction::peers {
 
 enum class Problem { sphere, slope_hold, slope_slide };
-inline constexpr Problem kProblems[] = {Problem::sphere, Problem::slope_hold,
-                                        Problem::slope_slide};
+inline constexpr Problem kProblems[] = {Problem::sphere, Problem::slope_hold, Problem::slope_slide};
 std::string problem_name(Problem problem);
 
 inline constexpr double kG = 9.81;

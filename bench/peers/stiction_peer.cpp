@@ -3,7 +3,6 @@
 // paper's RK4 and symplectic Euler at 1e-4 s (explicit: the stiff contacts bound the step),
 // and the implicit integrator at 1e-3, 1/240 and 1/60 s where this build has it.
 #include <Eigen/Geometry>
-
 #include <cstdio>
 #include <stdexcept>
 
