@@ -1,8 +1,16 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages stiction needs (only those missing), then configures and
-# builds it in ./build (Release). Usage: scripts/bootstrap.sh [extra cmake args...]
+# builds it in ./build (Release). Usage: scripts/bootstrap.sh [--peers] [extra cmake args...]
+# --peers: also installs the peer engines bench/peers measures stiction against (ODE, Bullet,
+# MuJoCo, DART) and builds bench_peers with them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+peers=0
+cmake_args=()
+for arg in "$@"; do
+  if [ "$arg" = "--peers" ]; then peers=1; else cmake_args+=("$arg"); fi
+done
 
 packages=(
   build-essential cmake ninja-build pkg-config git
@@ -17,6 +25,10 @@ packages=(
   clang-14 libclang-rt-14-dev
   liburdfdom-dev libtinyxml-dev libassimp-dev
 )
+if [ "$peers" -eq 1 ]; then
+  packages+=(libode-dev libbullet-dev libmujoco-dev libdart-dev)
+  cmake_args+=(-DSTICTION_BUILD_BENCH=ON -DSTICTION_PEERS=ON)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -29,5 +41,5 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
 fi
 
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >&2
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${cmake_args[@]+"${cmake_args[@]}"} >&2
 cmake --build build -j"$(nproc)" >&2
