@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""Every bundled scene run with `--integrator implicit` at a step 10 to 1000 times the
+scenes' own, against rk4 at 1e-5 s: the events of every element (kind and time, paired in
+order), the largest difference of the final state, the drift of every stuck friction anchor
+(position minus friction state over each stick interval) and the CPU time of each run.
+
+    bench/implicit_vs_rk4.py [--stiction build/src/app/stiction] [--dts 1e-3,1e-4] [SCENE...]
+
+Prints one Markdown table (docs/study.md quotes it). Runs `stiction run` with
+--no-plots --no-video --accuracy off --force-step into a temporary directory.
+"""
+import argparse
+import csv
+import json
+import math
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+
+def run(stiction, scene, integrator, dt, out):
+    cmd = [stiction, "run", str(scene), "--integrator", integrator, "--dt", repr(dt),
+           "--no-plots", "--no-video", "--accuracy", "off", "--force-step", "--quiet",
+           "--out", str(out)]
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    summary = out / "summary.json"
+    if not summary.exists():
+        return None, done.returncode, done.stderr.strip().splitlines()[-1:] or [""]
+    return json.loads(summary.read_text()), done.returncode, []
+
+
+def events_of(summary):
+    found = {}
+    for element, entry in (summary.get("events") or {}).items():
+        found[element] = [(e["kind"], e["time"]) for e in entry.get("events", [])]
+    return found
+
+
+def compare_events(reference, other):
+    """Largest time difference of paired events, and how many do not pair (kind or count)."""
+    worst, unpaired = 0.0, 0
+    for element, ref in reference.items():
+        got = other.get(element, [])
+        unpaired += abs(len(ref) - len(got))
+        for (k1, t1), (k2, t2) in zip(ref, got):
+            if k1 != k2:
+                unpaired += 1
+            else:
+                worst = max(worst, abs(t1 - t2))
+    return worst, unpaired
+
+
+def final_difference(reference, other):
+    worst, where = 0.0, ""
+    for name, value in reference["final"].items():
+        v = other["final"].get(name)
+        if not isinstance(value, (int, float)) or not isinstance(v, (int, float)):
+            continue
+        if name.endswith(".e") or ".e." in name or name == "t":
+            continue  # friction states: spring offsets of size F/K, compared as drift below
+        d = abs(v - value)
+        if d > worst:
+            worst, where = d, name
+    return worst, where
+
+
+def anchor_drift(out, summary):
+    """Largest change of (joint angle - e) over a stick interval of a 1-D friction element
+    whose angle the CSV has, from the rows of the run (0 where the scene has none)."""
+    path = out / "trajectory.csv"
+    if not path.exists():
+        return float("nan")
+    with path.open() as f:
+        rows = list(csv.reader(f))
+    header, data = rows[0], rows[1:]
+    index = {name: i for i, name in enumerate(header)}
+    worst = 0.0
+    for element, entry in (summary.get("events") or {}).items():
+        e_col = index.get(element + ".e")
+        theta_col = index.get(element + ".theta")
+        if e_col is None or theta_col is None:
+            continue
+        for interval in entry.get("intervals", []):
+            if interval.get("kind") != "stick" or interval["end"] - interval["start"] < 0.05:
+                continue
+            inside = [r for r in data
+                      if interval["start"] + 0.01 <= float(r[0]) <= interval["end"] - 0.01]
+            if len(inside) < 2:
+                continue
+            anchors = [float(r[theta_col]) - float(r[e_col]) for r in inside]
+            worst = max(worst, max(anchors) - min(anchors))
+    return worst
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--stiction", default=str(ROOT / "build/src/app/stiction"))
+    parser.add_argument("--dts", default="1e-3")
+    parser.add_argument("scenes", nargs="*")
+    args = parser.parse_args()
+    scenes = [pathlib.Path(s) for s in args.scenes] or sorted((ROOT / "scenes").glob("*.toml"))
+    dts = [float(d) for d in args.dts.split(",")]
+    print("| scene | run | CPU s | events paired, worst time difference | unpaired events "
+          "| largest final difference | anchor drift while stuck |")
+    print("|---|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = pathlib.Path(tmp)
+        for scene in scenes:
+            ref, code, err = run(args.stiction, scene, "rk4", 1e-5, tmp / (scene.stem + "_rk4"))
+            if ref is None:
+                print(f"| {scene.stem} | rk4 1e-5 | | exit {code}: {err[0]} | | | |")
+                continue
+            print(f"| {scene.stem} | rk4 1e-5 ({ref['status']}) | {ref['wall_seconds']:.3g} | "
+                  f"(reference) | | | {anchor_drift(tmp / (scene.stem + '_rk4'), ref):.2g} |")
+            reference_events = events_of(ref)
+            for dt in dts:
+                out = tmp / f"{scene.stem}_implicit_{dt}"
+                got, code, err = run(args.stiction, scene, "implicit", dt, out)
+                if got is None:
+                    print(f"| {scene.stem} | implicit {dt:g} | | exit {code}: {err[0]} | | | |")
+                    continue
+                worst, unpaired = compare_events(reference_events, events_of(got))
+                final, where = final_difference(ref, got)
+                print(f"| {scene.stem} | implicit {dt:g} ({got['status']}) | "
+                      f"{got['wall_seconds']:.3g} | {worst:.3g} s | {unpaired} | "
+                      f"{final:.3g} ({where}) | {anchor_drift(out, got):.2g} |")
+            sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
