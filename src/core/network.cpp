@@ -190,6 +190,7 @@ void Network::finalize() {
                                  admittance_slots_[j].input_offset});
   }
   coupling_count_ = static_cast<int>(couplings_.size());
+  admittance_count_ = static_cast<int>(admittance_calls_.size());
   input_count_ = input;
   finalized_ = true;
 }
@@ -251,11 +252,12 @@ void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_
 }
 
 void Network::evaluate_admittances(const double* x, double* x_dot) {
-  // (13g) admittances.
+  // (13g) admittances. Inline into derivative_at(): one call less on every stage.
   const double* u_hat = u_hat_.data();
-  for (const AdmittanceCall& call : admittance_calls_) {
-    call.admittance->derivative_at(x + call.state_offset, u_hat + call.input_offset,
-                                   x_dot + call.state_offset);
+  const AdmittanceCall* const end = admittance_calls_.data() + admittance_count_;
+  for (const AdmittanceCall* call = admittance_calls_.data(); call != end; ++call) {
+    call->admittance->derivative_at(x + call->state_offset, u_hat + call->input_offset,
+                                    x_dot + call->state_offset);
   }
 }
 
@@ -265,7 +267,8 @@ void Network::derivative_at(double t, const double* x, double tau, double* x_dot
   active_ = plain_.data();
   double* u_hat = u_hat_.data();
   for (int k = 0; k < input_count_; ++k) u_hat[k] = 0.0;
-  for (int i = 0; i < coupling_count_; ++i) couplings[i]->exchange(t, x, tau, x_dot, u_hat);
+  Coupling* const* const end = couplings + coupling_count_;
+  for (; couplings != end; ++couplings) (*couplings)->exchange(t, x, tau, x_dot, u_hat);
   evaluate_admittances(x, x_dot);
 }
 

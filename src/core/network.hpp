@@ -114,7 +114,7 @@ class Network {
   // is held at its value there (derivative_friction_held).
   void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot,
                            const Vec* friction_reference = nullptr);
-  void evaluate_admittances(const double* x, double* x_dot);
+  [[gnu::always_inline]] inline void evaluate_admittances(const double* x, double* x_dot);
 
   std::vector<std::unique_ptr<Admittance>> admittances_;
   std::vector<std::unique_ptr<Impedance>> impedances_;
@@ -133,6 +133,7 @@ class Network {
   };
   std::vector<AdmittanceCall> admittance_calls_;
   int coupling_count_ = 0;
+  int admittance_count_ = 0;
   int input_count_ = 0;
   std::vector<Slot> impedance_slots_;  // state slice; input_offset/size index x_hat, u
   std::vector<int> output_offsets_;    // where each impedance's u lives in u_
