@@ -117,10 +117,10 @@ void RungeKuttaStepper::step(Network& network, double t, double T, Vec& x) {
     const double t_stage = t + tableau_.c[r] * T;
     const double tau = T * tableau_.d[r];
     if (stage_terms_[r].empty()) {
-      network.derivative(t_stage, x, tau, xi_[r]);  // no copy for a stage at x itself
+      network.derivative_at(t_stage, x.data(), tau, xi_[r].data());  // no copy at x itself
     } else {
       combine(x, stage_terms_[r], T, stage_x_);
-      network.derivative(t_stage, stage_x_, tau, xi_[r]);
+      network.derivative_at(t_stage, stage_x_.data(), tau, xi_[r].data());
     }
   }
   evaluations_ += s;

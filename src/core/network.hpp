@@ -35,7 +35,13 @@ class Network {
   std::vector<LayoutEntry> layout() const;
 
   // x_dot = F(x, t; tau): (13b)-(13g) with (22).
-  void derivative(double t, ConstVecRef x, double tau, VecRef x_dot);
+  void derivative(double t, ConstVecRef x, double tau, VecRef x_dot) {
+    derivative_at(t, x.data(), tau, x_dot.data());
+  }
+  // The same on plain pointers to whole state vectors (state_dim() values each), for the
+  // steppers' hot loops: a ConstVecRef made from a Vec is an object on the caller's stack
+  // with a destructor to run, at every stage.
+  void derivative_at(double t, const double* x, double tau, double* x_dot);
   // F(x, t; tau) with the friction of every ClampedFriction element held at what it is at
   // `reference`: for stability analysis only.
   void derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
@@ -108,7 +114,7 @@ class Network {
   // is held at its value there (derivative_friction_held).
   void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot,
                            const Vec* friction_reference = nullptr);
-  void evaluate_admittances(ConstVecRef x, VecRef x_dot);
+  [[gnu::always_inline]] inline void evaluate_admittances(const double* x, double* x_dot);
 
   std::vector<std::unique_ptr<Admittance>> admittances_;
   std::vector<std::unique_ptr<Impedance>> impedances_;
@@ -117,6 +123,18 @@ class Network {
   std::vector<Capabilities> capabilities_;            // one per impedance, found by finalize()
   std::vector<int> sources_;                          // the impedances that are Sources
   std::vector<Slot> admittance_slots_;
+  // What derivative_at() walks, flat: each admittance with its state and input offsets, and
+  // the counts held as plain ints (a vector's size is read back from memory after every
+  // virtual call, which may have changed it as far as the compiler knows).
+  struct AdmittanceCall {
+    const Admittance* admittance;
+    int state_offset;
+    int input_offset;
+  };
+  std::vector<AdmittanceCall> admittance_calls_;
+  int coupling_count_ = 0;
+  int admittance_count_ = 0;
+  int input_count_ = 0;
   std::vector<Slot> impedance_slots_;  // state slice; input_offset/size index x_hat, u
   std::vector<int> output_offsets_;    // where each impedance's u lives in u_
   std::vector<int> output_sizes_;

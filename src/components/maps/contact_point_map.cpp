@@ -24,7 +24,11 @@ class KikuuweContactCoupling final : public core::Coupling {
         motion_out_(motion_out),
         state_out_(state_out) {}
 
-  void exchange(double t, const double* x, double tau, double* x_dot, double* u_hat) override {
+  // Flattened: every call below is inlined, the contact law included (left to itself the
+  // compiler kept KikuuweContact::evaluate out of line, with x_hat, u and e's rate passed
+  // through Eigen::Ref objects on the stack).
+  [[gnu::flatten]] void exchange(double t, const double* x, double tau, double* x_dot,
+                                 double* u_hat) override {
     Eigen::Matrix<double, 6, 1> x_hat;
     Eigen::Vector3d u;
     const core::BodyMotion at = map_.motion_of(body_, x, x_hat);
