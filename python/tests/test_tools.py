@@ -202,7 +202,7 @@ def test_check_equals_check_json_for_a_generated_scene(tmp_path):
     assert stiction.check(scene) == expected  # from the text, named as the file
     assert stiction.check(stiction.Scene(path)) == expected
     limits = expected["step_limits"]
-    assert set(limits) == {"euler", "symplectic_euler", "heun", "rk4"}
+    assert set(limits) == {"euler", "symplectic_euler", "heun", "rk4", "implicit"}
     assert limits["rk4"]["recommended_step"] > 0.0
 
 
