@@ -447,6 +447,10 @@ double Network::energy(ConstVecRef x) {
     const Slot& s = admittance_slots_[j];
     total += admittances_[j]->energy(x.segment(s.state_offset, s.state_size));
   }
+  return add_stored_energy(x, total);
+}
+
+double Network::add_stored_energy(ConstVecRef x, double total) {
   for (std::size_t i = 0; i < impedances_.size(); ++i) {
     const EnergyStore* store = capabilities_[i].energy;
     if (store == nullptr) continue;  // holds none

@@ -94,6 +94,10 @@ class Network {
   // Energy of the admittances plus what the impedances' springs hold (NaN if an
   // admittance does not define its energy).
   double energy(ConstVecRef x);
+  // The impedances' stored energies at x added one by one to `total`, in the order energy()
+  // adds them to the admittances' sum (so that a caller summing the admittances itself, as
+  // the run's energy monitor does, gets energy(x) to the bit).
+  double add_stored_energy(ConstVecRef x, double total);
 
   const Admittance* find_admittance(const std::string& name) const;
   const std::vector<std::unique_ptr<Admittance>>& admittances() const { return admittances_; }
