@@ -138,10 +138,10 @@ bool ImplicitEulerStepper::solve(Network& network, double t, double h, Vec& x) {
   ++evaluations_;
   const auto n = static_cast<Eigen::Index>(solved_.size());
   for (Eigen::Index r = 0; r < n; ++r) residual_[r] = -h * f_[solved_[static_cast<std::size_t>(r)]];
-  bool fresh = false;  // the matrix was formed during this step
+  int formed = 0;  // matrices formed during this step
   if (!lu_valid_ || lu_h_ != h) {
     refresh_matrix(network, t_end, h);
-    fresh = true;
+    ++formed;
   }
   iterate_ = x;
   delta_.noalias() = lu_.solve(residual_);
@@ -162,15 +162,17 @@ bool ImplicitEulerStepper::solve(Network& network, double t, double h, Vec& x) {
       // from the sliding side overshoots it, from the other side back: a cycle around the
       // kinks of the clamp), so the iterate goes to the band's middle first; or the matrix
       // is from another regime (an element stuck, sliding, touching or lifting off since)
-      // or stale. Either way the matrix is formed anew at the iterate.
+      // or stale (a contact that a step opens or closes: the iteration cycles between the
+      // two sides of its kink with a matrix from either). Either way the matrix is formed
+      // anew at the iterate.
       const bool moved = moves < kMaxBandMoves && move_into_stuck_band(network, h);
       if (moved) {
         ++moves;
         evaluate_iterate(network, t_end, h);
       }
-      if (moved || !fresh) {
+      if (moved || formed < kMaxMatricesPerStep) {
         refresh_matrix(network, t_end, h);
-        fresh = true;
+        ++formed;
         delta_.noalias() = lu_.solve(residual_);
         norm = scaled_norm(delta_, start_);
       }

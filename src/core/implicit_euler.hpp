@@ -16,8 +16,8 @@
 // it), each later one at the current iterate. The iteration matrix I - h dF/dx* is built
 // from forward differences over the solved entries only (a contact's friction state is not
 // one), LU-factored, and reused across iterations and steps until the iteration contracts
-// too slowly (a change of regime: an element sticks, slides, touches or lifts off) or the
-// step size changes. Once the residual is below the tolerance the state is set to
+// too slowly (a change of regime: an element sticks, slides, touches or lifts off; at most
+// kMaxMatricesPerStep times a step) or the step size changes. Once the residual is below the tolerance the state is set to
 // x(k) + h F at the last iterate, so positions and friction states move by the same
 // velocities. A step whose iteration does not converge is split in two (at most
 // kMaxSplits deep), then reported as an instability.
@@ -51,7 +51,8 @@ class ImplicitEulerStepper final : public Stepper {
  private:
   static constexpr int kMaxIterations = 8;
   static constexpr int kMaxSplits = 6;
-  static constexpr int kMaxBandMoves = 2;  // per step
+  static constexpr int kMaxBandMoves = 2;        // per step
+  static constexpr int kMaxMatricesPerStep = 4;  // formed anew where the iteration stalls
   // Residual tolerance of entry i: kRelative |x_i| + kAbsolute.
   static constexpr double kRelative = 1e-12;
   static constexpr double kAbsolute = 1e-13;
