@@ -42,8 +42,77 @@ void ImplicitEulerStepper::prepare(Network& network) {
   const auto n = static_cast<Eigen::Index>(solved_.size());
   residual_ = Vec::Zero(n);
   delta_ = Vec::Zero(n);
-  matrix_ = Eigen::MatrixXd::Identity(n, n);
+  probe_delta_ = Vec::Zero(n);
+  groups_ = coupled_groups(network, solved_);
+  for (const auto& g : groups_) {
+    const auto m = static_cast<Eigen::Index>(g.size());
+    blocks_.push_back(Eigen::MatrixXd::Identity(m, m));
+    block_lus_.emplace_back(m);
+    block_rhs_.push_back(Vec::Zero(m));
+  }
   prepared_ = true;
+}
+
+std::vector<std::vector<int>> ImplicitEulerStepper::coupled_groups(const Network& network,
+                                                                   const std::vector<int>& solved) {
+  // Union-find over the state entries: a body's entries belong together, and an element
+  // joins the bodies its map moves and its own state.
+  std::vector<int> parent(static_cast<std::size_t>(network.state_dim()));
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  const auto root = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) {
+      i = parent[static_cast<std::size_t>(i)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    }
+    return i;
+  };
+  const auto join = [&](int a, int b) { parent[static_cast<std::size_t>(root(a))] = root(b); };
+  const auto join_slot = [&](const Slot& s, int anchor) {
+    for (int k = 0; k < s.state_size; ++k) join(s.state_offset + k, anchor);
+  };
+  const auto& admittances = network.admittances();
+  for (int j = 0; j < static_cast<int>(admittances.size()); ++j) {
+    const Slot s = network.admittance_slot(j);
+    if (s.state_size > 0) join_slot(s, s.state_offset);
+  }
+  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
+    int anchor = -1;
+    for (const Admittance* moved : network.map_of(i).admittances()) {
+      for (int j = 0; j < static_cast<int>(admittances.size()); ++j) {
+        const Slot s = network.admittance_slot(j);
+        if (admittances[static_cast<std::size_t>(j)].get() != moved || s.state_size == 0) continue;
+        if (anchor < 0) anchor = s.state_offset;
+        join(s.state_offset, anchor);
+      }
+    }
+    const Slot own = network.impedance_slot(i);
+    if (own.state_size > 0) join_slot(own, anchor >= 0 ? anchor : own.state_offset);
+  }
+  // Groups of positions in `solved` (the order of the unknowns), in order of first entry.
+  std::vector<std::vector<int>> groups;
+  std::vector<int> group_of_root(parent.size(), -1);
+  for (int r = 0; r < static_cast<int>(solved.size()); ++r) {
+    const auto top = static_cast<std::size_t>(root(solved[static_cast<std::size_t>(r)]));
+    if (group_of_root[top] < 0) {
+      group_of_root[top] = static_cast<int>(groups.size());
+      groups.emplace_back();
+    }
+    groups[static_cast<std::size_t>(group_of_root[top])].push_back(r);
+  }
+  return groups;
+}
+
+void ImplicitEulerStepper::solve_linear() {
+  if (groups_.size() == 1) {  // one coupled system: its unknowns in their own order
+    delta_.noalias() = block_lus_[0].solve(residual_);
+    return;
+  }
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    Vec& part = block_rhs_[g];
+    part = residual_(groups_[g]);
+    part = block_lus_[g].solve(part);
+    delta_(groups_[g]) = part;
+  }
 }
 
 double ImplicitEulerStepper::advance(Network& network, double t, double limit, Vec& x) {
@@ -73,23 +142,36 @@ double ImplicitEulerStepper::scaled_norm(const Vec& residual, const Vec& x) cons
 }
 
 void ImplicitEulerStepper::refresh_matrix(Network& network, double t_eval, double h) {
-  const auto n = static_cast<Eigen::Index>(solved_.size());
-  matrix_.setIdentity();
-  for (Eigen::Index c = 0; c < n; ++c) {
-    const int j = solved_[static_cast<std::size_t>(c)];
+  // Entries of different groups never share a row (coupled_groups), so one evaluation
+  // perturbs the k-th entry of every group at once and each group reads its own rows
+  // (Curtis, Powell and Reid): as many evaluations as the largest group has entries.
+  std::size_t widest = 0;
+  for (const auto& g : groups_) widest = std::max(widest, g.size());
+  for (auto& block : blocks_) block.setIdentity();
+  for (std::size_t k = 0; k < widest; ++k) {
     probe_ = eval_;
-    // A perturbation of about sqrt(eps) relative, taken as the difference actually stored,
-    // so that the quotient divides by the step the state really made.
-    probe_[j] += 1.5e-8 * std::max(std::abs(eval_[j]), 1e-3);
-    const double delta = probe_[j] - eval_[j];
+    for (const auto& g : groups_) {
+      if (k >= g.size()) continue;
+      const int j = solved_[static_cast<std::size_t>(g[k])];
+      // About sqrt(eps) relative, taken as the difference actually stored, so that the
+      // quotient divides by the step the state really made.
+      probe_[j] += 1.5e-8 * std::max(std::abs(eval_[j]), 1e-3);
+      probe_delta_[g[k]] = probe_[j] - eval_[j];
+    }
     network.derivative(t_eval, probe_, h, f_probe_);
     ++evaluations_;
-    for (Eigen::Index r = 0; r < n; ++r) {
-      const int i = solved_[static_cast<std::size_t>(r)];
-      matrix_(r, c) -= h * (f_probe_[i] - f_[i]) / delta;
+    for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
+      const auto& g = groups_[gi];
+      if (k >= g.size()) continue;
+      const double delta = probe_delta_[g[k]];
+      for (std::size_t r = 0; r < g.size(); ++r) {
+        const int i = solved_[static_cast<std::size_t>(g[r])];
+        blocks_[gi](static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k)) -=
+            h * (f_probe_[i] - f_[i]) / delta;
+      }
     }
   }
-  lu_.compute(matrix_);
+  for (std::size_t g = 0; g < groups_.size(); ++g) block_lus_[g].compute(blocks_[g]);
   lu_valid_ = true;
   lu_h_ = h;
   ++jacobians_;
@@ -144,7 +226,7 @@ bool ImplicitEulerStepper::solve(Network& network, double t, double h, Vec& x) {
     ++formed;
   }
   iterate_ = x;
-  delta_.noalias() = lu_.solve(residual_);
+  solve_linear();
   double previous = scaled_norm(delta_, start_);
   int moves = 0;
   for (int k = 0; k < kMaxIterations; ++k) {
@@ -155,7 +237,7 @@ bool ImplicitEulerStepper::solve(Network& network, double t, double h, Vec& x) {
     // Converged when the next Newton correction is below the tolerance: measured on the
     // correction, not the residual, since a stiff element's residual carries its stiffness
     // times the rounding of the position (K = 1e7 N/m turns 3e-17 m into 1e-9 m/s^2).
-    delta_.noalias() = lu_.solve(residual_);
+    solve_linear();
     double norm = scaled_norm(delta_, start_);
     if (norm > 0.1 * previous && norm > 1.0 && std::isfinite(norm)) {
       // Slow contraction. Either the step crossed a friction element's stuck band (Newton
@@ -173,7 +255,7 @@ bool ImplicitEulerStepper::solve(Network& network, double t, double h, Vec& x) {
       if (moved || formed < kMaxMatricesPerStep) {
         refresh_matrix(network, t_end, h);
         ++formed;
-        delta_.noalias() = lu_.solve(residual_);
+        solve_linear();
         norm = scaled_norm(delta_, start_);
       }
     }

@@ -15,7 +15,9 @@
 // Newton: the first evaluation is at x(k) itself (the run loop reads the state's slips from
 // it), each later one at the current iterate. The iteration matrix I - h dF/dx* is built
 // from forward differences over the solved entries only (a contact's friction state is not
-// one), LU-factored, and reused across iterations and steps until the iteration contracts
+// one), block diagonal over the groups of entries that no element couples (the network's
+// coupling graph: separate bodies; one evaluation perturbs an entry of every group),
+// LU-factored block by block, and reused across iterations and steps until the iteration contracts
 // too slowly (a change of regime: an element sticks, slides, touches or lifts off; at most
 // kMaxMatricesPerStep times a step) or the step size changes. Once the residual is below the tolerance the state is set to
 // x(k) + h F at the last iterate, so positions and friction states move by the same
@@ -47,6 +49,9 @@ class ImplicitEulerStepper final : public Stepper {
   long iterations() const { return iterations_; }
   long splits() const { return splits_; }
   long band_moves() const { return band_moves_; }
+  // Blocks of the iteration matrix (groups of unknowns no element couples); 0 before the
+  // first step.
+  std::size_t blocks() const { return groups_.size(); }
 
  private:
   static constexpr int kMaxIterations = 8;
@@ -71,6 +76,11 @@ class ImplicitEulerStepper final : public Stepper {
   bool move_into_stuck_band(Network& network, double h);
   // x* from the solved entries of `iterate` and the rest of `start`.
   void merge(const Vec& iterate, const Vec& start);
+  // The unknowns (positions in `solved`) in groups that no element couples.
+  static std::vector<std::vector<int>> coupled_groups(const Network& network,
+                                                      const std::vector<int>& solved);
+  // delta_ = the matrix's inverse applied to residual_, block by block.
+  void solve_linear();
   // Forms I - h dF/dx* over the solved entries at x* (eval_), with F there in f_, and
   // factors it.
   void refresh_matrix(Network& network, double t_eval, double h);
@@ -82,8 +92,13 @@ class ImplicitEulerStepper final : public Stepper {
   std::vector<int> solved_;             // indices of the solved entries
   std::vector<int> friction_elements_;  // impedances with clamped friction and a slip
   Vec start_, iterate_, eval_, f_, probe_, f_probe_, last_eval_, residual_, delta_;
-  Eigen::MatrixXd matrix_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  // The iteration matrix is block diagonal over groups of unknowns that no element couples
+  // (separate bodies): one dense block and LU per group, positions into solved_.
+  std::vector<std::vector<int>> groups_;
+  std::vector<Eigen::MatrixXd> blocks_;
+  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> block_lus_;
+  std::vector<Vec> block_rhs_;  // scratch per block
+  Vec probe_delta_;
   bool lu_valid_ = false;
   double lu_h_ = 0.0;
   long jacobians_ = 0, iterations_ = 0, splits_ = 0, band_moves_ = 0;

@@ -134,6 +134,40 @@ TEST_CASE("implicit: generated boxes held on slopes do not creep once settled; s
   }
 }
 
+TEST_CASE("implicit: a dozen separate spheres in one scene solve as a dozen blocks, and each "
+          "sticks on time",
+          "[implicit]") {
+  std::mt19937 rng(12);
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  const int count = 12;
+  std::ostringstream text;
+  text.precision(17);
+  text << "name = \"spheres\"\ngravity = [0.0, 0.0, -9.81]\n[simulation]\nintegrator = "
+          "\"implicit\"\ndt = 0.001\nduration = 1.5\n";
+  std::vector<double> expected;
+  for (int k = 0; k < count; ++k) {
+    const double radius = uniform(0.02, 0.3), v0 = uniform(0.5, 2.0), mu = uniform(0.2, 0.8);
+    expected.push_back(v0 / ((1.0 + 2.5) * mu * 9.81));  // solid: J = 2/5 M R^2
+    text << "[bodies.s" << k << "]\ntype = \"rigid_body\"\nmass = " << uniform(0.1, 3.0)
+         << "\nshape = \"sphere\"\nradius = " << radius << "\nposition = [" << 2.0 * k
+         << ", 0.0, " << radius << "]\nvelocity = [" << v0 * std::cos(k) << ", " << v0 * std::sin(k)
+         << ", 0.0]\n[impedances.g" << k << "]\ntype = \"kikuuwe_contact\"\nbody = \"s" << k
+         << "\"\nstiffness = 1e7\ndamping = 10.0\nmu = " << mu << "\nsettle = true\n";
+  }
+  auto scene = scene::load_scene(scene::SceneSource::from_text(text.str(), "spheres.toml"));
+  core::ImplicitEulerStepper stepper(scene.network->state_dim(), 1e-3);
+  core::Vec x = scene.network->initial_state();
+  stepper.advance(*scene.network, 0.0, 1.0, x);
+  CHECK(stepper.blocks() == static_cast<std::size_t>(count));
+  const core::RunResult r = core::simulate(*scene.network, scene.run);
+  REQUIRE_FALSE(r.instability);
+  for (const auto& history : r.slip_events) {
+    const int k = std::stoi(history.component.substr(1));
+    INFO(history.component);
+    CHECK(history.monitor.stick_time() == Approx(expected[static_cast<std::size_t>(k)]).epsilon(1e-6));
+  }
+}
+
 TEST_CASE("implicit: the step analysis finds no limit on the sphere, where rk4 has one",
           "[implicit]") {
   SphereCase c;
