@@ -101,7 +101,7 @@ TEST_CASE("run box_push_tip: the box tips at m g a / (h k), printed and in the s
   fs::remove_all(dir);
 }
 
-TEST_CASE("run box_push_slide: the box slides at mu m g / k; its creeping corners are stuck") {
+TEST_CASE("run box_push_slide: the box slides at mu m g / k, its creeping corners are stuck") {
   // mu = 0.5, m = 1 kg, k = 2 N/s: t = 2.45 s. The back corners reach their own friction
   // limit from 1.96 s on and creep at about 1 um/s, below the 1 mm/s threshold: stuck.
   const double expected = 0.5 * 1.0 * 9.8 / 2.0;
@@ -126,7 +126,7 @@ TEST_CASE("run box_push_slide: the box slides at mu m g / k; its creeping corner
   fs::remove_all(dir);
 }
 
-TEST_CASE("run: a contact sliding the whole run slides throughout; times with 7 digits") {
+TEST_CASE("run: a contact sliding the whole run slides throughout, times with 7 digits") {
   // A box launched at 1 m/s on a floor with mu = 0.2 stops at 1 / (0.2 g) = 0.5102 s; run
   // for 0.4 s it slides throughout, run for 0.8 s it sticks at that time.
   const fs::path dir = scratch_dir("stiction_run_events_", "launched");

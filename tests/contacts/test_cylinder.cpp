@@ -265,7 +265,7 @@ double axis_turn(const Case& c, double v0, double tilt, double roll, double dura
 // A weak check (see the report): the axis of a tilted rolling disc turns about the vertical,
 // mirror-symmetrically (a lean of -t turns it as much the other way), and an upright disc
 // runs straight. The sign relative to the lean is not asserted.
-TEST_CASE("a tilted rolling coin's axis turns about the vertical, mirror-symmetrically; an "
+TEST_CASE("a tilted rolling coin's axis turns about the vertical, mirror-symmetrically, an "
           "upright one runs straight",
           "[contacts][cylinder]") {
   std::mt19937 rng(2305);

@@ -102,7 +102,7 @@ TEST_CASE("slip monitor: passing through zero between two sliding steps is not a
   CHECK(m.events().empty());
 }
 
-TEST_CASE("slip monitor: no stick or slip while open; lift-off and touch-down") {
+TEST_CASE("slip monitor: no stick or slip while open, lift-off and touch-down") {
   SlipMonitor m(1e-3, 1e-4);
   // Open until 0.1 s (sliding in the air at 2 m/s: no slip reported), touch-down sliding,
   // slows down linearly, sticks at 0.6 s, lifts off at 0.8 s, lands stuck at 0.9 s.

@@ -97,7 +97,7 @@ TEST_CASE("implicit: generated spheres at K = 1e7 stick on time and roll at the 
   }
 }
 
-TEST_CASE("implicit: generated boxes held on slopes do not creep once settled; sliding ones "
+TEST_CASE("implicit: generated boxes held on slopes do not creep once settled, and sliding ones "
           "accelerate at g (sin a - mu cos a)",
           "[implicit]") {
   std::mt19937 rng(2024);

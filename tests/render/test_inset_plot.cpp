@@ -213,7 +213,7 @@ TEST_CASE("an inset in a frame smaller than a figure is scaled down into it", "[
   CHECK_THROWS_AS(InsetPlot(s, tr, 640, 360), RenderError);
 }
 
-TEST_CASE("a bottom inset stays above the caption's band; a top one ignores it",
+TEST_CASE("a bottom inset stays above the caption's band, a top one ignores it",
           "[render][inset]") {
   std::mt19937 rng(7);
   const core::Trajectory tr = random_run(rng, 1, 1.0);
