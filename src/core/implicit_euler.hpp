@@ -44,11 +44,6 @@ class ImplicitEulerStepper final : public Stepper {
   int order() const override { return 1; }
   double advance(Network& network, double t, double limit, Vec& x) override;
   bool evaluates_start_first() const override { return true; }
-  // Jacobians formed, Newton iterations and split steps so far (for `study` and tests).
-  long jacobians() const { return jacobians_; }
-  long iterations() const { return iterations_; }
-  long splits() const { return splits_; }
-  long band_moves() const { return band_moves_; }
   // Blocks of the iteration matrix (groups of unknowns no element couples); 0 before the
   // first step.
   std::size_t blocks() const { return groups_.size(); }
@@ -58,7 +53,7 @@ class ImplicitEulerStepper final : public Stepper {
   static constexpr int kMaxSplits = 6;
   static constexpr int kMaxBandMoves = 2;        // per step
   static constexpr int kMaxMatricesPerStep = 4;  // formed anew where the iteration stalls
-  // Residual tolerance of entry i: kRelative |x_i| + kAbsolute.
+  // Tolerance of a Newton correction's entry i: kRelative |x_i| + kAbsolute.
   static constexpr double kRelative = 1e-12;
   static constexpr double kAbsolute = 1e-13;
 
@@ -84,7 +79,8 @@ class ImplicitEulerStepper final : public Stepper {
   // Forms I - h dF/dx* over the solved entries at x* (eval_), with F there in f_, and
   // factors it.
   void refresh_matrix(Network& network, double t_eval, double h);
-  double scaled_norm(const Vec& residual, const Vec& x) const;
+  // The largest entry of a Newton correction relative to its tolerance at state x.
+  double scaled_norm(const Vec& correction, const Vec& x) const;
 
   std::string name_ = "implicit";
   double dt_;
@@ -101,7 +97,6 @@ class ImplicitEulerStepper final : public Stepper {
   Vec probe_delta_;
   bool lu_valid_ = false;
   double lu_h_ = 0.0;
-  long jacobians_ = 0, iterations_ = 0, splits_ = 0, band_moves_ = 0;
 };
 
 }  // namespace stiction::core
