@@ -2,8 +2,7 @@
 """Every bundled scene run with `--integrator implicit` at a step 10 to 1000 times the
 scenes' own, against rk4 at 1e-5 s: the key event times of every element (first stick and
 first slip; not the last stick, which a stiff contact's bounces set) and the difference of
-their event counts, the largest difference of the final state, the drift of every stuck friction anchor
-(position minus friction state over each stick interval) and the CPU time of each run.
+their event counts, the largest difference of the final state and the CPU time of each run.
 
     bench/implicit_vs_rk4.py [--stiction build/src/app/stiction] [--dts 1e-3,1e-4] [SCENE...]
 
@@ -11,9 +10,7 @@ Prints one Markdown table (docs/study.md quotes it). Runs `stiction run` with
 --no-plots --no-video --accuracy off --force-step into a temporary directory.
 """
 import argparse
-import csv
 import json
-import math
 import pathlib
 import subprocess
 import sys
@@ -72,34 +69,6 @@ def final_difference(reference, other):
     return worst, where
 
 
-def anchor_drift(out, summary):
-    """Largest change of (joint angle - e) over a stick interval of a 1-D friction element
-    whose angle the CSV has, from the rows of the run (0 where the scene has none)."""
-    path = out / "trajectory.csv"
-    if not path.exists():
-        return float("nan")
-    with path.open() as f:
-        rows = list(csv.reader(f))
-    header, data = rows[0], rows[1:]
-    index = {name: i for i, name in enumerate(header)}
-    worst = 0.0
-    for element, entry in (summary.get("events") or {}).items():
-        e_col = index.get(element + ".e")
-        theta_col = index.get(element + ".theta")
-        if e_col is None or theta_col is None:
-            continue
-        for interval in entry.get("intervals", []):
-            if interval.get("kind") != "stick" or interval["end"] - interval["start"] < 0.05:
-                continue
-            inside = [r for r in data
-                      if interval["start"] + 0.01 <= float(r[0]) <= interval["end"] - 0.01]
-            if len(inside) < 2:
-                continue
-            anchors = [float(r[theta_col]) - float(r[e_col]) for r in inside]
-            worst = max(worst, max(anchors) - min(anchors))
-    return worst
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--stiction", default=str(ROOT / "build/src/app/stiction"))
@@ -109,28 +78,28 @@ def main():
     scenes = [pathlib.Path(s) for s in args.scenes] or sorted((ROOT / "scenes").glob("*.toml"))
     dts = [float(d) for d in args.dts.split(",")]
     print("| scene | run | CPU s | first stick and first slip: worst difference "
-          "| event count difference | largest final difference | anchor drift while stuck |")
-    print("|---|---|---|---|---|---|---|")
+          "| event count difference | largest final difference |")
+    print("|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         tmp = pathlib.Path(tmp)
         for scene in scenes:
             ref, code, err = run(args.stiction, scene, "rk4", 1e-5, tmp / (scene.stem + "_rk4"))
             if ref is None:
-                print(f"| {scene.stem} | rk4 1e-5 | | exit {code}: {err[0]} | | | |")
+                print(f"| {scene.stem} | rk4 1e-5 | | exit {code}: {err[0]} | | |")
                 continue
             print(f"| {scene.stem} | rk4 1e-5 ({ref['status']}) | {ref['wall_seconds']:.3g} | "
-                  f"(reference) | | | {anchor_drift(tmp / (scene.stem + '_rk4'), ref):.2g} |")
+                  f"(reference) | | |")
             for dt in dts:
                 out = tmp / f"{scene.stem}_implicit_{dt}"
                 got, code, err = run(args.stiction, scene, "implicit", dt, out)
                 if got is None:
-                    print(f"| {scene.stem} | implicit {dt:g} | | exit {code}: {err[0]} | | | |")
+                    print(f"| {scene.stem} | implicit {dt:g} | | exit {code}: {err[0]} | | |")
                     continue
                 worst, which, unpaired = compare_events(ref, got)
                 final, where = final_difference(ref, got)
                 print(f"| {scene.stem} | implicit {dt:g} ({got['status']}) | "
                       f"{got['wall_seconds']:.3g} | {worst:.3g} s ({which}) | {unpaired} | "
-                      f"{final:.3g} ({where}) | {anchor_drift(out, got):.2g} |")
+                      f"{final:.3g} ({where}) |")
             sys.stdout.flush()
 
 
