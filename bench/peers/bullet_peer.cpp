@@ -78,11 +78,7 @@ class BulletPeer final : public Peer {
     const btVector3& p = w_->body->getCenterOfMassPosition();
     const btVector3& v = w_->body->getLinearVelocity();
     const btVector3& w = w_->body->getAngularVelocity();
-    for (int i = 0; i < 3; ++i) {
-      s.p[i] = p[i];
-      s.v[i] = v[i];
-      s.w[i] = w[i];
-    }
+    fill_sample(s, p, v, w);
   }
 
  private:

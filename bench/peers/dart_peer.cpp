@@ -87,11 +87,7 @@ class DartPeer final : public Peer {
     const Eigen::Vector3d p = body_->getCOM();
     const Eigen::Vector3d v = body_->getCOMLinearVelocity();
     const Eigen::Vector3d w = body_->getAngularVelocity();
-    for (int i = 0; i < 3; ++i) {
-      s.p[i] = p[i];
-      s.v[i] = v[i];
-      s.w[i] = w[i];
-    }
+    fill_sample(s, p, v, w);
   }
 
  private:

@@ -70,11 +70,7 @@ class MujocoPeer final : public Peer {
     // Free joint: qpos = position, quaternion; qvel = world linear velocity, local angular.
     mjtNum w[3];
     mju_rotVecQuat(w, data_->qvel + 3, data_->qpos + 3);
-    for (int i = 0; i < 3; ++i) {
-      s.p[i] = data_->qpos[i];
-      s.v[i] = data_->qvel[i];
-      s.w[i] = w[i];
-    }
+    fill_sample(s, data_->qpos, data_->qvel, w);
   }
 
  private:

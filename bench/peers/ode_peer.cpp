@@ -59,11 +59,7 @@ class OdePeer final : public Peer {
     const dReal* p = dBodyGetPosition(body_);
     const dReal* v = dBodyGetLinearVel(body_);
     const dReal* w = dBodyGetAngularVel(body_);
-    for (int i = 0; i < 3; ++i) {
-      s.p[i] = p[i];
-      s.v[i] = v[i];
-      s.w[i] = w[i];
-    }
+    fill_sample(s, p, v, w);
   }
 
  private:

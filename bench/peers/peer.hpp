@@ -26,6 +26,17 @@ class Peer {
 
 using Peers = std::vector<std::unique_ptr<Peer>>;
 
+// A sample from the body's position, velocity and world angular velocity, each anything
+// indexable 0..2 (every engine has its own vector type).
+template <typename P, typename V, typename W>
+void fill_sample(Sample& s, const P& p, const V& v, const W& w) {
+  for (int i = 0; i < 3; ++i) {
+    s.p[i] = p[i];
+    s.v[i] = v[i];
+    s.w[i] = w[i];
+  }
+}
+
 // Each adapter adds its settings' rows (an engine not built in adds none). The stiction
 // adapter prints a line and adds no row for an integrator this build does not have.
 void add_stiction_peers(Peers& peers);

@@ -41,11 +41,7 @@ class StictionPeer final : public Peer {
     // rigid_body state: p, v, q (w x y z), angular velocity in the body frame.
     const Eigen::Quaterniond q(x_[body_ + 6], x_[body_ + 7], x_[body_ + 8], x_[body_ + 9]);
     const Eigen::Vector3d w = q * Eigen::Vector3d(x_.segment<3>(body_ + 10));
-    for (int i = 0; i < 3; ++i) {
-      s.p[i] = x_[body_ + i];
-      s.v[i] = x_[body_ + 3 + i];
-      s.w[i] = w[i];
-    }
+    fill_sample(s, x_.segment<3>(body_), x_.segment<3>(body_ + 3), w);
   }
 
  private:
