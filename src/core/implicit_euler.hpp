@@ -17,10 +17,11 @@
 // from forward differences over the solved entries only (a contact's friction state is not
 // one), block diagonal over the groups of entries that no element couples (the network's
 // coupling graph: separate bodies; one evaluation perturbs an entry of every group),
-// LU-factored block by block, and reused across iterations and steps until the iteration contracts
-// too slowly (a change of regime: an element sticks, slides, touches or lifts off; at most
-// kMaxMatricesPerStep times a step) or the step size changes. Once the residual is below the tolerance the state is set to
-// x(k) + h F at the last iterate, so positions and friction states move by the same
+// LU-factored block by block, and reused across iterations and steps until the iteration
+// contracts too slowly (a change of regime: an element sticks, slides, touches or lifts off;
+// at most kMaxMatricesPerStep times a step) or the step size changes. A correction that
+// grows is halved (damped Newton). Once the correction is below the tolerance the state is
+// set to x(k) + h F at the last iterate, so positions and friction states move by the same
 // velocities. A step whose iteration does not converge is split in two (at most
 // kMaxSplits deep), then reported as an instability.
 #pragma once
@@ -49,13 +50,16 @@ class ImplicitEulerStepper final : public Stepper {
   std::size_t blocks() const { return groups_.size(); }
 
  private:
-  static constexpr int kMaxIterations = 8;
+  static constexpr int kMaxIterations = 16;
   static constexpr int kMaxSplits = 6;
   static constexpr int kMaxBandMoves = 2;        // per step
+  static constexpr int kMaxHalvings = 4;         // per step: damped Newton where it grows
   static constexpr int kMaxMatricesPerStep = 4;  // formed anew where the iteration stalls
   // Tolerance of a Newton correction's entry i: kRelative |x_i| + kAbsolute.
   static constexpr double kRelative = 1e-12;
   static constexpr double kAbsolute = 1e-13;
+  // Corrections that stall below this many tolerances are taken as converged (rounding).
+  static constexpr double kRoundingFloor = 100.0;
 
   void prepare(Network& network);
   // One backward Euler step of h from (t, x) into x; false if Newton did not converge
