@@ -101,6 +101,10 @@ Rect Painter::text(const std::string& s, double x, double baseline, double size,
 // whole path it strokes, and a dense series that swings across its panel (a quaternion
 // over a long run) took over 100 MB in one stroke. Each piece starts where the last one
 // ended, its dash pattern carried on (cairo restarts the pattern at every sub-path).
+//
+// A point with no finite neighbour (a series of one point, or one between two gaps) makes no
+// segment, so cairo would draw nothing: it gets a dot three line widths across instead, or
+// it would vanish from the figure while its legend entry stays.
 void Painter::polyline(const std::vector<Point>& points, const Stroke& stroke) {
   constexpr int kPiece = 512;
   apply(stroke);
@@ -108,11 +112,16 @@ void Painter::polyline(const std::vector<Point>& points, const Stroke& stroke) {
   int segments = 0;
   double along = 0.0;  // length since the sub-path began, for the dash offset
   Point last{};
+  std::vector<Point> isolated;
+  int in_path = 0;  // points in the current sub-path
   for (const Point& p : points) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+      if (in_path == 1) isolated.push_back(last);
       open = false;
+      in_path = 0;
       continue;
     }
+    ++in_path;
     if (!open) {
       cairo_move_to(cr_, p.x, p.y);
       open = true;
@@ -129,7 +138,13 @@ void Painter::polyline(const std::vector<Point>& points, const Stroke& stroke) {
     }
     last = p;
   }
+  if (in_path == 1) isolated.push_back(last);
   cairo_stroke(cr_);
+  for (const Point& p : isolated) {
+    cairo_new_sub_path(cr_);
+    cairo_arc(cr_, p.x, p.y, 1.5 * stroke.width, 0.0, 2.0 * M_PI);
+  }
+  if (!isolated.empty()) cairo_fill(cr_);
 }
 
 void Painter::fill_rect(const Rect& r, image::Rgba colour) {
