@@ -15,9 +15,12 @@ start=$SECONDS
 # compile time of -O2 -g on this template-heavy code. No -Werror here: GCC 12 under
 # -fsanitize reports false -Wmaybe-uninitialized inside libstdc++'s <regex>; the Release
 # build keeps warnings as errors.
+# ccache when the machine has it (a second run rebuilds only what changed).
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSTICTION_SANITIZE=ON \
-      -DSTICTION_BUILD_BENCH=OFF -DSTICTION_BUILD_PYTHON=OFF "$@" >&2
+      -DSTICTION_BUILD_BENCH=OFF -DSTICTION_BUILD_PYTHON=OFF ${launcher[@]+"${launcher[@]}"} "$@" >&2
 cmake --build build-asan -j"$(nproc)" >&2
 echo "== sanitizers: built in $((SECONDS - start)) s" >&2
 
