@@ -3,9 +3,10 @@ of docs/sweeps.md, taken from the document's code blocks as they stand, run on a
 Slurm started here (single_node_slurm.py); the merged table must equal an unsharded run of
 the same command bit for bit (every column but wall_s).
 
-Then a shard SIGKILLed while it writes (scancel --signal=KILL --full of a running array task,
+Then a shard SIGKILLed while it writes (kill -9 of a running array task's stiction process,
 in a variant of the script that keeps every point's files, so that a point's temporaries
-exist whenever a task runs), the array resubmitted and merged: the table must again equal
+exist whenever a task runs; scancel --signal=KILL --full marked the task CANCELLED but left
+the process running to its end here, so it proved nothing), the array resubmitted and merged: the table must again equal
 the unsharded one and no temporary (".NAME.tmp-XXXXXXXXXXXXXXXX") may remain.
 
 Usage: slurm_sweep.py STICTION_BINARY DOCS_SWEEPS_MD. Exit 77 (skipped) without the Debian
@@ -122,6 +123,39 @@ def job_array(script, submit, cluster, root, env):
     return tasks
 
 
+def task_processes(job, task):
+    """The pids of the stiction processes of array task JOB_TASK (from their environment)."""
+    want = {f"SLURM_ARRAY_JOB_ID={job}".encode(), f"SLURM_ARRAY_TASK_ID={task}".encode()}
+    pids = []
+    for proc in Path("/proc").iterdir():
+        try:
+            if proc.name.isdigit() and (proc / "comm").read_text().strip() == "stiction" \
+                    and want <= set((proc / "environ").read_bytes().split(b"\0")):
+                pids.append(int(proc.name))
+        except OSError:
+            continue  # gone meanwhile
+    return pids
+
+
+def kill_a_writing_task(out, job, tasks):
+    """SIGKILL to the stiction process of a task while one of its points' temporaries exists;
+    the task's name."""
+    deadline = time.monotonic() + 600
+    while time.monotonic() < deadline:
+        for name in temporaries(out) if out.exists() else []:
+            point = re.search(r"points/(\d+)/", name)
+            if not point:
+                continue
+            task = int(point.group(1)) % tasks
+            pids = task_processes(job, task)
+            if pids and (out / name).exists():
+                for pid in pids:
+                    os.kill(pid, signal.SIGKILL)
+                return f"{job}_{task}"
+        time.sleep(0.02)
+    fail("no running task was seen writing a temporary within 600 s")
+
+
 def killed_shard(script, cluster, root, env, tasks):
     """A task SIGKILLed while a point's files are being written, the array resubmitted."""
     variant = script.replace("--keep none", "--keep all").replace("0.01:1:400:log", "0.01:1:32:log")
@@ -134,32 +168,20 @@ def killed_shard(script, cluster, root, env, tasks):
     env = dict(env, HOME=str(home))
     out = home / "sweeps/mu"
     first = cluster.run("sbatch", "--parsable", "sweep.sbatch", cwd=work, env=env)
-    killed = None
-    deadline = time.monotonic() + 600
-    while killed is None and time.monotonic() < deadline:
-        for name in temporaries(out) if out.exists() else []:
-            point = re.search(r"points/(\d+)/", name)
-            if not point:
-                continue
-            task = f"{first}_{int(point.group(1)) % tasks}"
-            fields = cluster.jobs().get(task) or {}
-            if fields.get("JobState") == "RUNNING":
-                cluster.run("scancel", "--signal=KILL", "--full", task)
-                killed = task
-                break
-        time.sleep(0.02)
-    if killed is None:
-        fail("no running task was seen writing a temporary within 600 s")
+    killed = kill_a_writing_task(out, first, tasks)
     jobs = cluster.wait_until_done(1800)
     if jobs[killed]["JobState"] == "COMPLETED":
-        fail(f"task {killed} completed although it was sent SIGKILL")
+        fail(f"task {killed} completed although its process was sent SIGKILL")
     left = temporaries(out)
-    print(f"killed task {killed} ({jobs[killed]['JobState']}); it left {len(left)} temporaries: {left[:4]}")
+    print(f"killed task {killed} ({jobs[killed]['JobState']}, {jobs[killed].get('ExitCode')}); "
+          f"it left {len(left)} temporaries: {left[:4]}")
+    if not left:
+        fail("the SIGKILL left no temporary: it missed the point being written, the check shows nothing")
     second = cluster.run("sbatch", "--parsable", "sweep.sbatch", cwd=work, env=env)
-    cluster.run("sbatch", f"--dependency=afterok:{second}", "--wrap",
-                f"stiction sweep --merge {out}", cwd=work, env=env)
+    merge = cluster.run("sbatch", "--parsable", f"--dependency=afterok:{second}", "--wrap",
+                        f"stiction sweep --merge {out}", cwd=work, env=env)
     jobs = cluster.wait_until_done(1800)
-    resubmitted = {j: f for j, f in jobs.items() if not j.startswith(f"{first}_")}
+    resubmitted = {j: f for j, f in jobs.items() if j.startswith(f"{second}_") or j == merge}
     check_completed(resubmitted, tasks + 1, "resubmitted array and merge job", work / "logs")
     unsharded(variant, root / "kill-reference", env)
     compare(out / "sweep.csv", root / "kill-reference/sweeps/mu/sweep.csv", "killed and resubmitted")
@@ -186,8 +208,13 @@ def main():
         (root / "slurm").mkdir()
         with SingleNodeSlurm(root / "slurm", cpus=max(4, os.cpu_count() or 1)) as cluster:
             env = dict(cluster.env, PATH=f"{stiction.parent}:{os.environ.get('PATH', '/usr/bin:/bin')}")
-            tasks = job_array(script, submit, cluster, root, env)
-            killed_shard(script, cluster, root, env, tasks)
+            # STICTION_CLUSTER_PARTS=array or =kill runs one of the two parts alone.
+            parts = os.environ.get("STICTION_CLUSTER_PARTS", "array,kill").split(",")
+            low, high = map(int, re.search(r"#SBATCH --array=(\d+)-(\d+)", script).groups())
+            if "array" in parts:
+                job_array(script, submit, cluster, root, env)
+            if "kill" in parts:
+                killed_shard(script, cluster, root, env, high - low + 1)
     print("PASSED")
 
 
