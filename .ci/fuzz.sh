@@ -26,5 +26,5 @@ echo "== fuzz_scene for $((seconds * 2 / 3)) s" >&2
 build-fuzz/fuzz/fuzz_scene -max_total_time=$((seconds * 2 / 3)) -dict=fuzz/toml.dict "${common[@]}" \
   build-fuzz/corpus/scene
 echo "== fuzz_toml_structure for $((seconds - seconds * 2 / 3)) s" >&2
-build-fuzz/fuzz/fuzz_toml_structure -max_total_time=$((seconds - seconds * 2 / 3)) -max_len=512 "${common[@]}" \
+build-fuzz/fuzz/fuzz_toml_structure -max_total_time=$((seconds - seconds * 2 / 3)) -max_len=512 -len_control=0 "${common[@]}" \
   build-fuzz/corpus/structure
