@@ -1,8 +1,16 @@
-// What the fuzz target does with one input, shared with the regression test that replays
+// What the fuzz targets do with one input, shared with the regression test that replays
 // the findings (tests/reliability/test_fuzz_regressions.cpp). Returns true if the scene was built,
 // false if it was refused with a scene::InputError; anything else propagates.
+//
+// An input is a scene file, optionally followed by a line "%%urdf" and a URDF text, then
+// optionally by a line "%%" and one --set assignment per line. With a URDF, the scene and
+// the URDF are written as fuzz.toml and fuzz.urdf into a directory of this process
+// (fuzz/scratch_directory.hpp) and the scene is built from there, so that a `urdf` body's
+// `file = "fuzz.urdf"` reads the fuzzed text through the scene builder as `run` does.
 #pragma once
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -10,10 +18,16 @@
 #include <toml++/toml.h>
 
 #include "core/run_limits.hpp"
+#include "fuzz/scratch_directory.hpp"
 #include "scene/overrides.hpp"
 #include "scene/scene.hpp"
 
 namespace stiction::fuzz {
+
+inline void write_scratch_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+}
 
 inline bool load_fuzz_input(const std::string& input) {
   std::string document = input;
@@ -25,6 +39,14 @@ inline bool load_fuzz_input(const std::string& input) {
       if (!line.empty()) overrides.push_back(line);
     }
   }
+  std::filesystem::path origin = "fuzz.toml";  // a text scene: urdf files from the working dir
+  if (const std::size_t split = document.find("\n%%urdf\n"); split != std::string::npos) {
+    const std::filesystem::path dir = scratch_directory();
+    write_scratch_file(dir / "fuzz.urdf", document.substr(split + 8));
+    document.resize(split);
+    origin = dir / "fuzz.toml";
+    write_scratch_file(origin, document);
+  }
   try {
     toml::table parsed;
     try {
@@ -33,7 +55,7 @@ inline bool load_fuzz_input(const std::string& input) {
       throw scene::InputError::at(e.source(), std::string(e.description()));
     }
     for (const std::string& o : overrides) scene::apply_override(parsed, o);
-    scene::Scene scene = scene::build_scene(std::move(parsed), "fuzz.toml");
+    scene::Scene scene = scene::build_scene(std::move(parsed), origin);
     if (core::check_run_limits(scene.run)) return false;
     // Evaluate the network once at its initial state: components reject what they cannot
     // represent at construction, and must not crash on what they accepted.

@@ -1,15 +1,22 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages stiction needs (only those missing), then configures and
-# builds it in ./build (Release). Usage: scripts/bootstrap.sh [--peers] [extra cmake args...]
+# builds it in ./build (Release). Usage: scripts/bootstrap.sh [--peers] [--slurm] [extra cmake args...]
 # --peers: also installs the peer engines bench/peers measures stiction against (ODE, Bullet,
 # MuJoCo, DART) and builds bench_peers with them.
+# --slurm: also installs Slurm and munge (slurm-wlm, munge), which tests/cluster uses to run
+# docs/sweeps.md's job array on a single-node cluster it starts itself (CI does).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 peers=0
+slurm=0
 cmake_args=()
 for arg in "$@"; do
-  if [ "$arg" = "--peers" ]; then peers=1; else cmake_args+=("$arg"); fi
+  case "$arg" in
+    --peers) peers=1 ;;
+    --slurm) slurm=1 ;;
+    *) cmake_args+=("$arg") ;;
+  esac
 done
 
 packages=(
@@ -28,6 +35,9 @@ packages=(
 if [ "$peers" -eq 1 ]; then
   packages+=(libode-dev libbullet-dev libmujoco-dev libdart-dev)
   cmake_args+=(-DSTICTION_BUILD_BENCH=ON -DSTICTION_PEERS=ON)
+fi
+if [ "$slurm" -eq 1 ]; then
+  packages+=(slurm-wlm munge)
 fi
 missing=()
 for p in "${packages[@]}"; do
