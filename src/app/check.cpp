@@ -101,6 +101,11 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
   }
   if (report.stiff.empty()) std::printf("  no stiff elements\n");
 
+  if (!report.analysis_skipped.empty()) {
+    std::printf("\npredicted step limits of the whole network: skipped: %s\n",
+                report.analysis_skipped.c_str());
+    return;
+  }
   std::printf(
       "\npredicted step limits of the whole network (step map linearized at up to %d "
       "states of each regime of a pilot run at the scene's settings (at most %zu in all)",

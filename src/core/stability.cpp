@@ -413,9 +413,18 @@ bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts) {
   return runaway || chatter_counts || r.friction_cap > headroom;
 }
 
+namespace {
+struct SearchStopped {};  // unwinds the search from inside its lambdas
+}  // namespace
+
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
                              const std::vector<TimedState>& states, double h_min,
-                             double h_max) {
+                             double h_max, const std::atomic<bool>* stop) {
+  if (!analysable(network)) {
+    StepLimit skipped;
+    skipped.skipped = true;
+    return skipped;
+  }
   // stable(h, chatter_counts): no sampled state has a mode growing faster than allowed; a
   // mode only stuck friction carries counts where the monitor would see it, or always if
   // chatter_counts.
@@ -438,6 +447,7 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
   };
   auto stable = [&](double h, bool chatter_counts) {
     for (std::size_t i = 0; i < states.size(); ++i) {
+      if (stop != nullptr && stop->load(std::memory_order_relaxed)) throw SearchStopped{};
       const TimedState& s = states[i];
       if (unstable_step(radius_at(i, h), s.energy_headroom, chatter_counts)) {
         limiting_time = s.t;
@@ -482,8 +492,14 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
   };
   StepLimit limit;
   double chatter_time = 0.0;
-  const auto runaway = first_limit(false, limit.limiting_time);
-  const auto chatter = first_limit(true, chatter_time);
+  std::optional<double> runaway, chatter;
+  try {
+    runaway = first_limit(false, limit.limiting_time);
+    chatter = first_limit(true, chatter_time);
+  } catch (const SearchStopped&) {
+    limit.interrupted = true;
+    return limit;
+  }
   limit.unbounded = !runaway.has_value();
   limit.max_step = runaway.value_or(h_max);
   limit.chatter_free_step = chatter.value_or(h_max);

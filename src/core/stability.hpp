@@ -15,6 +15,7 @@
 // counts as an instability, elsewhere it is reported as friction chatter.
 #pragma once
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,21 @@ StepRadius step_radius(Network& network, const std::string& integrator, double t
 // chatter_counts: any such mode). False on a switching surface (no answer there).
 bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts = false);
 
+// The linearization is dense: every sampled state and every step size tried costs a few
+// Jacobians of n columns (n derivative evaluations each) and an n x n eigenvalue problem, so
+// the analysis grows as n^3 and a 1000-link arm (3000 states) would take hours (issue 25).
+// Above this many states it is skipped, and says so (StepLimit::skipped): at 240 states one
+// radius costs tens of milliseconds here, so the whole analysis stays within seconds and a
+// signal is answered between two radii. The single-element figures `check` prints (each
+// stiff element against its effective mass) cost one derivative per element and remain.
+inline constexpr int kMaxAnalysedStates = 240;
+inline bool analysable(const Network& network) {
+  return network.state_dim() <= kMaxAnalysedStates;
+}
+
 struct StepLimit {
+  bool skipped = false;      // too many states for the dense analysis (kMaxAnalysedStates)
+  bool interrupted = false;  // `stop` was set before the search ended: no answer
   double max_step = 0.0;       // largest stable step found (0: none above h_min)
   double limiting_time = 0.0;  // time of the sampled state that limits it
   bool unbounded = false;      // stable up to h_max
@@ -74,9 +89,11 @@ struct StepLimit {
 
 // The largest h in [h_min, h_max] below which every step is stable at every sampled state:
 // the first unstable step on a grid of ratio 10^0.1, then bisection in log h to 0.1%.
-// Fixed-step integrators only.
+// Fixed-step integrators only. `stop` (SIGINT/SIGTERM) is polled before every radius, so the
+// search ends within a fraction of a second of it (StepLimit::interrupted). A network of more
+// than kMaxAnalysedStates states is not analysed (StepLimit::skipped).
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
                              const std::vector<TimedState>& states, double h_min = 1e-9,
-                             double h_max = 1.0);
+                             double h_max = 1.0, const std::atomic<bool>* stop = nullptr);
 
 }  // namespace stiction::core

@@ -93,6 +93,17 @@ CheckReport check_scene(scene::Scene& scene) {
     report.stiff.push_back(s);
   }
 
+  if (sys::interrupted()) throw sys::Interrupted{};
+  // Bounded work (issue 25): the dense linearization grows as the cube of the state count.
+  if (!core::analysable(network)) {
+    report.pilot = {run, false};
+    report.analysis_skipped =
+        "the network has " + std::to_string(network.state_dim()) + " states, more than the " +
+        std::to_string(core::kMaxAnalysedStates) +
+        " the step analysis linearizes in seconds (docs/limits.md): no step limits predicted, "
+        "no step recommended; the single-element figures above are the guide";
+    return report;
+  }
   // The real limit depends on all elements at once, on the friction laws' stage sizes and on
   // the states the scene passes through: linearize the actual step map along a run.
   report.pilot = bounded_pilot(network, run);
@@ -100,7 +111,9 @@ CheckReport check_scene(scene::Scene& scene) {
   if (sys::interrupted()) throw sys::Interrupted{};
   constexpr double kLowestStep = 1e-9;
   for (const std::string& name : checked_integrators()) {
-    const core::StepLimit limit = core::predict_step_limit(network, name, states, kLowestStep);
+    const core::StepLimit limit = core::predict_step_limit(network, name, states, kLowestStep,
+                                                           1.0, &sys::interrupt_flag());
+    if (limit.interrupted || sys::interrupted()) throw sys::Interrupted{};
     const StepCheck as_check = step_check_from(limit, name, run.dt, kLowestStep);
     report.limits.push_back({name, limit, recommend_step(scene, as_check)});
     if (sys::interrupted()) throw sys::Interrupted{};
@@ -161,6 +174,10 @@ nlohmann::json check_json(const scene::Scene& scene, const CheckReport& report) 
     limits[l.integrator] = e;
   }
   j["step_limits"] = limits;
+  j["analysis"] = {{"skipped", !report.analysis_skipped.empty()},
+                   {"state_dim", network.state_dim()},
+                   {"max_states", core::kMaxAnalysedStates}};
+  if (!report.analysis_skipped.empty()) j["analysis"]["reason"] = report.analysis_skipped;
   j["render"] = {{"size", {report.render.width, report.render.height}}, {"fps", report.render.fps}};
   j["plots"] = report.plots;
   j["verify"] = {{"at", report.verify.at},

@@ -36,6 +36,9 @@ struct CheckReport {
   std::vector<StiffElement> stiff;
   Pilot pilot;
   std::vector<IntegratorLimit> limits;
+  // Non-empty when the network-wide analysis was skipped (more states than
+  // core::kMaxAnalysedStates): why, for the text and the JSON. `limits` is then empty.
+  std::string analysis_skipped;
   render::RenderSettings render;
   std::vector<std::string> plots;
   VerifySettings verify;

@@ -54,10 +54,20 @@ bool from_cache(const nlohmann::json& j, StepCheck& c) {
 }  // namespace
 
 std::string StepCheck::verdict() const {
-  if (!applies) return "not_checked";
+  if (!applies || skipped) return "not_checked";
   if (!unbounded && dt > instability_limit) return "unstable";
   if (dt > chatter_limit) return "chatter";
   return "ok";
+}
+
+std::string StepCheck::reason() const {
+  if (!applies) return "rk4_adaptive chooses its steps from its tolerance";
+  if (skipped) {
+    return "the network has " + std::to_string(states) +
+           " states, more than the " + std::to_string(core::kMaxAnalysedStates) +
+           " the step analysis linearizes (docs/limits.md); the step was not checked";
+  }
+  return "";
 }
 
 double StepCheck::safe_step() const {
@@ -72,6 +82,11 @@ StepCheck check_step(scene::Scene& scene) {
   if (core::find_tableau(c.integrator) == nullptr && c.integrator != "symplectic_euler" &&
       c.integrator != "implicit") {
     c.applies = false;  // rk4_adaptive: its step follows its tolerance
+    return c;
+  }
+  c.states = scene.network->state_dim();
+  if (!core::analysable(*scene.network)) {
+    c.skipped = true;  // bounded work (issue 25): no pilot, no linearization
     return c;
   }
   core::RunOptions pilot_run = scene.run;
@@ -92,9 +107,9 @@ StepCheck check_step(scene::Scene& scene) {
   const auto start = std::chrono::steady_clock::now();
   const auto states = core::sample_states(*scene.network, pilot.options, kStatesPerRegime);
   if (sys::interrupted()) throw sys::Interrupted{};
-  const core::StepLimit limit = core::predict_step_limit(*scene.network, c.integrator, states,
-                                                         c.lowest_step, kMaxAnalysedStep);
-  if (sys::interrupted()) throw sys::Interrupted{};
+  const core::StepLimit limit = core::predict_step_limit(
+      *scene.network, c.integrator, states, c.lowest_step, kMaxAnalysedStep, &sys::interrupt_flag());
+  if (limit.interrupted || sys::interrupted()) throw sys::Interrupted{};
   const StepCheck found = step_check_from(limit, c.integrator, c.dt, c.lowest_step);
   c.unbounded = found.unbounded;
   c.instability_limit = found.instability_limit;
@@ -124,8 +139,12 @@ nlohmann::ordered_json step_check_json(const StepCheck& c) {
   j["integrator"] = c.integrator;
   j["dt"] = c.dt;
   j["verdict"] = c.verdict();
-  if (!c.applies) {
-    j["reason"] = "rk4_adaptive chooses its steps from its tolerance";
+  if (!c.applies || c.skipped) {
+    j["reason"] = c.reason();
+    if (c.skipped) {
+      j["states"] = c.states;
+      j["max_states"] = core::kMaxAnalysedStates;
+    }
     return j;
   }
   const auto limit_or_null = [&](double v) {
@@ -173,6 +192,8 @@ std::string step_check_text(const StepCheck& c) {
   } else if (verdict == "ok") {
     std::snprintf(text, sizeof text, "dt = %s s is below %s's predicted limits on this scene",
                   dt.c_str(), c.integrator.c_str());
+  } else if (c.skipped) {
+    return c.reason();
   } else {
     std::snprintf(text, sizeof text, "%s: no fixed step to check", c.integrator.c_str());
   }

@@ -26,6 +26,10 @@ struct StepCheck {
   std::string integrator;
   double dt = 0.0;
   bool applies = true;     // false for rk4_adaptive (no fixed step to check)
+  // The network has more states than the dense analysis handles (core::kMaxAnalysedStates):
+  // not checked, and `reason` says so.
+  bool skipped = false;
+  int states = 0;  // the network's state dimension
   bool unbounded = false;  // no instability found up to kMaxAnalysedStep
   // Largest stable step found; 0: unstable at every step analysed (from lowest_step up).
   double instability_limit = 0.0;
@@ -43,6 +47,8 @@ struct StepCheck {
 
   // "ok", "chatter", "unstable" or "not_checked" (see the top of this file).
   std::string verdict() const;
+  // Why the verdict is "not_checked".
+  std::string reason() const;
   // The step the advice starts from: 0.8 times the smaller limit (below the chatter limit).
   double safe_step() const;
 };

@@ -19,6 +19,8 @@ StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget) 
     char below[120];
     std::snprintf(below, sizeof below, "; steps below %.3g s avoid it", guard.check.safe_step());
     guard.warning = step_check_text(guard.check) + below;
+  } else if (guard.check.skipped) {
+    guard.warning = step_check_text(guard.check);
   }
   return guard;
 }

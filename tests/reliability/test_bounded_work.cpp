@@ -1,0 +1,141 @@
+// Bounded work (issue 25): `check` on scenes too large for its dense step analysis (a
+// 1000-link arm, a box on 1000 contact points) answers at once and says what it skipped;
+// a signal during the analysis of a scene it does analyse ends it; the step suggestion's
+// trials are bounded even for a duration of 1e305 s. The scenes are generated here (seeded).
+// The child's time bounds are hang guards (the old program takes minutes), not timings.
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "child.hpp"
+#include "generated_scene.hpp"
+
+namespace fs = std::filesystem;
+using namespace stiction::testing;
+
+namespace {
+
+// n links of random length with joint friction on every joint: 3 n states.
+std::string arm_scene(int links, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> length(0.1, 0.25), limit(0.1, 0.5);
+  std::ostringstream s;
+  s << "name = \"arm" << links << "\"\ngravity = [0.0, 0.0, 0.0]\n"
+    << "[simulation]\nintegrator = \"rk4\"\ndt = 1e-4\nduration = 0.2\noutput_rate = 500.0\n"
+    << "[bodies.arm]\ntype = \"planar_arm\"\nlinks = [\n";
+  for (int i = 0; i < links; ++i) s << "  { length = " << length(rng) << ", width = 0.02, mass = 0.2 },\n";
+  s << "]\n";
+  for (int i = 0; i < links; ++i) {
+    s << "[impedances.joint" << i << "_friction]\ntype = \"kikuuwe_friction\"\nbody = \"arm\"\njoint = " << i
+      << "\nstiffness = 5000.0\ndamping = 1.0\nforce_limit = " << limit(rng) << "\nstick_threshold = 0.02\n";
+  }
+  return s.str();
+}
+
+// A box resting on `points` random points of its bottom face (each a friction contact with
+// 1/points of the stiffness, so the whole box is as stiff as on one point of 1e6 N/m).
+std::string box_scene(int points, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> x(-0.2, 0.2), y(-0.1, 0.1);
+  std::ostringstream s;
+  s.precision(17);
+  s << "name = \"box" << points << "\"\ngravity = [0.0, 0.0, -9.8]\n"
+    << "[simulation]\nintegrator = \"rk4\"\ndt = 1e-4\nduration = 0.2\noutput_rate = 500.0\n"
+    << "[bodies.box]\ntype = \"rigid_body\"\nmass = 1.0\nshape = \"box\"\nsize = [0.4, 0.2, 0.2]\n"
+    << "position = [0.0, 0.0, 0.1]\n[impedances.floor]\ntype = \"kikuuwe_contact\"\nbody = \"box\"\n"
+    << "stiffness = " << 1e6 / points << "\ndamping = " << 1e3 / points << "\nmu = 0.5\npoints = [\n";
+  for (int i = 0; i < points; ++i) s << "  [" << x(rng) << ", " << y(rng) << ", -0.1],\n";
+  s << "]\n";
+  return s.str();
+}
+
+fs::path write(const fs::path& dir, const std::string& text) {
+  const fs::path p = dir / "scene.toml";
+  std::ofstream(p) << text;
+  return p;
+}
+
+// `check --json` on the scene answers (hang guard 60 s) with the analysis skipped.
+void check_skips(const fs::path& dir, int expected_states) {
+  Child child({"check", "--json", "scene.toml"}, dir);
+  const int code = child.wait(std::chrono::seconds(60));
+  INFO(child.err());
+  REQUIRE(code == 0);
+  const auto j = nlohmann::json::parse(child.out());
+  CHECK(j["state_dim"] == expected_states);
+  REQUIRE(j.contains("analysis"));
+  CHECK(j["analysis"]["skipped"] == true);
+  CHECK(j["analysis"]["state_dim"] == expected_states);
+  CHECK(j["analysis"]["max_states"].get<int>() < expected_states);
+  CHECK(j["analysis"]["reason"].get<std::string>().find("states") != std::string::npos);
+  CHECK(j["step_limits"].empty());
+  std::printf("check on %d states: %.2f s\n", expected_states, child.seconds_waited);
+}
+
+}  // namespace
+
+TEST_CASE("check on a 1000-link arm answers and says it skipped the step analysis", "[bounded]") {
+  const fs::path dir = scratch_dir("bounded", "arm1000");
+  write(dir, arm_scene(1000, 25));
+  check_skips(dir, 3000);  // two per link, one per joint friction
+}
+
+TEST_CASE("check on a box with 1000 contact points answers and says it skipped the step analysis", "[bounded]") {
+  const fs::path dir = scratch_dir("bounded", "box1000");
+  write(dir, box_scene(1000, 26));
+  check_skips(dir, 13 + 2 * 1000);  // the rigid body, two friction states per point
+}
+
+TEST_CASE("run on the 1000-link arm is not held up by the step guard and says the step was not checked", "[bounded]") {
+  const fs::path dir = scratch_dir("bounded", "arm1000_run");
+  write(dir, arm_scene(1000, 27));
+  Child child({"run", "scene.toml", "--out", "out", "--no-plots", "--no-video"}, dir);
+  const int code = child.wait(std::chrono::seconds(60));
+  INFO(child.err());
+  REQUIRE(code == 0);
+  const auto summary = nlohmann::json::parse(read_text(dir / "out" / "summary.json"));
+  REQUIRE(summary.contains("step_check"));
+  CHECK(summary["step_check"]["verdict"] == "not_checked");
+  CHECK(summary["step_check"]["states"] == 3000);
+}
+
+TEST_CASE("SIGTERM and SIGINT during check's step analysis end it", "[bounded]") {
+  // 70 links, 210 states: analysed, for minutes; the signal comes after 2 s, well inside.
+  for (const int sig : {SIGTERM, SIGINT}) {
+    const fs::path dir = scratch_dir("bounded", sig == SIGTERM ? "check_term" : "check_int");
+    write(dir, arm_scene(70, 28));
+    Child child({"check", "scene.toml"}, dir);
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    REQUIRE(child.running());
+    child.signal(sig);
+    const int code = child.wait(std::chrono::seconds(5));  // hang guard; the old one took 19-38 s
+    INFO(child.err());
+    CHECK(code == 128 + sig);
+    std::printf("check: exited %.3f s after %s\n", child.seconds_waited, sig == SIGTERM ? "SIGTERM" : "SIGINT");
+  }
+}
+
+TEST_CASE("the step suggestion's trials are bounded for a step and duration near the largest double", "[bounded]") {
+  // dt < duration, both huge: the trial at the candidate must not try to cover 1e305 s.
+  for (unsigned seed : {1u, 2u}) {
+    const fs::path dir = scratch_dir("bounded", "huge_dt_" + std::to_string(seed));
+    SceneSpec spec;
+    spec.seed = seed;
+    spec.output_rate = 1e-303;
+    write_scene(dir, spec);
+    Child child({"run", "scene.toml", "--out", "out", "--no-plots", "--no-video", "--duration", "1e305", "--dt",
+                 "1e304"},
+                dir);
+    const int code = child.wait(std::chrono::seconds(90));
+    INFO(child.err());
+    CHECK(code == 3);  // refused with a step to use, not an error from the trial itself
+    CHECK(child.err().find("--dt ") != std::string::npos);
+    CHECK(child.err().find("more than the limit") == std::string::npos);
+  }
+}
