@@ -18,6 +18,7 @@
 #include "services/progress.hpp"
 #include "services/run_support.hpp"
 #include "services/step_guard.hpp"
+#include "services/verify_golden.hpp"
 #include "services/verify_report.hpp"
 #include "services/verify_scene.hpp"
 #include "text/number_text.hpp"
@@ -66,6 +67,8 @@ VerifyJob prepare(const std::string& name, const VerifyArguments& args) {
     }
   }
   job.at = args.at;
+  // Only regular files are read, and golden.json names only files inside its set (exit 2).
+  check_golden_set(fs::path(args.golden) / job.scene.name);
   if (!args.update && !fs::exists(fs::path(args.golden) / job.scene.name / "golden.json")) {
     throw scene::InputError(
         "error: " + (fs::path(args.golden) / job.scene.name / "golden.json").string() +

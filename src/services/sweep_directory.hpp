@@ -12,9 +12,16 @@
 
 namespace stiction::services {
 
-// The plan a directory already holds must be this one: shards of one sweep share it.
-// scene::InputError when it describes another sweep.
-void write_or_check_plan(const SweepPlan& plan, const std::filesystem::path& out);
+// Makes `out` this sweep's directory (docs/sweeps.md, "The sweep directory"): the plan it
+// already holds must be this one (shards of one sweep share it; the same sweep resumes), a
+// directory holding another sweep's plan, or no plan but other files, is refused
+// (scene::InputError, exit 2, naming the plan or some files) unless `overwrite`, which
+// removes the other sweep's own files (its tables, report and points/) first. Also removes
+// what a killed run of this shard left: the temporaries of its table (and, unsharded, of the
+// report) and those of its points' directories. A table or `points` that is a link or not a
+// regular file / directory is refused.
+void claim_sweep_directory(const SweepPlan& plan, const std::filesystem::path& out,
+                           const Shard& shard, bool overwrite);
 
 // The table at `path` as far as a previous run of this sweep got: the rows `shard` owns
 // whose values are the plan's (with `force_step`, less the points the guard refused before),

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <cstdint>
 #include <exception>
+#include <fstream>
+#include <iterator>
 #include <mutex>
 #include <thread>
 
@@ -21,6 +24,36 @@ namespace {
 std::string number_text(double v) {
   std::string s;
   io::append_number(s, v);
+  return s;
+}
+
+// FNV-1a, 64 bits: a stable fingerprint of the scene's text for sweep.plan.json.
+std::string fingerprint(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The plan's `settings` (sweep.hpp): everything but the varied keys that makes a point's run.
+std::vector<std::string> plan_settings(const SweepSettings& settings, const scene::Scene& scene) {
+  std::vector<std::string> s;
+  s.push_back("scene content fnv1a64 " +
+              fingerprint(settings.scene.is_text() ? settings.scene.text : file_text(scene.path)));
+  for (const std::string& o : settings.overrides) s.push_back("--set " + o);
+  if (settings.run.integrator) s.push_back("--integrator " + *settings.run.integrator);
+  if (settings.run.dt) s.push_back("--dt " + number_text(*settings.run.dt));
+  if (settings.run.duration) s.push_back("--duration " + number_text(*settings.run.duration));
+  if (settings.run.tolerance) s.push_back("--tolerance " + number_text(*settings.run.tolerance));
   return s;
 }
 
@@ -174,6 +207,7 @@ SweepSignals complete_sweep_plan(SweepPlan& plan, const SweepSettings& settings,
         scene::load_scene(settings.scene, point_overrides(settings, plan, plan.points.front()));
     apply_overrides(scene, settings.run);
     probe.scene_name = scene.name;
+    plan.settings = plan_settings(settings, scene);
     probe.signals = scene.network->signal_columns();
     const core::Network& network = *scene.network;
     for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
