@@ -20,6 +20,7 @@
 #include "services/render_loader.hpp"
 #include "services/run_outputs.hpp"
 #include "services/run_support.hpp"
+#include "services/owned_files.hpp"
 #include "services/verify_golden.hpp"
 #include "text/font.hpp"
 
@@ -329,8 +330,7 @@ class SceneVerifier {
 
   // actual, golden and diff PNGs of a mismatch, in out/<scene>/.
   void write_evidence(VerifyItem& item, const image::Image& actual, const fs::path& golden_file) {
-    const fs::path dir = out_ / job_.scene.name;
-    fs::create_directories(dir);
+    make_real_directories(out_, job_.scene.name);  // never through a link (IoError)
     const std::string rel = job_.scene.name + "/" + item.name;
     image::write_png(out_ / (rel + ".actual.png"), actual, image::PngSpeed::small);
     item.actual = rel + ".actual.png";

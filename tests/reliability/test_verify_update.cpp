@@ -48,7 +48,7 @@ fs::path verify_scene(const fs::path& dir, bool frames, bool figures, unsigned s
 
 TEST_CASE("verify --update deletes nothing outside its golden directory", "[golden]") {
   const fs::path dir = scratch("escape");
-  const fs::path scene = verify_scene(dir, false, false);
+  const fs::path scene = verify_scene(dir, false, true);
   REQUIRE(run_child({"verify", scene.string(), "--golden", "g", "--update", "--quiet"}, dir).code == 0);
   const fs::path manifest_path = dir / "g" / "generated" / "golden.json";
   const nlohmann::json original = nlohmann::json::parse(read_text(manifest_path));
