@@ -159,10 +159,8 @@ SweepTable resume_sweep_table(const SweepPlan& plan, const fs::path& path, const
   return table;
 }
 
-bool write_sweep(const SweepPlan& plan, const SweepTable& table, const fs::path& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw io::IoError(dir.string() + ": cannot create the directory: " + ec.message());
+bool write_sweep(const SweepPlan& plan, const SweepTable& table, const fs::path& dir, bool overwrite) {
+  claim_sweep_directory(plan, dir, Shard{}, overwrite);
   io::write_file_atomically(dir / "sweep.plan.json", plan.to_json());
   write_sweep_table(table, dir / "sweep.csv");
   return write_sweep_report(plan, table, dir);

@@ -31,8 +31,11 @@ SweepTable resume_sweep_table(const SweepPlan& plan, const std::filesystem::path
                               const Shard& shard, bool force_step);
 
 // Writes a whole sweep into `dir`: sweep.plan.json, sweep.csv and the report (sweep.md, and
-// sweep.png and sweep.svg when there is something to plot; false when not).
-bool write_sweep(const SweepPlan& plan, const SweepTable& table, const std::filesystem::path& dir);
+// sweep.png and sweep.svg when there is something to plot; false when not), into a directory
+// claimed as claim_sweep_directory does (another sweep's, or a non-empty one that is no
+// sweep's, refused unless `overwrite`).
+bool write_sweep(const SweepPlan& plan, const SweepTable& table, const std::filesystem::path& dir,
+                 bool overwrite = false);
 
 struct SweepMerge {
   std::size_t shards = 0, points = 0, missing = 0, duplicated = 0;

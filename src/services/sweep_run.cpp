@@ -7,6 +7,7 @@
 #include <exception>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <mutex>
 #include <thread>
 
@@ -45,11 +46,21 @@ std::string file_text(const fs::path& path) {
 }
 
 // The plan's `settings` (sweep.hpp): everything but the varied keys that makes a point's run.
-std::vector<std::string> plan_settings(const SweepSettings& settings, const scene::Scene& scene) {
+// The scene as its document after --set (toml++'s canonical text), so that a scene file with
+// --set and the same scene made in Python are one sweep; its source text when that does not
+// load without the points' values.
+std::vector<std::string> plan_settings(const SweepSettings& settings, const scene::Scene& probe) {
+  std::string text;
+  try {
+    std::ostringstream canonical;
+    canonical << toml::toml_formatter(scene::load_scene(settings.scene, settings.overrides).document);
+    text = canonical.str();
+  } catch (const std::exception&) {
+    text = settings.scene.is_text() ? settings.scene.text : file_text(probe.path);
+    for (const std::string& o : settings.overrides) text += "\n--set " + o;
+  }
   std::vector<std::string> s;
-  s.push_back("scene content fnv1a64 " +
-              fingerprint(settings.scene.is_text() ? settings.scene.text : file_text(scene.path)));
-  for (const std::string& o : settings.overrides) s.push_back("--set " + o);
+  s.push_back("scene fnv1a64 " + fingerprint(text));
   if (settings.run.integrator) s.push_back("--integrator " + *settings.run.integrator);
   if (settings.run.dt) s.push_back("--dt " + number_text(*settings.run.dt));
   if (settings.run.duration) s.push_back("--duration " + number_text(*settings.run.duration));
