@@ -104,7 +104,7 @@ TEST_CASE("a run into a directory of the user's files deletes none of them", "[o
   }
 }
 
-TEST_CASE("--overwrite replaces only the files of the names a run writes", "[ownership]") {
+TEST_CASE("an overwrite run replaces only the files of the names a run writes", "[ownership]") {
   const fs::path dir = scratch("overwrite");
   SceneSpec spec;
   spec.duration = 0.2;
