@@ -95,15 +95,17 @@ py::array rows_view(const std::shared_ptr<RunHandle>& h) {
 
 // Writes what `stiction run --no-video --no-plots` writes into `dir`, under the same rules
 // (services/output_dir.hpp: the directory locked, an earlier run's outputs replaced).
-std::vector<std::string> save(const RunHandle& h, const std::filesystem::path& dir) {
-  services::OutputDirectory out(dir);
+// `overwrite`: as --overwrite, write into a non-empty directory that is no stiction output.
+std::vector<std::string> save(const RunHandle& h, const std::filesystem::path& dir, bool overwrite) {
+  services::OutputDirectory out(dir, services::OutputOptions{overwrite});
   io::write_csv(h.result.trajectory, out / "trajectory.csv");
   out.wrote(out / "trajectory.csv");
   nlohmann::ordered_json summary = h.summary;
   out.wrote(out / "summary.json");
   summary["files"] = out.files();
   io::write_summary(summary, out / "summary.json");
-  return {(out / "trajectory.csv").string(), (out / "summary.json").string()};
+  out.commit();
+  return {out.final_path("trajectory.csv").string(), out.final_path("summary.json").string()};
 }
 
 }  // namespace
@@ -134,7 +136,7 @@ void bind_run(py::module_& m) {
                                return d;
                              })
       .def("rows", &rows_view)
-      .def("save", &save, py::arg("dir"));
+      .def("save", &save, py::arg("dir"), py::arg("overwrite") = false);
 
   m.def("_run", &run, py::arg("scene"), py::arg("integrator") = py::none(),
         py::arg("dt") = py::none(), py::arg("duration") = py::none(),

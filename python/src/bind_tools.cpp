@@ -345,11 +345,11 @@ void bind_tools(py::module_& m) {
       .def_property_readonly("interrupted", [](const SweepHandle& h) { return h.interrupted; })
       .def(
           "write",
-          [](const SweepHandle& h, const std::filesystem::path& dir) {
+          [](const SweepHandle& h, const std::filesystem::path& dir, bool overwrite) {
             py::gil_scoped_release release;
-            return services::write_sweep(h.plan, h.table, dir);
+            return services::write_sweep(h.plan, h.table, dir, overwrite);
           },
-          py::arg("dir"));
+          py::arg("dir"), py::arg("overwrite") = false);
   m.def("_sweep", &sweep, py::arg("scene"), py::arg("keys"), py::arg("zip"), py::arg("jobs"),
         py::arg("records"), py::arg("plot"), py::arg("integrator"), py::arg("dt"),
         py::arg("duration"), py::arg("tolerance"), py::arg("force_step"), py::arg("progress"));

@@ -105,10 +105,13 @@ class Result:
         frame.attrs["units"] = dict(self.units)
         return frame
 
-    def save(self, directory):
+    def save(self, directory, overwrite=False):
         """Writes trajectory.csv and summary.json into ``directory`` (created if needed), as
-        ``stiction run --no-video --no-plots --out directory`` does. Returns their paths."""
-        return self._handle.save(os.fspath(directory))
+        ``stiction run --no-video --no-plots --out directory`` does, under its rules: a
+        non-empty directory that no stiction run wrote (no ``.stiction-output``) is refused
+        with :class:`stiction.SceneError` unless ``overwrite=True`` (``--overwrite``).
+        Returns their paths."""
+        return self._handle.save(os.fspath(directory), overwrite)
 
     def summary_json(self):
         """The summary as JSON text (without ``files``; ``save`` writes summary.json itself)."""

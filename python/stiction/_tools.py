@@ -215,10 +215,12 @@ class Sweep:
         """The table as a pandas DataFrame, indexed by point."""
         return _dataframe(self.table).set_index("point")
 
-    def write(self, dir):  # noqa: A002 - as on the command line
+    def write(self, dir, overwrite=False):  # noqa: A002 - as on the command line
         """Writes sweep.csv, sweep.md, sweep.plan.json and, when a column has values to plot,
-        sweep.png and sweep.svg into ``dir``, as ``stiction sweep`` does; returns their paths."""
-        figure = self._handle.write(os.fspath(dir))
+        sweep.png and sweep.svg into ``dir``, as ``stiction sweep`` does; returns their paths.
+        A directory holding another sweep, or other files and no sweep, is refused with
+        :class:`stiction.SceneError` unless ``overwrite=True`` (``--overwrite``)."""
+        figure = self._handle.write(os.fspath(dir), overwrite)
         names = ["sweep.csv", "sweep.md", "sweep.plan.json"]
         if figure:
             names += ["sweep.png", "sweep.svg"]

@@ -176,3 +176,19 @@ def test_what_the_command_warns_of_is_a_python_warning():
     assert scene.warnings, "mu = 20 is a plausibility warning"
     with pytest.warns(stiction.SceneWarning, match=r"slippery.toml:\d+:\d+: impedances.floor.mu"):
         stiction.run(scene, accuracy=False)
+
+
+def test_save_refuses_a_directory_it_does_not_own(tmp_path):
+    # As `run --out`: a non-empty directory without .stiction-output is the user's (issue 25).
+    result = stiction.run("slope_slide", duration=0.05, accuracy=False)
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "trajectory.csv").write_text("the user's\n")
+    with pytest.raises(stiction.SceneError, match="overwrite"):
+        result.save(mine)
+    assert (mine / "trajectory.csv").read_text() == "the user's\n"
+    paths = result.save(mine, overwrite=True)
+    assert [p.rsplit("/", 1)[1] for p in paths] == ["trajectory.csv", "summary.json"]
+    assert (mine / "trajectory.csv").read_text() != "the user's\n"
+    assert (mine / ".stiction-output").is_file()
+    result.save(mine)  # now its own: saved again without overwrite

@@ -161,6 +161,28 @@ def test_sweep_zip_and_ranges_follow_the_command_line():
     assert grid.table["impedances.slope.damping"].tolist() == [1000.0, 2000.0, 3000.0] * 2
 
 
+def test_sweep_write_refuses_another_sweeps_directory(tmp_path):
+    # As `sweep --out` (issue 25): a directory of another sweep, or of the user's files, is
+    # refused unless overwrite=True; the same sweep writes again.
+    scene = stiction.Scene.from_dict(slope_block(20.0, 0.5, duration=0.05))
+    first = stiction.sweep(scene, vary={"impedances.slope.mu": [0.1, 0.2]}, record=["block.v.x"], jobs=1)
+    other = stiction.sweep(scene, vary={"impedances.slope.mu": [0.1, 0.2]}, record=["block.v.x"], jobs=1,
+                           duration=0.04)
+    first.write(tmp_path / "s")
+    first.write(tmp_path / "s")
+    table = (tmp_path / "s" / "sweep.csv").read_text()
+    with pytest.raises(stiction.SceneError, match="another sweep"):
+        other.write(tmp_path / "s")
+    assert (tmp_path / "s" / "sweep.csv").read_text() == table
+    other.write(tmp_path / "s", overwrite=True)
+    assert (tmp_path / "s" / "sweep.csv").read_text() != table
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.md").write_text("the user's")
+    with pytest.raises(stiction.SceneError, match="notes.md"):
+        first.write(mine)
+
+
 def test_ctrl_c_stops_a_sweep_and_keeps_the_finished_points():
     """SIGINT half a second into a sweep that would take far longer (100 points of 20 s of
     simulated time on one thread): stiction.Interrupted, whose result holds the finished

@@ -24,6 +24,7 @@ inline constexpr int kExitInterrupted = 130;
 struct RunArguments {
   std::string scene;
   std::string out;  // empty: out/<scene name>/
+  bool overwrite = false;  // --overwrite: write into a non-empty directory without a manifest
   std::optional<std::string> integrator;
   std::optional<double> dt;
   std::optional<double> duration;
@@ -92,6 +93,7 @@ struct SweepArguments {
   std::vector<std::string> record;     // signals whose final value is tabled (default all)
   std::vector<std::string> plot;       // table columns plotted (default: the stick times)
   std::string out;                     // empty: out/<scene name>/sweep/
+  bool overwrite = false;              // --overwrite: replace another sweep's directory
   std::string shard;                   // K/N; empty: from SLURM_ARRAY_* or none
   std::string merge;                   // a directory of shards to merge instead of running
   std::vector<std::string> overrides;  // --set, applied to every point before its values

@@ -47,6 +47,8 @@ int dispatch(int argc, char** argv) {
   CLI::App* run = cli.add_subcommand("run", "simulate a scene; write trajectory.csv and summary.json");
   run->add_option("SCENE", run_args.scene, "bundled scene name or path to a .toml file")->required();
   run->add_option("--out", run_args.out, "output directory (default out/<scene name>/)");
+  run->add_flag("--overwrite", run_args.overwrite,
+                "write into a non-empty directory that is not a stiction output directory");
   CLI::Option* integrator_opt =
       run->add_option("--integrator", integrator, "integrator, overrides simulation.integrator")
           ->check(CLI::IsMember(core::integrator_names()));
@@ -197,6 +199,8 @@ int dispatch(int argc, char** argv) {
                     "comma-separated table columns to plot (default: the stick times)")
       ->delimiter(',');
   sweep->add_option("--out", sweep_args.out, "output directory (default out/<scene name>/sweep/)");
+  sweep->add_flag("--overwrite", sweep_args.overwrite,
+                  "replace the table of another sweep (or write into a foreign directory)");
   sweep->add_option("--shard", sweep_args.shard,
                     "K/N: run points K, K+N, ... (default from SLURM_ARRAY_TASK_ID/COUNT)");
   sweep->add_option("--merge", sweep_args.merge, "merge the sweep.shard-K.csv of DIR into sweep.csv");

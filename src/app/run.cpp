@@ -63,7 +63,10 @@ int run_command(const RunArguments& args) {
   }
   if (guard.warning && !args.quiet)
     std::fprintf(stderr, "%s\n", scene::format_warning(prepared.warnings.back()).c_str());
-  OutputDirectory out(args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out));
+  // Staged (services/output_dir.hpp): the files land in the directory only at out.commit(),
+  // also for an interrupted or unstable run; an error leaves the earlier run's files as they were.
+  OutputDirectory out(args.out.empty() ? fs::path("out") / scene.name : fs::path(args.out),
+                      OutputOptions{args.overwrite});
 
   // Streaming: rows go to trajectory.csv as they are produced; plots and the video get
   // thinned copies (StreamedRows), so memory does not grow with the run's length.
@@ -93,19 +96,23 @@ int run_command(const RunArguments& args) {
   estimate_run_accuracy(prepared, request, outcome);
   if (outcome.accuracy_interrupted) {
     write_summary("accuracy");
+    out.commit();
     return interrupted_exit(args.quiet, "accuracy", out.files(), time_reached);
   }
   write_summary(result.interrupted ? "simulate" : nullptr);
-  if (result.interrupted)
+  if (result.interrupted) {
+    out.commit();
     return interrupted_exit(args.quiet, "simulate", out.files(), time_reached);
+  }
 
   if (result.instability) {
     // The rows up to the instability are in the CSV; pictures of a diverging run are not
     // worth the time, so the plots and the video are skipped.
     print_instability(scene.name, run, *result.instability, *outcome.suggestion);
+    out.commit();
     if (!args.quiet) {
       std::fprintf(stderr, "  wrote %s and %s (rows up to the instability); no plots or video\n",
-                   (out / "trajectory.csv").c_str(), (out / "summary.json").c_str());
+                   out.final_path("trajectory.csv").c_str(), out.final_path("summary.json").c_str());
     }
     return kExitUnstable;
   }
@@ -117,8 +124,8 @@ int run_command(const RunArguments& args) {
       std::printf("  %s\n", line.c_str());
     for (const std::string& line : body_event_lines(summary["bodies"]))
       std::printf("  %s\n", line.c_str());
-    std::printf("  wrote %s and %s\n", (out / "trajectory.csv").c_str(),
-                (out / "summary.json").c_str());
+    std::printf("  wrote %s and %s\n", out.final_path("trajectory.csv").c_str(),
+                out.final_path("summary.json").c_str());
     std::fflush(stdout);
   }
   if (!args.quiet && accuracy.verdict == "inaccurate") print_inaccurate(scene.name, run, accuracy);
@@ -130,10 +137,11 @@ int run_command(const RunArguments& args) {
       for (const fs::path& p : plots) out.wrote(p);
       if (sys::interrupted()) {
         write_summary("plots");
+        out.commit();
         return interrupted_exit(args.quiet, "plots", out.files(), time_reached);
       }
       if (!args.quiet) {
-        for (const fs::path& p : plots) std::printf("  wrote %s\n", p.c_str());
+        for (const fs::path& p : plots) std::printf("  wrote %s\n", out.final_path(p).c_str());
         std::fflush(stdout);
       }
     } catch (const text::FontError& e) {
@@ -185,24 +193,26 @@ int run_command(const RunArguments& args) {
     if (rendered.interrupted) {
       std::fprintf(stderr, "interrupted: rendered %d frames", rendered.frames);
       if (!rendered.video.empty())
-        std::fprintf(stderr, "; the partial video is %s", rendered.video.c_str());
+        std::fprintf(stderr, "; the partial video is %s", out.final_path(rendered.video).c_str());
       std::fprintf(stderr, "\n");
       write_summary("render");
+      out.commit();
       return interrupted_exit(args.quiet, "render", out.files(), time_reached);
     }
     if (!args.quiet) {
       if (!rendered.video.empty()) {
         std::printf("  wrote %s (%d frames, %dx%d at %g fps, rendered in %.1f s: %.1f frames/s)\n",
-                    rendered.video.c_str(), rendered.frames, render_settings.width,
+                    out.final_path(rendered.video).c_str(), rendered.frames, render_settings.width,
                     render_settings.height, render_settings.fps, rendered.wall_seconds, fps);
       }
       if (args.frames) {
-        std::printf("  wrote %s/000000.png .. %06d.png\n", (out / "frames").c_str(),
+        std::printf("  wrote %s/000000.png .. %06d.png\n", out.final_path("frames").c_str(),
                     rendered.frames - 1);
       }
     }
   }
   if (!args.no_plots || !args.no_video || args.frames) write_summary(nullptr);  // the full list
+  out.commit();  // the new files replace the earlier run's only now
   return kExitOk;
 }
 

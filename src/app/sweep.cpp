@@ -11,6 +11,7 @@
 #include "scene/scene.hpp"
 #include "services/sweep_directory.hpp"
 #include "services/sweep_run.hpp"
+#include "sys/interrupt.hpp"
 
 namespace stiction::app {
 using namespace services;
@@ -67,8 +68,7 @@ int sweep_command(const SweepArguments& args) {
 
   const fs::path out =
       args.out.empty() ? fs::path("out") / signals.scene_name / "sweep" : fs::path(args.out);
-  fs::create_directories(out);
-  write_or_check_plan(plan, out);
+  claim_sweep_directory(plan, out, shard, args.overwrite);
 
   const fs::path table_path = shard.sharded()
                                   ? out / ("sweep.shard-" + std::to_string(shard.index) + ".csv")
@@ -103,6 +103,15 @@ int sweep_command(const SweepArguments& args) {
   std::size_t ok = 0;
   const std::size_t status = 1 + plan.keys.size();
   for (const auto& [index, row] : table.rows) ok += row[status] == "ok";
+  if (sys::interrupted()) {
+    // The table is consistent and resumable; the report (a figure of every point, seconds
+    // for a large sweep) waits for the sweep to be complete.
+    if (!args.quiet) {
+      std::printf("  interrupted by %s after %zu points; wrote %s (run the same command to resume)\n",
+                  sys::interrupt_signal_name(), table.rows.size(), table_path.c_str());
+    }
+    return sys::interrupt_exit_code();
+  }
   const bool figure = !shard.sharded() && write_sweep_report(plan, table, out);
   if (!args.quiet) {
     std::printf("  %zu ok, %zu unstable or failed\n  wrote %s\n", ok, table.rows.size() - ok,

@@ -18,6 +18,8 @@
 #include "services/progress.hpp"
 #include "services/run_support.hpp"
 #include "services/step_guard.hpp"
+#include "services/owned_files.hpp"
+#include "services/verify_golden.hpp"
 #include "services/verify_report.hpp"
 #include "services/verify_scene.hpp"
 #include "text/number_text.hpp"
@@ -66,6 +68,8 @@ VerifyJob prepare(const std::string& name, const VerifyArguments& args) {
     }
   }
   job.at = args.at;
+  // Only regular files are read, and golden.json names only files inside its set (exit 2).
+  check_golden_set(fs::path(args.golden) / job.scene.name);
   if (!args.update && !fs::exists(fs::path(args.golden) / job.scene.name / "golden.json")) {
     throw scene::InputError(
         "error: " + (fs::path(args.golden) / job.scene.name / "golden.json").string() +
@@ -142,8 +146,20 @@ int verify_command(const VerifyArguments& args) {
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw io::IoError(out.string() + ": cannot create the report directory: " + ec.message());
-  // Evidence of an earlier verification would sit beside the new one.
-  for (const VerifyJob& job : jobs) fs::remove_all(out / job.scene.name, ec);
+  // Evidence of an earlier verification would sit beside the new one: its images go (only
+  // those, by their names; never through a link), the rest of the directory is the user's.
+  for (const VerifyJob& job : jobs) {
+    const fs::path evidence = out / job.scene.name;
+    if (!fs::is_directory(fs::symlink_status(evidence, ec))) continue;
+    std::vector<fs::path> doomed;
+    for (const auto& e : fs::directory_iterator(evidence, ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.ends_with(".actual.png") || name.ends_with(".golden.png") || name.ends_with(".diff.png"))
+        doomed.push_back(e.path());
+    }
+    for (const fs::path& p : doomed) remove_owned_file(p);
+    fs::remove(evidence, ec);  // if now empty
+  }
 
   const int cores = std::max(1u, std::thread::hardware_concurrency());
   const int workers =

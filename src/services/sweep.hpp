@@ -23,6 +23,9 @@ struct SweepPlan {
   std::vector<SweepPoint> points;
   std::vector<std::string> columns;
   std::vector<std::string> plot;  // columns plotted against the first key
+  // What else makes its points what they are: the scene's document after --set (a hash),
+  // --dt, --duration, --integrator, --tolerance. A sweep that differs here is another sweep.
+  std::vector<std::string> settings;
   std::string to_json() const;
   static SweepPlan from_json(const std::string& text, const std::filesystem::path& origin);
 };

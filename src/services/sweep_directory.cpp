@@ -1,11 +1,13 @@
 #include "services/sweep_directory.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <fstream>
 #include <sstream>
 
 #include "io/atomic_file.hpp"
 #include "scene/toml_reader.hpp"
+#include "services/owned_files.hpp"
 
 namespace stiction::services {
 namespace fs = std::filesystem;
@@ -21,19 +23,113 @@ std::string read_text(const fs::path& path) {
 
 }  // namespace
 
-void write_or_check_plan(const SweepPlan& plan, const fs::path& out) {
+namespace {
+
+bool is_sweep_file(const std::string& name) {
+  return name == "sweep.csv" || name == "sweep.md" || name == "sweep.png" || name == "sweep.svg" ||
+         name == "sweep.plan.json" ||
+         (name.rfind("sweep.shard-", 0) == 0 && name.size() > 16 && name.ends_with(".csv"));
+}
+
+std::string table_name(const Shard& shard) {
+  return shard.sharded() ? "sweep.shard-" + std::to_string(shard.index) + ".csv" : "sweep.csv";
+}
+
+// NNNNNN of points/NNNNNN, or nullopt.
+std::optional<std::size_t> point_index(const std::string& name) {
+  if (name.size() != 6 || !std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return std::nullopt;
+  return static_cast<std::size_t>(std::stoul(name));
+}
+
+void refuse_special(const fs::path& path, bool directory) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(path, ec);
+  if (!fs::exists(st)) return;
+  if (directory ? !fs::is_directory(st) : !fs::is_regular_file(st)) {
+    throw scene::InputError("error: " + path.string() + ": " +
+                            (fs::is_symlink(st) ? "a symbolic link" : "not a regular " +
+                             std::string(directory ? "directory" : "file")) +
+                            "; a sweep never writes through it: remove it or use another --out");
+  }
+}
+
+// The other sweep's own files: its tables, plan, report, and its points' outputs.
+void remove_sweep_files(const fs::path& out) {
+  std::error_code ec;
+  std::vector<fs::path> doomed;
+  for (const auto& entry : fs::directory_iterator(out, ec)) {
+    if (is_sweep_file(entry.path().filename().string())) doomed.push_back(entry.path());
+  }
+  for (const fs::path& p : doomed) remove_owned_file(p);
+  if (!fs::is_directory(fs::symlink_status(out / "points", ec))) return;
+  for (const auto& entry : fs::directory_iterator(out / "points", ec)) {
+    if (!point_index(entry.path().filename().string()) ||
+        !fs::is_directory(fs::symlink_status(entry.path(), ec)))
+      continue;
+    for (const char* name : {"summary.json", "trajectory.csv"}) remove_owned_file(entry.path() / name);
+    remove_temporaries(entry.path());
+    fs::remove(entry.path(), ec);  // if now empty
+  }
+  fs::remove(out / "points", ec);  // if now empty
+}
+
+}  // namespace
+
+void claim_sweep_directory(const SweepPlan& plan, const fs::path& out, const Shard& shard,
+                           bool overwrite) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw io::IoError(out.string() + ": cannot create the sweep directory: " + ec.message());
   const fs::path path = out / "sweep.plan.json";
   const std::string text = plan.to_json();
-  std::error_code ec;
-  if (fs::exists(path, ec)) {
+  refuse_special(path, false);
+  refuse_special(out / table_name(shard), false);
+  refuse_special(out / "points", true);
+  if (fs::exists(fs::symlink_status(path, ec))) {
     if (read_text(path) != text) {
-      throw scene::InputError("error: " + path.string() +
-                              " describes another sweep (other scene, keys, values or records); "
-                              "use another --out or remove that directory");
+      if (!overwrite) {
+        throw scene::InputError("error: " + path.string() +
+                                " describes another sweep (other scene or scene content, keys, "
+                                "values, records, --set, --dt, --duration, --integrator or "
+                                "--tolerance); use another --out, or --overwrite to replace it");
+      }
+      remove_sweep_files(out);
     }
-    return;
+  } else {
+    std::vector<std::string> found;
+    for (const auto& entry : fs::directory_iterator(out, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (!is_temporary_name(name)) found.push_back(name);
+    }
+    std::sort(found.begin(), found.end());
+    if (!found.empty() && !overwrite) {
+      std::string names;
+      for (std::size_t i = 0; i < found.size() && i < 5; ++i) names += (i ? ", " : "") + found[i];
+      if (found.size() > 5) names += " and " + std::to_string(found.size() - 5) + " more";
+      throw scene::InputError("error: --out " + out.string() +
+                              ": not empty and holds no sweep.plan.json (not a sweep directory): " +
+                              names + "; use another --out, or --overwrite to write into it");
+    }
+    if (overwrite) remove_sweep_files(out);
   }
-  io::write_file_atomically(path, text);
+  // What a killed run of this shard left (by its names only: other shards may be running).
+  std::string table_prefix(1, '.');  // appended: GCC 12's -Wrestrict misfires on "." + s + "."
+  table_prefix.append(table_name(shard)).append(".tmp-");
+  std::vector<std::string> prefixes{table_prefix};
+  if (!shard.sharded()) {
+    for (const char* name : {".sweep.md.tmp-", ".sweep.png.tmp-", ".sweep.svg.tmp-"})
+      prefixes.emplace_back(name);
+  }
+  remove_temporaries(out, prefixes);
+  if (fs::is_directory(fs::symlink_status(out / "points", ec))) {
+    for (const auto& entry : fs::directory_iterator(out / "points", ec)) {
+      const auto index = point_index(entry.path().filename().string());
+      if (index && shard.owns(*index)) remove_temporaries(entry.path());
+    }
+  }
+  if (!fs::exists(fs::symlink_status(path, ec)) || read_text(path) != text)
+    io::write_file_atomically(path, text);
 }
 
 SweepTable resume_sweep_table(const SweepPlan& plan, const fs::path& path, const Shard& shard,
@@ -63,10 +159,8 @@ SweepTable resume_sweep_table(const SweepPlan& plan, const fs::path& path, const
   return table;
 }
 
-bool write_sweep(const SweepPlan& plan, const SweepTable& table, const fs::path& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw io::IoError(dir.string() + ": cannot create the directory: " + ec.message());
+bool write_sweep(const SweepPlan& plan, const SweepTable& table, const fs::path& dir, bool overwrite) {
+  claim_sweep_directory(plan, dir, Shard{}, overwrite);
   io::write_file_atomically(dir / "sweep.plan.json", plan.to_json());
   write_sweep_table(table, dir / "sweep.csv");
   return write_sweep_report(plan, table, dir);

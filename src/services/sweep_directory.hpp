@@ -12,9 +12,16 @@
 
 namespace stiction::services {
 
-// The plan a directory already holds must be this one: shards of one sweep share it.
-// scene::InputError when it describes another sweep.
-void write_or_check_plan(const SweepPlan& plan, const std::filesystem::path& out);
+// Makes `out` this sweep's directory (docs/sweeps.md, "The sweep directory"): the plan it
+// already holds must be this one (shards of one sweep share it; the same sweep resumes), a
+// directory holding another sweep's plan, or no plan but other files, is refused
+// (scene::InputError, exit 2, naming the plan or some files) unless `overwrite`, which
+// removes the other sweep's own files (its tables, report and points/) first. Also removes
+// what a killed run of this shard left: the temporaries of its table (and, unsharded, of the
+// report) and those of its points' directories. A table or `points` that is a link or not a
+// regular file / directory is refused.
+void claim_sweep_directory(const SweepPlan& plan, const std::filesystem::path& out,
+                           const Shard& shard, bool overwrite);
 
 // The table at `path` as far as a previous run of this sweep got: the rows `shard` owns
 // whose values are the plan's (with `force_step`, less the points the guard refused before),
@@ -24,8 +31,11 @@ SweepTable resume_sweep_table(const SweepPlan& plan, const std::filesystem::path
                               const Shard& shard, bool force_step);
 
 // Writes a whole sweep into `dir`: sweep.plan.json, sweep.csv and the report (sweep.md, and
-// sweep.png and sweep.svg when there is something to plot; false when not).
-bool write_sweep(const SweepPlan& plan, const SweepTable& table, const std::filesystem::path& dir);
+// sweep.png and sweep.svg when there is something to plot; false when not), into a directory
+// claimed as claim_sweep_directory does (another sweep's, or a non-empty one that is no
+// sweep's, refused unless `overwrite`).
+bool write_sweep(const SweepPlan& plan, const SweepTable& table, const std::filesystem::path& dir,
+                 bool overwrite = false);
 
 struct SweepMerge {
   std::size_t shards = 0, points = 0, missing = 0, duplicated = 0;

@@ -220,6 +220,7 @@ std::string SweepPlan::to_json() const {
   j["points"] = points.size();
   j["columns"] = columns;
   j["plot"] = plot;
+  j["settings"] = settings;
   return j.dump(2) + "\n";
 }
 
@@ -235,6 +236,7 @@ SweepPlan SweepPlan::from_json(const std::string& text, const std::filesystem::p
     }
     plan.columns = j.at("columns").get<std::vector<std::string>>();
     plan.plot = j.at("plot").get<std::vector<std::string>>();
+    if (j.contains("settings")) plan.settings = j["settings"].get<std::vector<std::string>>();
     plan.points = make_points(plan.keys, plan.zip);
     if (plan.points.size() != j.at("points").get<std::size_t>()) {
       throw scene::InputError(origin.string() + ": error: the point count does not match the keys");

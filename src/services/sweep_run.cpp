@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <cstdint>
 #include <exception>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 #include <mutex>
 #include <thread>
 
@@ -21,6 +25,46 @@ namespace {
 std::string number_text(double v) {
   std::string s;
   io::append_number(s, v);
+  return s;
+}
+
+// FNV-1a, 64 bits: a stable fingerprint of the scene's text for sweep.plan.json.
+std::string fingerprint(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The plan's `settings` (sweep.hpp): everything but the varied keys that makes a point's run.
+// The scene as its document after --set (toml++'s canonical text), so that a scene file with
+// --set and the same scene made in Python are one sweep; its source text when that does not
+// load without the points' values.
+std::vector<std::string> plan_settings(const SweepSettings& settings, const scene::Scene& probe) {
+  std::string text;
+  try {
+    std::ostringstream canonical;
+    canonical << toml::toml_formatter(scene::load_scene(settings.scene, settings.overrides).document);
+    text = canonical.str();
+  } catch (const std::exception&) {
+    text = settings.scene.is_text() ? settings.scene.text : file_text(probe.path);
+    for (const std::string& o : settings.overrides) text += "\n--set " + o;
+  }
+  std::vector<std::string> s;
+  s.push_back("scene fnv1a64 " + fingerprint(text));
+  if (settings.run.integrator) s.push_back("--integrator " + *settings.run.integrator);
+  if (settings.run.dt) s.push_back("--dt " + number_text(*settings.run.dt));
+  if (settings.run.duration) s.push_back("--duration " + number_text(*settings.run.duration));
+  if (settings.run.tolerance) s.push_back("--tolerance " + number_text(*settings.run.tolerance));
   return s;
 }
 
@@ -174,6 +218,7 @@ SweepSignals complete_sweep_plan(SweepPlan& plan, const SweepSettings& settings,
         scene::load_scene(settings.scene, point_overrides(settings, plan, plan.points.front()));
     apply_overrides(scene, settings.run);
     probe.scene_name = scene.name;
+    plan.settings = plan_settings(settings, scene);
     probe.signals = scene.network->signal_columns();
     const core::Network& network = *scene.network;
     for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {

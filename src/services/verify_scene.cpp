@@ -20,6 +20,8 @@
 #include "services/render_loader.hpp"
 #include "services/run_outputs.hpp"
 #include "services/run_support.hpp"
+#include "services/owned_files.hpp"
+#include "services/verify_golden.hpp"
 #include "text/font.hpp"
 
 namespace stiction::services {
@@ -146,9 +148,13 @@ json read_manifest(const fs::path& file) {
 
 class SceneVerifier {
  public:
-  SceneVerifier(VerifyJob& job, fs::path golden_dir, fs::path out_dir, bool update)
+  // `stage`: where --update writes the new set (verify_golden.hpp); the old one is read from
+  // `golden_dir`.
+  SceneVerifier(VerifyJob& job, fs::path golden_dir, fs::path out_dir, bool update,
+                fs::path stage = {})
       : job_(job),
         golden_(std::move(golden_dir)),
+        stage_(std::move(stage)),
         out_(std::move(out_dir)),
         update_(update),
         manifest_(read_manifest(golden_ / "golden.json")) {
@@ -173,7 +179,7 @@ class SceneVerifier {
     numbers(summary, next, verdict);
     if (update_) {
       removed(next, verdict);
-      io::write_file_atomically(golden_ / "golden.json", next.dump(2) + "\n");
+      io::write_file_atomically(stage_ / "golden.json", next.dump(2) + "\n");
     }
     return verdict;
   }
@@ -271,7 +277,8 @@ class SceneVerifier {
     verdict.items.push_back(std::move(item));
   }
 
-  // Golden files of the old set that the new one no longer lists are deleted.
+  // Golden files of the old set that the new one no longer lists: the new set (the stage)
+  // lacks them; nothing is deleted here (names are checked by check_golden_set).
   void removed(const json& next, SceneVerdict& verdict) {
     std::set<std::string> kept;
     for (const char* list : {"frames", "figures"}) {
@@ -282,8 +289,6 @@ class SceneVerifier {
       for (const auto& f : manifest_[list]) {
         const std::string file = f["file"].get<std::string>();
         if (kept.count(file)) continue;
-        std::error_code ec;
-        fs::remove(golden_ / file, ec);
         VerifyItem item = make_item(list == std::string("frames") ? "frame" : "figure",
                                     fs::path(file).stem().string(), file);
         item.status = ItemStatus::removed;
@@ -305,10 +310,9 @@ class SceneVerifier {
         const bool same = !r.size_mismatch && r.max_channel_difference == 0;
         item.status = same ? ItemStatus::unchanged : ItemStatus::changed;
         item.detail = same ? "identical" : r.message;
-        if (same) return;  // the bytes would be the same
       }
-      fs::create_directories(golden_);
-      image::write_png(golden_file, actual, image::PngSpeed::small);
+      // Every image of the new set goes to the stage, unchanged ones too (the same bytes).
+      image::write_png(stage_ / golden_file.filename(), actual, image::PngSpeed::small);
       return;
     }
     if (!have) {
@@ -326,8 +330,7 @@ class SceneVerifier {
 
   // actual, golden and diff PNGs of a mismatch, in out/<scene>/.
   void write_evidence(VerifyItem& item, const image::Image& actual, const fs::path& golden_file) {
-    const fs::path dir = out_ / job_.scene.name;
-    fs::create_directories(dir);
+    make_real_directories(out_, job_.scene.name);  // never through a link (IoError)
     const std::string rel = job_.scene.name + "/" + item.name;
     image::write_png(out_ / (rel + ".actual.png"), actual, image::PngSpeed::small);
     item.actual = rel + ".actual.png";
@@ -342,7 +345,7 @@ class SceneVerifier {
   }
 
   VerifyJob& job_;
-  fs::path golden_, out_;
+  fs::path golden_, stage_, out_;
   bool update_;
   json manifest_;
   image::CompareOptions options_;
@@ -379,7 +382,14 @@ SceneVerdict verify_scene(VerifyJob& job, const fs::path& golden_root, const fs:
   const auto start = std::chrono::steady_clock::now();
   SceneVerdict verdict;
   try {
-    verdict = SceneVerifier(job, golden_root / job.scene.name, out, update).run();
+    const fs::path golden = golden_root / job.scene.name;
+    if (update) {
+      GoldenStage stage(golden);  // the old set stays as it is until commit()
+      verdict = SceneVerifier(job, golden, out, update, stage.path()).run();
+      stage.commit();
+    } else {
+      verdict = SceneVerifier(job, golden, out, update).run();
+    }
   } catch (const std::exception& e) {
     verdict.scene = job.scene.name;
     verdict.error = e.what();

@@ -286,10 +286,10 @@ TEST_CASE("cli: run writes trajectory.csv and summary.json per the output contra
   // "final" is the last row, by column name, exactly (both are shortest round-trip text).
   CHECK(s["final"]["sphere.v.x"].get<double>() == csv.rows.back()[csv.column("sphere.v.x")]);
   CHECK(std::abs(s["final"]["sphere.v.x"].get<double>() - 2.0 * 5.0 / 7.0) < 1e-3 * 2.0 * 5.0 / 7.0);
-  // No temporary files left next to the outputs.
+  // No temporary files left next to the outputs (the third is the manifest .stiction-output).
   int files = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++files;
-  CHECK(files == 2);
+  CHECK(files == 3);
 }
 
 TEST_CASE("cli: rows come at the output rate whatever dt") {

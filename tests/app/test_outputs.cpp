@@ -98,7 +98,7 @@ TEST_CASE("run writes video.mp4 and the scene's plots", "[app][outputs]") {
   CHECK(png_size(dir / "out" / "plots" / "fig4_sphere.png") == std::pair{1039, 945});
   // Only the finished files: no temporary names, no partial video, no frames unasked.
   CHECK(names_in(dir / "out") ==
-        std::vector<std::string>{"plots", "summary.json", "trajectory.csv", "video.mp4"});
+        std::vector<std::string>{".stiction-output", "plots", "summary.json", "trajectory.csv", "video.mp4"});
   // Every output is named on stdout; 0.2 s at 60 fps is 13 frames.
   CHECK_THAT(o.out, Contains("out/video.mp4 (13 frames, 320x180"));
   CHECK_THAT(o.out, Contains("out/plots/fig4_sphere.png"));
@@ -108,6 +108,8 @@ TEST_CASE("run --frames writes one PNG per video frame", "[app][outputs]") {
   const fs::path dir = scratch("frames");
   fs::create_directories(dir / "out" / "frames");
   std::ofstream(dir / "out" / "frames" / "000099.png") << "from an older, longer run";
+  // ... which its manifest names (issue 25: only files a manifest names are removed).
+  std::ofstream(dir / "out" / ".stiction-output") << R"({"files": ["frames/000099.png"]})";
   const Outcome o =
       run_cli({"run", "sphere_roll", "--duration", "0.05", "--set", "render.size=[320,180]",
                "--no-video", "--no-plots", "--frames", "--out", "out"},
@@ -127,7 +129,7 @@ TEST_CASE("run --no-video --no-plots writes neither", "[app][outputs]") {
       {"run", "sphere_roll", "--duration", "0.2", "--no-video", "--no-plots", "--out", "out"}, dir);
   INFO(o.out);
   REQUIRE(o.code == 0);
-  CHECK(names_in(dir / "out") == std::vector<std::string>{"summary.json", "trajectory.csv"});
+  CHECK(names_in(dir / "out") == std::vector<std::string>{".stiction-output", "summary.json", "trajectory.csv"});
 }
 
 TEST_CASE("a plot naming an unknown signal fails before the simulation", "[app][outputs]") {
@@ -171,7 +173,7 @@ TEST_CASE("an unstable run writes no plots and no video", "[app][outputs]") {
                             dir);
   INFO(o.out);
   REQUIRE(o.code == 3);
-  CHECK(names_in(dir / "out") == std::vector<std::string>{"summary.json", "trajectory.csv"});
+  CHECK(names_in(dir / "out") == std::vector<std::string>{".stiction-output", "summary.json", "trajectory.csv"});
 }
 
 TEST_CASE("Ctrl-C during the render keeps a playable video.partial.mp4", "[app][outputs]") {
@@ -202,7 +204,15 @@ TEST_CASE("Ctrl-C during the render keeps a playable video.partial.mp4", "[app][
 
   // The third frame on disk means the renderer is running (and the SIGINT handler is set).
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (!fs::exists(out / "frames" / "000002.png") &&
+  // (While it renders, the run writes into its staging directory: output_dir.hpp.)
+  const auto staged_frame = [&] {
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(out, ec)) {
+      if (fs::exists(e.path() / "frames" / "000002.png", ec)) return true;
+    }
+    return fs::exists(out / "frames" / "000002.png", ec);
+  };
+  while (!staged_frame() &&
          std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

@@ -148,6 +148,19 @@ bool wait_until(Child& child, Predicate ready, std::chrono::duration<double> lim
   return false;
 }
 
+// A run's file while it is being written: in `out` or in the run's staging directory
+// `out/.stiction-staging-PID/` (services/output_dir.hpp: files land in `out` at the end).
+inline bool output_exists(const std::filesystem::path& out, const std::filesystem::path& relative) {
+  std::error_code ec;
+  if (std::filesystem::exists(out / relative, ec)) return true;
+  for (const auto& e : std::filesystem::directory_iterator(out, ec)) {
+    if (e.path().filename().string().rfind(".stiction-staging-", 0) == 0 &&
+        std::filesystem::exists(e.path() / relative, ec))
+      return true;
+  }
+  return false;
+}
+
 // Every temporary a run may leave: ".NAME.tmp-*" (sys/temporaries.hpp) or older "NAME.tmp.*".
 inline std::vector<std::string> temporaries_under(const std::filesystem::path& dir) {
   std::vector<std::string> found;

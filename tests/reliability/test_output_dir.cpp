@@ -58,17 +58,27 @@ TEST_CASE("a run removes the earlier run's outputs and lists what it wrote", "[o
   }
   std::ofstream(out / "notes.txt") << "the user's";
   std::ofstream(out / "plots" / "README") << "the user's too";
-  const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "o"}, dir);
+  // Not a stiction output directory (no manifest): written into only with --overwrite
+  // (issue 25), which replaces the files of the names it writes and deletes nothing else;
+  // the temporaries of a killed run go.
+  const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "o", "--overwrite"}, dir);
   REQUIRE(r.code == 0);
-  CHECK_FALSE(fs::exists(out / "frames"));  // emptied, then removed
   std::vector<std::string> files = listed(out);
   CHECK(files.front() == "trajectory.csv");
-  // Exactly the listed files exist, plus the user's two.
-  files.push_back("notes.txt");
-  files.push_back("plots/README");
+  // Exactly the listed files exist, plus the user's two and the stale-looking files that
+  // this run did not write (not its own: they stay).
+  for (const char* other : {"notes.txt", "plots/README", "video.mp4", "video.partial.mp4", "plots/old_plot.png",
+                            "plots/old.svg", "frames/000000.png", "frames/000999.png", ".stiction-output"}) {
+    files.push_back(other);
+  }
   std::sort(files.begin(), files.end());
   CHECK(files_under(out) == files);
   CHECK(read_text(out / "notes.txt") == "the user's");
+  CHECK(read_text(out / "video.mp4") == "stale");
+  for (const char* stale : {"video.mp4", "video.partial.mp4", "plots/old_plot.png", "plots/old.svg",
+                            "frames/000000.png", "frames/000999.png"}) {
+    fs::remove(out / stale);  // the user moves them away: the rest is the run's own
+  }
 
   // A second run with fewer outputs (no plots) leaves none of the first run's plots, even
   // those named only in the first summary.
@@ -76,7 +86,8 @@ TEST_CASE("a run removes the earlier run's outputs and lists what it wrote", "[o
       run_child({"run", scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
   REQUIRE(again.code == 0);
   CHECK(listed(out) == std::vector<std::string>{"trajectory.csv", "summary.json"});
-  CHECK(files_under(out) == std::vector<std::string>{"notes.txt", "plots/README", "summary.json", "trajectory.csv"});
+  CHECK(files_under(out) == std::vector<std::string>{".stiction-output", "notes.txt", "plots/README", "summary.json",
+                                                     "trajectory.csv"});
 }
 
 TEST_CASE("a planted symlink is never written through", "[outdir]") {
@@ -91,7 +102,7 @@ TEST_CASE("a planted symlink is never written through", "[outdir]") {
   fs::create_symlink(dir / "victim_json", out / "summary.json");
   fs::create_symlink(dir / "victim_video", out / "video.mp4");
   fs::create_symlink(dir / "victim_plot", out / "plots" / "generated.png");
-  const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "shared"}, dir);
+  const RunResult r = run_child({"run", scene.string(), "--no-video", "--out", "shared", "--overwrite"}, dir);
   REQUIRE(r.code == 0);
   for (const char* victim : {"victim_csv", "victim_json", "victim_video", "victim_plot"}) {
     INFO(victim);
@@ -99,7 +110,8 @@ TEST_CASE("a planted symlink is never written through", "[outdir]") {
   }
   CHECK(fs::is_regular_file(fs::symlink_status(out / "trajectory.csv")));
   CHECK(fs::is_regular_file(fs::symlink_status(out / "summary.json")));
-  CHECK_FALSE(fs::exists(fs::symlink_status(out / "video.mp4")));
+  // Not written by this run (--no-video) and no manifest named it: left alone, as a link.
+  CHECK(fs::is_symlink(fs::symlink_status(out / "video.mp4")));
 }
 
 TEST_CASE("a second run into a directory in use fails at once", "[outdir]") {

@@ -132,8 +132,8 @@ TEST_CASE("a signal while the plots are drawn keeps the plots done", "[signals]"
   const fs::path scene = write_scene(dir, spec);
   Child child({"run", scene.string(), "--no-video", "--out", "o"}, dir);
   // summary.json is written (atomically) right before the first plot.
-  REQUIRE(wait_until(child, [&] { return fs::exists(dir / "o" / "summary.json"); }));
-  REQUIRE(wait_until(child, [&] { return fs::exists(dir / "o" / "plots" / "p1.png"); }));
+  REQUIRE(wait_until(child, [&] { return output_exists(dir / "o", "summary.json"); }));
+  REQUIRE(wait_until(child, [&] { return output_exists(dir / "o", "plots/p1.png"); }));
   const nlohmann::json s = interrupt(child, sig, "plots", dir);
   CHECK(s["interrupted"]["time_reached"].get<double>() == Approx(spec.duration));
   long plots = 0;
@@ -154,7 +154,7 @@ TEST_CASE("a signal during the render keeps video.partial.mp4 and the frames", "
   spec.extra = "[render]\nsize = [64, 48]\nfps = 30\nmsaa = 1\nshadow_map_size = 0\n";
   const fs::path scene = write_scene(dir, spec);
   Child child({"run", scene.string(), "--no-plots", "--frames", "--out", "o"}, dir);
-  REQUIRE(wait_until(child, [&] { return fs::exists(dir / "o" / "frames" / "000003.png"); }));
+  REQUIRE(wait_until(child, [&] { return output_exists(dir / "o", "frames/000003.png"); }));
   const nlohmann::json s = interrupt(child, sig, "render", dir);
   CHECK(fs::is_regular_file(dir / "o" / "video.partial.mp4"));
   CHECK_FALSE(fs::exists(dir / "o" / "video.mp4"));
