@@ -21,6 +21,7 @@
 #include "fuzz/scratch_directory.hpp"
 #include "scene/overrides.hpp"
 #include "scene/scene.hpp"
+#include "scene/toml_shape.hpp"
 
 namespace stiction::fuzz {
 
@@ -49,6 +50,7 @@ inline bool load_fuzz_input(const std::string& input) {
   }
   try {
     toml::table parsed;
+    scene::check_toml_shape(document, "fuzz.toml");  // as load_scene does before toml++
     try {
       parsed = toml::parse(std::string_view(document), std::string_view("fuzz.toml"));
     } catch (const toml::parse_error& e) {

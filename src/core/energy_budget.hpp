@@ -66,7 +66,17 @@ class EnergyBudget {
     const EnergyParts e = parts(x);
     energy_ = e.total;
     ++observations_;
-    if (!std::isfinite(e.total)) return;
+    // A finite state whose energy is not finite (a speed of 1e191 m/s squares to inf) has
+    // overflowed: inf - inf is NaN and every comparison with it is false, which let such a run
+    // end `ok` (issue 25). Once the energy has been finite, losing it is an instability; a
+    // component that defines no energy (NaN from the start) leaves the run unmonitored.
+    const bool finite = std::isfinite(e.total) && std::isfinite(e.kinetic + e.stored) &&
+                        std::isfinite(e.absolute) && std::isfinite(e.total - work);
+    if (!finite) {
+      overflowed_ = overflowed_ || defined_ || std::isinf(e.total) || std::isinf(e.absolute);
+      return;
+    }
+    defined_ = true;
     moved_ = std::max(moved_, e.kinetic + e.stored);
     absolute_ = std::max(absolute_, e.absolute);
     work_ = std::max(work_, work);
@@ -76,6 +86,8 @@ class EnergyBudget {
   // The energy at the last observed state (NaN if a component defines none).
   double energy() const { return energy_; }
   bool monitored() const { return std::isfinite(energy_) && std::isfinite(floor_); }
+  // The energy (or the scale it is measured against) stopped being a finite number.
+  bool overflowed() const { return overflowed_; }
   double scale() const { return moved_ + work_; }
   double rounding() const { return 1e4 * std::numeric_limits<double>::epsilon() * absolute_; }
   // How far E - W may rise above its lowest value before the run is called unstable.
@@ -86,7 +98,9 @@ class EnergyBudget {
   bool exceeded() const {
     const double settling =
         observations_ <= kSettleObservations ? 0.5 / static_cast<double>(observations_) : 0.0;
-    return monitored() && rise_ > allowed() + settling * scale();
+    if (overflowed_) return true;
+    const double bound = allowed() + settling * scale();
+    return monitored() && (rise_ > bound || !std::isfinite(bound));
   }
 
  private:
@@ -135,6 +149,8 @@ class EnergyBudget {
   double floor_ = INFINITY;
   double rise_ = 0.0;
   long observations_ = 0;
+  bool defined_ = false;     // some observed energy was finite
+  bool overflowed_ = false;  // then one was not
 };
 
 }  // namespace stiction::core

@@ -53,6 +53,10 @@ std::optional<Instability> InstabilityMonitor::check(double t, const Vec& x_prev
   }
   budget_.observe(x, work_in_);
   // With feedback sources, their work is neither credited nor charged: FeedbackMonitor.
+  if (budget_.overflowed()) {
+    return Instability{t, fastest_growing(network_, x_prev, x),
+                       "energy is not a finite number (the state overflows)"};
+  }
   if (!feedback_.active() && budget_.exceeded()) {
     char text[200];
     std::snprintf(text, sizeof text,

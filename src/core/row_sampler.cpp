@@ -74,6 +74,15 @@ void RowSampler::emit(double ts, const Vec& values) {
     result_.trajectory.append(row_.data());
   }
   ++result_.rows;
+  if (non_finite_column_ < 0) {
+    for (int c = 1; c <= n_; ++c) {
+      if (!std::isfinite(row_[c])) {
+        non_finite_column_ = c;
+        non_finite_time_ = ts;
+        break;
+      }
+    }
+  }
   last_row_ = row_;
   emitted_ = true;
 }
@@ -83,7 +92,19 @@ void RowSampler::flush() {
   block_rows_ = 0;
 }
 
+Verdict RowSampler::stop_if_non_finite() {
+  if (non_finite_column_ < 0) return Verdict::go_on;
+  if (!result_.instability) {
+    const std::string& column = result_.trajectory.columns()[static_cast<std::size_t>(non_finite_column_)];
+    result_.instability = Instability{non_finite_time_, column.substr(0, column.find('.')),
+                                      "signal " + column + " is not finite"};
+  }
+  return Verdict::stop;
+}
+
 RunObserver::Before RowSampler::before_step(const StepPlan& plan) {
+  // The row at t = 0, written at construction, may already be non-finite.
+  if (stop_if_non_finite() == Verdict::stop) return {Verdict::stop, false};
   if (dense_) return {};  // keeps its own copies of the pending step
   // A row strictly inside the step is blended with the signals at its start.
   const double next_sample = static_cast<double>(sample_) * sample_period_;
@@ -93,9 +114,11 @@ RunObserver::Before RowSampler::before_step(const StepPlan& plan) {
 }
 
 Verdict RowSampler::after_step(const StepTaken& step) {
+  t_reached_ = step.t_now;
+  steps_seen_ = step.k + 1;
   if (!dense_) {
     sample_linear(step);
-    return Verdict::go_on;
+    return stop_if_non_finite();
   }
   const Vec& start_derivative = *stepper_.start_derivative();  // at step.t, the pending end
   if (pending_) {
@@ -108,7 +131,7 @@ Verdict RowSampler::after_step(const StepTaken& step) {
   t0_ = step.t;
   t1_ = step.t_now;
   pending_ = true;
-  return Verdict::go_on;
+  return stop_if_non_finite();
 }
 
 void RowSampler::sample_linear(const StepTaken& step) {
@@ -159,13 +182,31 @@ void RowSampler::sample_dense() {
   }
 }
 
-void RowSampler::finish(const Vec&) {
+void RowSampler::finish(const Vec& x) {
+  const double h_last = dense_ ? t1_ - t0_ : T_;
   if (pending_) {
     // The last step's end derivative: no next step evaluates it, so one evaluation here.
     network_.derivative(t1_, x1_, t1_ - t0_, f1_);
     ++result_.evaluations;
     sample_dense();
     pending_ = false;
+  }
+  // The end row: the last row written when it is at the time reached, else the signals at
+  // the state the run ended in (x, when this sampler saw its step: not after an instability
+  // stopped the run before the step was sampled). `final` in summary.json is this row, so it
+  // is the state at the end even when the output rate puts no row there (issue 25: `final`
+  // held the initial state of a 2 s run at output_rate = 0.1).
+  result_.end_row = last_row_;
+  const bool x_is_reached = steps_seen_ == result_.steps && steps_seen_ > 0;
+  if (x_is_reached && emitted_ && std::abs(last_row_[0] - t_reached_) > 1e-9 * T_ && x.allFinite()) {
+    Vec values(n_);
+    network_.write_signals(t_reached_, x, h_last, values);
+    result_.end_row[0] = t_reached_;
+    for (int i = 0; i < n_; ++i) result_.end_row[static_cast<std::size_t>(i) + 1] = values[i];
+    for (int c : wrapped_) {
+      result_.end_row[static_cast<std::size_t>(c) + 1] =
+          unwrap_toward(result_.end_row[static_cast<std::size_t>(c) + 1], last_row_[static_cast<std::size_t>(c) + 1]);
+    }
   }
   if (sink_ != nullptr) {
     flush();

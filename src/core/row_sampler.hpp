@@ -32,11 +32,15 @@ class RowSampler final : public RunObserver {
              RowSink* sink, const Vec& x0);
   Before before_step(const StepPlan& plan) override;
   Verdict after_step(const StepTaken& step) override;
-  // Writes what is pending, flushes the sink and keeps the last row in the trajectory.
+  // Writes what is pending, flushes the sink and keeps the last row in the trajectory. Sets
+  // the result's end_row: the signals at the state the run ended in (RunResult::end_row).
   void finish(const Vec& x) override;
 
  private:
   void emit(double ts, const Vec& values);
+  // A row with a value that is not finite, from a finite state (the state itself is the
+  // InstabilityObserver's): an instability at that row, never a run that ends `ok`.
+  Verdict stop_if_non_finite();
   void flush();
   void sample_linear(const StepTaken& step);
   // Writes the rows in (t0_, t1_] from the pending step, its end derivative in f1_.
@@ -59,6 +63,10 @@ class RowSampler final : public RunObserver {
   std::size_t block_rows_ = 0;
   std::vector<double> row_, last_row_;
   bool emitted_ = false;
+  int non_finite_column_ = -1;  // the first column of a row found not finite
+  double non_finite_time_ = 0.0;
+  double t_reached_ = 0.0;      // the end of the last step this sampler saw
+  long steps_seen_ = 0;
   Vec row_prev_, row_now_;  // signals at a step's two ends (linear) or at a row (dense)
   // Dense output: the step whose rows wait for its end derivative.
   bool pending_ = false;

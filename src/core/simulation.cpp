@@ -9,6 +9,7 @@
 #include "core/flush_subnormals.hpp"
 #include "core/instability_observer.hpp"
 #include "core/interrupt_observer.hpp"
+#include "core/model_fault.hpp"
 #include "core/progress_observer.hpp"
 #include "core/row_sampler.hpp"
 #include "core/run_limits.hpp"
@@ -69,6 +70,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
     try {
       h = stepper->advance(network, t, end - t, x);
     } catch (const std::runtime_error& error) {
+      if (dynamic_cast<const ModelFault*>(&error) != nullptr) throw;  // bad input, not a step
       for (RunObserver* o : observers) o->after_advance(x);
       result.instability = Instability{t, "integrator", error.what()};
       break;

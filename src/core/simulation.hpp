@@ -64,6 +64,10 @@ struct RunResult {
   // Every row, or with a RowSink only the last one (the rows went to the sink).
   Trajectory trajectory;
   long rows = 0;  // rows produced
+  // [t, signal...] at the state the run ended in: the last row, or, when the output rate
+  // puts no row at the time reached, the signals there (summary.json's `final`). Empty if
+  // no row was written.
+  std::vector<double> end_row;
   long steps = 0;
   long evaluations = 0;  // network evaluations (the integrator's cost)
   double wall_seconds = 0.0;

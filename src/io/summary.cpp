@@ -84,7 +84,12 @@ nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunRe
   s["status"] = result.instability ? "unstable" : result.interrupted ? "interrupted" : "ok";
   nlohmann::ordered_json final_row = nlohmann::ordered_json::object();
   const core::Trajectory& tr = result.trajectory;
-  if (tr.row_count() > 0) {
+  if (result.end_row.size() == static_cast<std::size_t>(tr.column_count())) {
+    // The state the run ended in, which the output rate may put no row at (RunResult::end_row).
+    for (int c = 0; c < tr.column_count(); ++c) {
+      final_row[tr.columns()[c]] = result.end_row[static_cast<std::size_t>(c)];
+    }
+  } else if (tr.row_count() > 0) {
     const int last = tr.row_count() - 1;
     // NaN and infinity have no JSON form; nlohmann writes them as null.
     // Appended to the object's vector directly: ordered_json's operator[] searches the keys

@@ -20,6 +20,7 @@
 #include "components/maps/frame_pair_map.hpp"
 #include "components/maps/joint_map.hpp"
 #include "components/maps/point_map.hpp"
+#include "core/safe_normalize.hpp"
 
 namespace stiction::scene {
 
@@ -39,15 +40,47 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
+}  // namespace
+
+// Why `name` cannot name a component, or empty. Its columns are NAME.SIGNAL[.AXIS] and an
+// expression names them the same way: a '.' would make "a.b.p.x" ambiguous (body "a.b" or
+// an element "b" of "a"?), and anything beyond letters, digits, '_' and '-' would need
+// quoting in the CSV, in --set keys and in expressions.
+std::string component_name_problem(const std::string& name) {
+  if (name.empty()) return "a component name must not be empty";
+  if (name.size() > 200) return "a component name must be at most 200 characters long";
+  if (name.find('.') != std::string::npos) {
+    return "component names must not contain '.' (the CSV columns are NAME.SIGNAL: a dot "
+           "would make them ambiguous)";
+  }
+  for (const char c : name) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) {
+      return "component names may use letters, digits, '_' and '-' only (they name CSV columns)";
+    }
+  }
+  return {};
+}
+
+namespace {
+
 std::string name_of(const TableReader& table) {
   const std::string& p = table.path();
   return p.substr(p.rfind('.') + 1);
 }
 
 Vec3 unit(TableReader& table, std::string_view key, const Vec3& fallback) {
-  const Vec3 v = table.vec3(key, fallback);
-  if (!(v.norm() > 1e-12)) table.fail(key, "must be a non-zero vector");
-  return v.normalized();
+  const auto u = core::safe_normalized(table.vec3(key, fallback));
+  if (!u) table.fail(key, "must be a non-zero vector");
+  return *u;
+}
+
+// [w, x, y, z], normalized without overflow (core/safe_normalize.hpp).
+core::Quat unit_quaternion(TableReader& table, std::string_view key) {
+  const std::vector<double> q = table.numbers(key);
+  if (q.size() != 4) table.fail(key, "expected a quaternion [w, x, y, z]");
+  const auto u = core::safe_normalized(Eigen::Vector4d(q[0], q[1], q[2], q[3]));
+  if (!u) table.fail(key, "must be a non-zero quaternion");
+  return core::Quat((*u)[0], (*u)[1], (*u)[2], (*u)[3]);
 }
 
 std::string type_of(TableReader& table, const std::vector<std::string>& known) {
@@ -110,6 +143,12 @@ std::vector<TableReader> ComponentBuilder::entries(TableReader& section) {
   std::vector<std::pair<const toml::key*, const toml::table*>> found;
   for (const auto& [key, value] : section.table()) {
     const toml::node* node = section.node(key.str());
+    // The name is checked here, where the key is still whole: the dotted path built from it
+    // below cannot tell `[bodies."a.b"]` from a body `b` (issue 25: "a.b" became "b").
+    if (const std::string why = component_name_problem(std::string(key.str())); !why.empty()) {
+      throw InputError::at(key.source().path ? key.source() : node->source(),
+                           section.path() + ".\"" + std::string(key.str()) + "\": " + why);
+    }
     if (!node->is_table()) section.fail(key.str(), "expected a table (a component)");
     found.emplace_back(&key, node->as_table());
   }
@@ -216,11 +255,7 @@ void ComponentBuilder::add_body(TableReader& table) {
     p.position = table.vec3("position", p.position);
     p.velocity = table.vec3("velocity", p.velocity);
     if (table.has("orientation")) {
-      const std::vector<double> q = table.numbers("orientation");
-      if (q.size() != 4) table.fail("orientation", "expected a quaternion [w, x, y, z]");
-      p.orientation = core::Quat(q[0], q[1], q[2], q[3]);
-      if (!(p.orientation.norm() > 1e-12)) table.fail("orientation", "must be a non-zero quaternion");
-      p.orientation.normalize();
+      p.orientation = unit_quaternion(table, "orientation");
     }
     p.angular_velocity = table.vec3("angular_velocity", p.angular_velocity);
     p.gravity = gravity_;
@@ -409,11 +444,7 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     p.friction_damping = table.non_negative("friction_damping", p.friction_damping);
     p.friction_limit = table.non_negative("friction_limit", p.friction_limit);
     if (table.has("reference")) {
-      const std::vector<double> q = table.numbers("reference");
-      if (q.size() != 4) table.fail("reference", "expected a quaternion [w, x, y, z]");
-      p.reference = core::Quat(q[0], q[1], q[2], q[3]);
-      if (!(p.reference.norm() > 1e-12)) table.fail("reference", "must be a non-zero quaternion");
-      p.reference.normalize();
+      p.reference = unit_quaternion(table, "reference");
     }
     p.angle_offset = table.number("angle_offset", p.angle_offset);
     p.initial_e = table.number("initial_e", p.initial_e);

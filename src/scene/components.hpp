@@ -14,12 +14,17 @@
 #include "components/maps/observing_map.hpp"
 #include "core/body.hpp"
 #include "core/network.hpp"
+#include "scene/expression.hpp"
 #include "scene/external_elements.hpp"
 #include "scene/settle.hpp"
 #include "scene/toml_reader.hpp"
 #include "scene/urdf_loader.hpp"
 
 namespace stiction::scene {
+
+// Why `name` cannot name a component (or a spatial_tree joint: both name CSV columns), or
+// empty: letters, digits, '_' and '-' only, no '.', 1 to 200 characters.
+std::string component_name_problem(const std::string& name);
 
 // A torque_source or force_source as read from its table; wired in ComponentBuilder::finish(),
 // once every signal its expressions may read (any component's, including later ones) is known.
@@ -65,6 +70,8 @@ class ComponentBuilder {
   void set_directory(std::filesystem::path directory) { directory_ = std::move(directory); }
   // The visuals of each urdf body, by body name, for drawing.
   std::map<std::string, std::vector<UrdfVisual>>& robot_visuals() { return robot_visuals_; }
+  // The sources' expressions, for the check over the run's time span (Scene::expressions).
+  const std::vector<std::shared_ptr<const Expression>>& expressions() const { return expressions_; }
 
  private:
   struct BodyInfo {
@@ -125,6 +132,7 @@ class ComponentBuilder {
   std::vector<Pending> pending_;       // impedances not yet in the network
   // Maps of sources that read elements' outputs (owned by the network).
   std::vector<components::ObservingMap*> observers_;
+  std::vector<std::shared_ptr<const Expression>> expressions_;
 };
 
 }  // namespace stiction::scene

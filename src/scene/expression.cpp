@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 
 #include "scene/toml_reader.hpp"
 
@@ -54,6 +55,42 @@ std::string unknown_name_message(const std::string& token,
   return message + " (e.g. " + signals.front() + ")";
 }
 
+// The column of the first assignment operator (=, +=, -=, *=, /=) or -1: muParser assigns to
+// a variable ("t=5" sets t and gives 5), which a profile must never do. '=' belongs to a
+// comparison when it follows '=', '<', '>' or '!' or precedes '='.
+int assignment_position(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '=') continue;
+    const char before = i > 0 ? text[i - 1] : ' ';
+    const char after = i + 1 < text.size() ? text[i + 1] : ' ';
+    if (after == '=') {
+      ++i;  // "==": skip both
+      continue;
+    }
+    if (before == '<' || before == '>' || before == '!') continue;
+    const bool compound = before == '+' || before == '-' || before == '*' || before == '/';
+    return static_cast<int>(compound ? i - 1 : i);
+  }
+  return -1;
+}
+
+// The column of the first ',' outside parentheses (a list of expressions, "1,2"), or -1.
+int top_level_comma(const std::string& text) {
+  int depth = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '(') ++depth;
+    if (text[i] == ')') --depth;
+    if (text[i] == ',' && depth <= 0) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::string number_text(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.9g", v);
+  return buffer;
+}
+
 }  // namespace
 
 Expression::Expression(const std::string& text, const toml::source_region& where,
@@ -70,6 +107,18 @@ Expression::Expression(const std::string& text, const toml::source_region& where
                                                  "\": " + detail + " (column " +
                                                  std::to_string(pos + 1) + " of the expression)");
   };
+  // One expression, nothing assigned: muParser also accepts "t=5" and "1,2" (issue 25).
+  const auto refuse = [&](int pos, const std::string& why) {
+    throw InputError::at(inside(where, pos), what + ": invalid expression \"" + text_ + "\": " + why +
+                                                 " (column " + std::to_string(pos + 1) +
+                                                 " of the expression)");
+  };
+  if (const int pos = assignment_position(text_); pos >= 0) {
+    refuse(pos, "an assignment ('=', '+=', ...) is not an expression (a comparison is '==')");
+  }
+  if (const int pos = top_level_comma(text_); pos >= 0) {
+    refuse(pos, "a list of expressions separated by ',': give exactly one");
+  }
   // First pass: every signal is a variable, to learn which ones the expression uses (and
   // to report syntax errors and unknown names with their column).
   try {
@@ -101,6 +150,10 @@ Expression::Expression(const std::string& text, const toml::source_region& where
     // Eval compiles to bytecode; later calls reuse it.
     impl_->t = 0.0;
     impl_->parser.Eval();
+    if (impl_->parser.GetNumResults() != 1) {
+      refuse(0, "it gives " + std::to_string(impl_->parser.GetNumResults()) +
+                    " values: give exactly one expression");
+    }
   } catch (const mu::Parser::exception_type& e) {
     fail(e);
   }
@@ -128,15 +181,48 @@ void Expression::fail_at(const std::string& signal, const std::string& why) cons
   throw InputError::at(inside(where_, column), what_ + ": " + why);
 }
 
+void Expression::fail_value(double t, double value, const double* values) const {
+  std::string inputs = "t = " + number_text(t) + " s";
+  for (std::size_t i = 0; values != nullptr && i < used_.size(); ++i)
+    inputs += ", " + used_[i] + " = " + number_text(values[i]);
+  throw ExpressionValueError(
+      InputError::at(inside(where_, 0), what_ + ": the expression \"" + text_ + "\" is " +
+                                            number_text(value) + " at " + inputs +
+                                            ": an expression must give a finite number over the "
+                                            "whole run (the expression's fault, not the step's)")
+          .what());
+}
+
 double Expression::evaluate(double t) const {
   impl_->t = t;
-  return impl_->parser.Eval();
+  const double v = impl_->parser.Eval();
+  if (!std::isfinite(v) && std::isfinite(t)) fail_value(t, v, nullptr);
+  return v;
 }
 
 double Expression::evaluate(double t, const double* values) const {
   impl_->t = t;
   std::copy(values, values + impl_->values.size(), impl_->values.begin());
-  return impl_->parser.Eval();
+  const double v = impl_->parser.Eval();
+  // Not finite from non-finite inputs is the run's instability, reported as such.
+  if (!std::isfinite(v) && std::isfinite(t) &&
+      std::all_of(values, values + impl_->values.size(), [](double x) { return std::isfinite(x); })) {
+    fail_value(t, v, values);
+  }
+  return v;
+}
+
+void Expression::check_over(double duration, double output_rate) const {
+  if (!used_.empty()) return;
+  constexpr double kMaxSamples = 10001.0;
+  const double rows = std::floor(duration * output_rate + 1e-9) + 1.0;
+  if (rows <= kMaxSamples) {
+    for (long k = 0; k < static_cast<long>(rows); ++k) evaluate(static_cast<double>(k) / output_rate);
+  } else {
+    for (long k = 0; k < static_cast<long>(kMaxSamples); ++k)
+      evaluate(duration * static_cast<double>(k) / (kMaxSamples - 1.0));
+  }
+  evaluate(duration);
 }
 
 }  // namespace stiction::scene

@@ -10,7 +10,18 @@
 #include <string>
 #include <vector>
 
+#include "core/model_fault.hpp"
+#include "scene/toml_reader.hpp"
+
 namespace stiction::scene {
+
+// An expression that gave a value that is not finite (1/0, log(0), sqrt(-1)) from a finite
+// t and finite signals: bad input at the expression (exit 2), with the time. It passes
+// through core::simulate (core::ModelFault) instead of becoming an instability.
+class ExpressionValueError : public InputError, public core::ModelFault {
+ public:
+  explicit ExpressionValueError(const std::string& message) : InputError(message) {}
+};
 
 class Expression {
  public:
@@ -31,14 +42,21 @@ class Expression {
   const std::string& text() const { return text_; }
   // The signals the expression uses, in the order evaluate() takes their values.
   const std::vector<std::string>& used_signals() const { return used_; }
+  // ExpressionValueError when the value is not finite while t (and the values) are.
   double evaluate(double t) const;
   // values[i] is the value of used_signals()[i].
   double evaluate(double t, const double* values) const;
+  // Evaluates an expression of t alone at t = 0, at the output rows' times k / output_rate
+  // (up to 10001 of them, spread evenly over the run past that) and at t = duration:
+  // ExpressionValueError at the first value that is not finite. An expression reading
+  // signals is checked as the run evaluates it.
+  void check_over(double duration, double output_rate) const;
   // Throws an InputError at the first place the expression names `signal` (one of
   // used_signals()): "KEY: why" for an expression that is well formed but cannot be wired.
   [[noreturn]] void fail_at(const std::string& signal, const std::string& why) const;
 
  private:
+  [[noreturn]] void fail_value(double t, double value, const double* values) const;
   struct Impl;
   std::string text_;
   toml::source_region where_;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "scene/toml_reader.hpp"
+#include "scene/toml_shape.hpp"
 
 namespace stiction::scene {
 namespace {
@@ -83,6 +84,7 @@ void apply_override(toml::table& document, const std::string& assignment) {
   // Parse the value with a bare key of the same length in front of it, so that toml++
   // reports columns as they are in the user's argument.
   toml::table parsed;
+  check_toml_shape(assignment.substr(eq + 1), *source);  // a deep dotted key overflows toml++
   try {
     parsed = toml::parse(std::string(eq, 'v') + assignment.substr(eq), std::string_view(*source));
   } catch (const toml::parse_error& e) {

@@ -13,6 +13,7 @@
 #include "core/run_limits.hpp"
 #include "scene/components.hpp"
 #include "scene/overrides.hpp"
+#include "scene/toml_shape.hpp"
 #include "sys/data_dirs.hpp"
 
 namespace stiction::scene {
@@ -25,6 +26,7 @@ constexpr const char* kForeignSections[] = {"render", "camera", "overlay",
                                             "inset",  "plots",  "verify"};
 
 toml::table parse_text(const std::string& text, const std::string& origin) {
+  check_toml_shape(text, origin);  // before toml++: a deep dotted key overflows its stack
   try {
     return toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
@@ -173,6 +175,11 @@ Scene load_scene(const SceneSource& source, const std::vector<std::string>& over
   return scene;
 }
 
+void check_expressions(const Scene& scene) {
+  for (const auto& expression : scene.expressions)
+    expression->check_over(scene.run.duration, scene.run.output_rate);
+}
+
 Scene build_scene(toml::table document, const fs::path& path,
                   std::shared_ptr<const ExternalElements> externals) {
   Scene scene;
@@ -216,6 +223,8 @@ Scene build_scene(toml::table document, const fs::path& path,
   scene.run.stick_thresholds = builder.stick_thresholds();  // per contact or joint
   scene.network->finalize();
   builder.locate_observed();                      // sources reading other elements' signals
+  scene.expressions = builder.expressions();
+  check_expressions(scene);
   scene.warnings = plausibility_warnings(scene);  // after the build: checks read the network
   return scene;
 }

@@ -16,6 +16,7 @@
 
 #include "core/network.hpp"
 #include "core/simulation.hpp"
+#include "scene/expression.hpp"
 #include "scene/plausibility.hpp"
 #include "scene/toml_reader.hpp"
 #include "scene/urdf_loader.hpp"
@@ -57,6 +58,9 @@ struct Scene {
   std::vector<Warning> warnings;
   // The visual primitives of each urdf body, by body name (drawing).
   std::map<std::string, std::vector<UrdfVisual>> robot_visuals;
+  // The sources' expressions (scene/expression.hpp), checked over the run's time span by
+  // check_expressions().
+  std::vector<std::shared_ptr<const Expression>> expressions;
   // The elements supplied in code it was built with (null: none).
   std::shared_ptr<const ExternalElements> externals;
 
@@ -78,6 +82,12 @@ Scene load_scene(const SceneSource& source, const std::vector<std::string>& over
 // Builds a scene from a document already parsed (tests; `path` only names the origin).
 Scene build_scene(toml::table document, const std::filesystem::path& path,
                   std::shared_ptr<const ExternalElements> externals = nullptr);
+
+// Evaluates every expression of t alone at t = 0, at the times of the output rows and at the
+// end of the run (up to 10001 times, spread evenly past that): ExpressionValueError naming the
+// expression's key and the first time its value is not finite. build_scene calls it with
+// the scene's [simulation]; `check` again with the options after --duration and --set.
+void check_expressions(const Scene& scene);
 
 // Name and one-line description of every bundled scene, sorted by name.
 std::vector<std::pair<std::string, std::string>> bundled_scenes();

@@ -17,6 +17,7 @@
 #include "components/maps/body_frame_point_map.hpp"
 #include "components/maps/observing_map.hpp"
 #include "components/maps/point_map.hpp"
+#include "core/safe_normalize.hpp"
 #include "scene/axis_torque_map.hpp"
 #include "scene/components.hpp"
 #include "scene/expression.hpp"
@@ -106,9 +107,9 @@ std::unique_ptr<core::CoordinateMap> ComponentBuilder::axis_torque_map(TableRead
                "(planar_arm, spatial_tree or urdf)");
   }
   if (parent == child) table.fail("parent", "must differ from `body`");
-  const Vec3 axis = table.vec3("axis", Vec3::UnitZ());
-  if (!(axis.norm() > 1e-12)) table.fail("axis", "must be a non-zero vector");
-  return std::make_unique<AxisTorqueMap>(*child, parent, axis.normalized());
+  const auto axis = core::safe_normalized(table.vec3("axis", Vec3::UnitZ()));
+  if (!axis) table.fail("axis", "must be a non-zero vector");
+  return std::make_unique<AxisTorqueMap>(*child, parent, *axis);
 }
 
 std::unique_ptr<core::CoordinateMap> ComponentBuilder::body_force_map(TableReader& table) {
@@ -183,6 +184,7 @@ void ComponentBuilder::wire_sources() {
       expressions[i].push_back(
           e.is_expression ? std::make_shared<Expression>(e.text, e.where, e.what, names) : nullptr);
       if (!expressions[i].back()) continue;
+      expressions_.push_back(expressions[i].back());
       for (const auto& s : expressions[i].back()->used_signals()) {
         if (std::find(observed[i].begin(), observed[i].end(), s) == observed[i].end())
           observed[i].push_back(s);

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "components/admittance/spatial_tree.hpp"
+#include "core/safe_normalize.hpp"
 #include "scene/components.hpp"
 
 namespace stiction::scene {
@@ -64,7 +65,9 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_spatial_tree(TableReader
   for (TableReader& joint : joints) {
     components::SpatialLink l;
     l.joint_name = joint.required_string("name");
-    if (l.joint_name.empty()) joint.fail("name", "must not be empty");
+    if (const std::string why = component_name_problem(l.joint_name); !why.empty()) {
+      joint.fail("name", why);  // it names the columns NAME.theta.JOINT
+    }
     if (index.contains(l.joint_name)) {
       joint.fail("name", "'" + l.joint_name + "' names another joint already");
     }
@@ -84,8 +87,9 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_spatial_tree(TableReader
     } else if (type != "revolute") {
       joint.fail("type", "unknown joint type '" + type + "' (expected revolute or prismatic)");
     }
-    l.axis = joint.vec3("axis", l.axis);
-    if (!(l.axis.norm() > 1e-12)) joint.fail("axis", "must be a non-zero vector");
+    const auto axis = core::safe_normalized(joint.vec3("axis", l.axis));
+    if (!axis) joint.fail("axis", "must be a non-zero vector");
+    l.axis = *axis;
     l.origin = joint.vec3("origin", l.origin);
     l.rotation = from_rpy(joint.vec3("rpy", Vec3::Zero()));
     l.mass = joint.positive("mass", joint.required_number("mass"));

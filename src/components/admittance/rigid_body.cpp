@@ -1,5 +1,7 @@
 #include "components/admittance/rigid_body.hpp"
 
+#include "core/safe_normalize.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <stdexcept>
 
@@ -20,7 +22,9 @@ RigidBody::RigidBody(std::string name, const RigidBodyParams& params)
   inertia_inverse_ = params_.inertia.inverse();
   inertia_diagonal_ = params_.inertia.diagonal();
   diagonal_inertia_ = params_.inertia.isDiagonal(0.0);
-  params_.orientation.normalize();
+  const auto q = core::safe_normalized(params_.orientation.coeffs());
+  if (!q) throw std::invalid_argument("rigid body: orientation must be a finite, non-zero quaternion");
+  params_.orientation.coeffs() = *q;
 }
 
 std::vector<std::string> RigidBody::state_labels() const {

@@ -1,5 +1,7 @@
 #include "components/impedance/kikuuwe_contact.hpp"
 
+#include "core/safe_normalize.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -16,11 +18,12 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
           params.stiffness, params.damping, params.mu,
           params.tangential_stiffness >= 0.0 ? params.tangential_stiffness : params.stiffness),
       params_(params) {
-  if (!(params_.normal.norm() > 0.0)) throw std::invalid_argument("contact: zero normal");
+  const auto normal = core::safe_normalized(params_.normal);
+  if (!normal) throw std::invalid_argument("contact: the normal must be a finite, non-zero vector");
   if (!(params_.stiffness > 0.0) || !(params_.damping >= 0.0) || !(params_.mu >= 0.0)) {
     throw std::invalid_argument("contact: need K > 0, B >= 0, mu >= 0");
   }
-  n_ = params_.normal.normalized();
+  n_ = *normal;
   // Tangent basis: world x projected on the plane (world y if the normal is close to x).
   const Vec3 seed = std::abs(n_.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
   t1_ = (seed - seed.dot(n_) * n_).normalized();
