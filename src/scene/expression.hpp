@@ -15,8 +15,9 @@
 
 namespace stiction::scene {
 
-// An expression that gave a value that is not finite (1/0, log(0), sqrt(-1)) from a finite
-// t and finite signals: bad input at the expression (exit 2), with the time. It passes
+// An expression of t alone that gave a value that is not finite (1/0, log(0), sqrt(-1)) at a
+// finite t: bad input at the expression (exit 2), with the time. (One of the state that goes
+// non-finite is left to the run's instability monitors: the state may be a runaway's.) It passes
 // through core::simulate (core::ModelFault) instead of becoming an instability.
 class ExpressionValueError : public InputError, public core::ModelFault {
  public:
@@ -42,21 +43,21 @@ class Expression {
   const std::string& text() const { return text_; }
   // The signals the expression uses, in the order evaluate() takes their values.
   const std::vector<std::string>& used_signals() const { return used_; }
-  // ExpressionValueError when the value is not finite while t (and the values) are.
+  // ExpressionValueError when the value is not finite while t is (evaluate(t) only).
   double evaluate(double t) const;
   // values[i] is the value of used_signals()[i].
   double evaluate(double t, const double* values) const;
   // Evaluates an expression of t alone at t = 0, at the output rows' times k / output_rate
   // (up to 10001 of them, spread evenly over the run past that) and at t = duration:
   // ExpressionValueError at the first value that is not finite. An expression reading
-  // signals is checked as the run evaluates it.
+  // signals is not checked (a non-finite value of it is the run's instability).
   void check_over(double duration, double output_rate) const;
   // Throws an InputError at the first place the expression names `signal` (one of
   // used_signals()): "KEY: why" for an expression that is well formed but cannot be wired.
   [[noreturn]] void fail_at(const std::string& signal, const std::string& why) const;
 
  private:
-  [[noreturn]] void fail_value(double t, double value, const double* values) const;
+  [[noreturn]] void fail_value(double t, double value) const;
   struct Impl;
   std::string text_;
   toml::source_region where_;
