@@ -17,6 +17,7 @@
 #include "components/maps/contact_point_map.hpp"
 #include "components/maps/cylinder_rim_map.hpp"
 #include "components/maps/surface_point_map.hpp"
+#include "core/safe_normalize.hpp"
 #include "scene/components.hpp"
 #include "scene/expression.hpp"
 
@@ -110,8 +111,9 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   core::Body* b = const_cast<core::Body*>(pose_body(table, "body"));
   components::KikuuweContactParams p;
   p.normal = table.vec3("normal", p.normal);
-  if (!(p.normal.norm() > 1e-12)) table.fail("normal", "must be a non-zero vector");
-  p.normal.normalize();
+  const std::optional<Vec3> unit_normal = core::safe_normalized(p.normal);
+  if (!unit_normal) table.fail("normal", "must be a non-zero, finite vector");
+  p.normal = *unit_normal;
   p.offset = table.number("offset", p.offset);
   p.stiffness = table.positive("stiffness", p.stiffness);
   p.damping = table.non_negative("damping", p.damping);
@@ -206,8 +208,9 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   if (table.has("tilt")) {
     motion.tilt = time_profile(table, "tilt");
     motion.tilt_axis = table.vec3("tilt_axis", motion.tilt_axis);
-    if (!(motion.tilt_axis.norm() > 1e-12)) table.fail("tilt_axis", "must be a non-zero vector");
-    motion.tilt_axis.normalize();
+    const std::optional<Vec3> unit_axis = core::safe_normalized(motion.tilt_axis);
+    if (!unit_axis) table.fail("tilt_axis", "must be a non-zero, finite vector");
+    motion.tilt_axis = *unit_axis;
     motion.pivot = table.vec3("tilt_pivot", p.offset * p.normal);
   } else {
     for (const char* key : {"tilt_axis", "tilt_pivot"}) {

@@ -7,7 +7,10 @@
 #include <cmath>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <sstream>
+
+#include "core/safe_normalize.hpp"
 
 namespace stiction::scene {
 
@@ -143,8 +146,9 @@ class Builder {
     l.type = joint.type == urdf::Joint::PRISMATIC ? components::SpatialJointType::prismatic
                                                   : components::SpatialJointType::revolute;
     const Vec3 axis(joint.axis.x, joint.axis.y, joint.axis.z);
-    if (!(axis.norm() > 1e-12)) fail("joint '" + joint.name + "' has a zero axis");
-    l.axis = axis.normalized();
+    const std::optional<Vec3> unit_axis = core::safe_normalized(axis);
+    if (!unit_axis) fail("joint '" + joint.name + "' has a zero or non-finite axis");
+    l.axis = *unit_axis;
     l.origin = at.p;
     l.rotation = at.q;
     // URDF's revolute and prismatic joints must have <limit>; lower == upper (both 0 when
