@@ -106,11 +106,7 @@ void check_simulation(const Scene& scene, Collector& out) {
   const toml::table* sim = scene.document["simulation"].as_table();
   if (sim == nullptr) return;
   const core::RunOptions& run = scene.run;
-  if (run.integrator != "rk4_adaptive" && run.dt > run.duration) {
-    out.warn(sim->get("dt"), *sim, "simulation.dt",
-             "the step " + number_text(run.dt) + " s is longer than the duration " +
-                 number_text(run.duration) + " s: the run is a single step");
-  }
+  // dt > duration is an error (core/run_limits.cpp), no longer a warning.
   if (run.duration * run.output_rate < kMinRows) {
     const bool rate_given = sim->contains("output_rate");
     out.warn(rate_given ? sim->get("output_rate") : sim->get("duration"), *sim,

@@ -55,6 +55,8 @@ void guarded_steps(const std::string& scene) {
     const nlohmann::json& l = limits[integrator];
     if (l["unstable_above"].is_null()) continue;  // no limit up to 1 s
     const double too_large = 4.0 * l["unstable_above"].get<double>();
+    // A step longer than the run is refused as input (exit 2, issue 25): nothing to suggest.
+    if (too_large > duration) continue;
     ++limited;
     const std::vector<std::string> at_too_large{
         "run",        scene, "--integrator", integrator,   "--dt",    std::to_string(too_large),
