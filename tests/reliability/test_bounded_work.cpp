@@ -139,3 +139,21 @@ TEST_CASE("the step suggestion's trials are bounded for a step and duration near
     CHECK(child.err().find("more than the limit") == std::string::npos);
   }
 }
+
+TEST_CASE("a contact with 100000 points is refused before allocating, with a located error", "[bounded][contact_points]") {
+  // The old program ended in std::bad_alloc (exit 1), even with --no-plots.
+  const fs::path dir = scratch_dir("bounded", "box100000");
+  write(dir, box_scene(100000, 29));
+  Child child({"run", "scene.toml", "--out", "out", "--no-plots", "--no-video"}, dir);
+  const int code = child.wait(std::chrono::seconds(120));  // hang guard
+  INFO(child.err());
+  CHECK(code == 2);
+  const std::string err = child.err();
+  CHECK(err.find("scene.toml:") != std::string::npos);  // file:line:col
+  CHECK(err.find("points") != std::string::npos);      // the key
+  CHECK(err.find("100000 contact points") != std::string::npos);
+  CHECK(err.find(" GB") != std::string::npos);         // the estimate
+  CHECK(err.find("limit") != std::string::npos);
+  CHECK(err.find("bad_alloc") == std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out" / "summary.json"));
+}
