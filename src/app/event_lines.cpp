@@ -105,7 +105,13 @@ std::vector<std::string> event_lines(const nlohmann::ordered_json& events,
              ", " + first_of(entry, element, accuracy, "first_slip", "slip", "slips from t = 0");
     }
     int sticks = 0, slips = 0, touch_downs = 0, lift_offs = 0;
-    if (entry.contains("events")) {
+    if (entry.contains("event_counts")) {  // all events, kept or not (SlipMonitor's bound)
+      const auto& c = entry["event_counts"];
+      sticks = c.value("stick", 0);
+      slips = c.value("slip", 0);
+      lift_offs = c.value("open", 0);
+      touch_downs = c.value("touch_down", 0);
+    } else if (entry.contains("events")) {
       for (const auto& e : entry["events"]) {
         const std::string kind = e.value("kind", "");
         sticks += kind == "stick";

@@ -74,6 +74,8 @@ const char* body_state_name(BodyState state) {
       return "partial_slip";
     case BodyState::tip:
       return "tip";
+    case BodyState::dropped:
+      return "dropped";
   }
   return "open";
 }
@@ -90,6 +92,7 @@ BodyState body_state(const std::vector<Vec3>& points, const std::vector<std::str
   std::vector<Vec3> touching, open;
   bool any_stick = false, any_slip = false;
   for (std::size_t i = 0; i < points.size(); ++i) {
+    if (states[i] == "dropped") return BodyState::dropped;
     if (states[i] == "open") {
       open.push_back(points[i]);
       continue;
@@ -175,7 +178,7 @@ std::vector<BodyEventHistory> body_events(const std::vector<SlipHistory>& histor
       const Segment& s = segments[k];
       const double until = k + 1 < segments.size() ? segments[k + 1].start : std::max(s.start, end);
       body.intervals.push_back({body_state_name(s.state), s.start, until});
-      if (k == 0) continue;
+      if (k == 0 || s.state == BodyState::dropped) continue;
       const BodyState before = segments[k - 1].state;
       const char* kind = s.state == BodyState::open  ? "lift_off"
                          : before == BodyState::open ? "land"

@@ -41,7 +41,9 @@ namespace stiction::core {
 
 struct SlipHistory;
 
-enum class BodyState { open, stick, slide, partial_slip, tip };
+// `dropped`: some point's events there were not kept (SlipMonitor's bound), so the body's
+// state is not known; no event marks entering or leaving it.
+enum class BodyState { open, stick, slide, partial_slip, tip, dropped };
 const char* body_state_name(BodyState state);
 
 struct BodyEvent {
@@ -61,7 +63,7 @@ struct BodyEventHistory {
 };
 
 // The body's state from its points: `points` in the body frame, `states` the points' element
-// states ("stick", "slip" or "open"), one per point; `tolerance` the distance below which a
+// states ("stick", "slip", "open" or "dropped"), one per point; `tolerance` the distance below which a
 // point counts as on a line or at a point (body_events: 1e-6 of the points' extent).
 // `rolling`: some points travel over the body (a cylinder's rim points): their place at t = 0
 // says nothing about an edge, so the body is never in `tip`.

@@ -212,6 +212,48 @@ void SlipMonitor::settle_pending_slip() {
 void SlipMonitor::finish() {
   if (stick_pending_) settle_pending_stick(false);
   if (slip_pending_) settle_pending_slip();
+  if (events_.size() > kKeptHead + kKeptTail) drop_middle(kKeptTail);
+}
+
+void SlipMonitor::drop_middle(std::size_t tail) {
+  const auto from = events_.begin() + static_cast<std::ptrdiff_t>(kKeptHead);
+  const auto to = events_.end() - static_cast<std::ptrdiff_t>(tail);
+  if (from >= to) return;
+  if (dropped_ == 0) first_dropped_ = from->time;
+  // A touch-down is a stick or slip whose previous event is an open.
+  std::string previous = (from - 1)->kind;
+  for (auto it = from; it != to; ++it) {
+    dropped_stick_ += it->kind == "stick";
+    dropped_slip_ += it->kind == "slip";
+    dropped_open_ += it->kind == "open";
+    dropped_touch_ += previous == "open" && it->kind != "open";
+    previous = it->kind;
+  }
+  last_dropped_ = (to - 1)->time;
+  last_dropped_kind_ = (to - 1)->kind;
+  dropped_ += static_cast<std::size_t>(to - from);
+  events_.erase(from, to);
+}
+
+std::size_t SlipMonitor::count(const std::string& kind) const {
+  std::size_t n = kind == "stick" ? dropped_stick_
+                  : kind == "slip" ? dropped_slip_
+                  : kind == "open" ? dropped_open_
+                                   : 0;
+  for (const SlipEvent& e : events_) n += e.kind == kind;
+  return n;
+}
+
+std::size_t SlipMonitor::touch_downs() const {
+  std::size_t n = dropped_touch_;
+  std::string previous = initial_;
+  for (std::size_t i = 0; i < events_.size(); ++i) {
+    // After the gap the previous event is the last dropped one.
+    if (dropped_ > 0 && i == kKeptHead) previous = last_dropped_kind_;
+    n += previous == "open" && events_[i].kind != "open";
+    previous = events_[i].kind;
+  }
+  return n;
 }
 
 SlipMonitor::State SlipMonitor::state_of(const SlipEvent& e) {
@@ -244,6 +286,9 @@ void SlipMonitor::commit(State kind, double time) {
     return;
   }
   events_.push_back({name(kind), time});
+  // Trimmed in blocks of kKeptTail, so each event is moved O(1) times on average; the pops
+  // and edits above only reach the last two events, which the tail always holds.
+  if (events_.size() >= kKeptHead + 2 * kKeptTail) drop_middle(kKeptTail);
 }
 
 std::vector<SlipInterval> SlipMonitor::intervals() const {
@@ -251,7 +296,13 @@ std::vector<SlipInterval> SlipMonitor::intervals() const {
   if (!started_) return out;
   std::string kind = initial_;
   double start = t_first_;
-  for (const SlipEvent& e : events_) {
+  for (std::size_t i = 0; i < events_.size(); ++i) {
+    const SlipEvent& e = events_[i];
+    if (dropped_ > 0 && i == kKeptHead) {  // the gap: what happened there is only counted
+      out.push_back({kind, start, first_dropped_});
+      kind = "dropped";
+      start = first_dropped_;
+    }
     out.push_back({kind, start, e.time});
     kind = e.kind;
     start = e.time;

@@ -25,8 +25,15 @@
 //
 // Resolution: a stick shorter than `resolution` (default one step), or of zero length, is not
 // reported: the slip (or the touch-down) around it continues.
+//
+// Bound (issue 25): an element that chatters for a long run would keep millions of events
+// (400 a second for 1000 s: a 96 MB summary). The monitor keeps the first kKeptHead and the
+// last kKeptTail events and counts the rest by kind: its memory is constant in the duration.
+// The events in between are "dropped": intervals() covers them with one interval of kind
+// "dropped", from the first dropped event to the first event kept after them.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -49,6 +56,9 @@ struct SlipInterval {
 
 class SlipMonitor {
  public:
+  static constexpr std::size_t kKeptHead = 500;  // the first events, kept
+  static constexpr std::size_t kKeptTail = 500;  // the last events, kept
+
   explicit SlipMonitor(double threshold, double resolution = 0.0)
       : threshold_(threshold), resolution_(resolution) {}
   // What the element's friction law says at a step, where it was asked (Kikuuwe friction:
@@ -66,7 +76,21 @@ class SlipMonitor {
 
   double threshold() const { return threshold_; }
   double resolution() const { return resolution_; }
+  // The kept events: all of them, or the first kKeptHead and the last kKeptTail (after
+  // finish(); during the run up to kKeptTail more, trimmed in blocks).
   const std::vector<SlipEvent>& events() const { return events_; }
+  // Events not kept (between the head and the tail), and all events by kind.
+  std::size_t dropped() const { return dropped_; }
+  std::size_t total() const { return dropped_ + events_.size(); }
+  // Count of all events of a kind ("stick", "slip", "open"), kept or dropped, and of the
+  // touch-downs (a stick or slip right after an open).
+  std::size_t count(const std::string& kind) const;
+  std::size_t touch_downs() const;
+  // Times of the first and the last dropped event (meaningful when dropped() > 0).
+  double first_dropped() const { return first_dropped_; }
+  double last_dropped() const { return last_dropped_; }
+  // The kind of the last dropped event, which precedes the first kept one after the gap.
+  const std::string& last_dropped_kind() const { return last_dropped_kind_; }
   // State at the first observation ("stick", "slip" or "open"; empty before any).
   const std::string& initial_state() const { return initial_; }
   // The states from t = 0 to the last observation, each with its duration.
@@ -87,6 +111,8 @@ class SlipMonitor {
   double first(const char* kind) const;
   // Appends an event, applying the order and the resolution (drops short sticks).
   void commit(State kind, double time);
+  // Drops the events between the head and the last `tail` events, counting them.
+  void drop_middle(std::size_t tail);
   void settle_pending_stick(bool reached);
   void settle_pending_slip();
   // Zero time t0 of s = c |t - t0|^p fitted to the samples; `growing`: the speed rises away
@@ -116,6 +142,10 @@ class SlipMonitor {
   std::vector<Sample> onset_;
 
   std::vector<SlipEvent> events_;
+  std::size_t dropped_ = 0;
+  std::size_t dropped_stick_ = 0, dropped_slip_ = 0, dropped_open_ = 0, dropped_touch_ = 0;
+  double first_dropped_ = -1.0, last_dropped_ = -1.0;
+  std::string last_dropped_kind_;
 };
 
 }  // namespace stiction::core

@@ -54,7 +54,8 @@ struct StepRadius {
 };
 
 // Spectral radii of the linearized step map of `integrator` with step h at (t, x).
-// Fixed-step integrators only (euler, symplectic_euler, heun, rk4, implicit).
+// Fixed-step integrators only (euler, symplectic_euler, heun, rk4, implicit). A network of more
+// than kMaxAnalysedStates states gets no answer (smooth = false), as a switching surface.
 StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
                        double h);
 

@@ -22,9 +22,25 @@ nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histori
     entry["last_stick"] = time_or_null(h.monitor.last_stick());
     entry["first_slip"] = time_or_null(h.monitor.first_slip());
     entry["initial"] = h.monitor.initial_state();
+    // All events counted, kept or not (SlipMonitor keeps the first and the last ones).
+    entry["event_counts"] = {{"stick", h.monitor.count("stick")},
+                             {"slip", h.monitor.count("slip")},
+                             {"open", h.monitor.count("open")},
+                             {"touch_down", h.monitor.touch_downs()}};
+    entry["events_total"] = h.monitor.total();
+    entry["events_dropped"] = h.monitor.dropped();
+    if (h.monitor.dropped() > 0) {
+      entry["dropped_from"] = h.monitor.first_dropped();
+      entry["dropped_until"] = h.monitor.last_dropped();
+    }
     entry["events"] = nlohmann::ordered_json::array();
     std::string previous = h.monitor.initial_state();
-    for (const core::SlipEvent& e : h.monitor.events()) {
+    const auto& kept = h.monitor.events();
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      const core::SlipEvent& e = kept[i];
+      // After the gap the event before is the last dropped one.
+      if (h.monitor.dropped() > 0 && i == core::SlipMonitor::kKeptHead)
+        previous = h.monitor.last_dropped_kind();
       nlohmann::ordered_json event{{"kind", e.kind}, {"time", e.time}};
       if (previous == "open") event["touch_down"] = true;
       entry["events"].push_back(std::move(event));
@@ -107,6 +123,9 @@ nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunRe
   s["final"] = std::move(final_row);
   if (!run.columns.empty()) s["columns"] = column_table(run.columns);
   s["events"] = slip_events(result.slip_events);
+  std::size_t dropped = 0;
+  for (const core::SlipHistory& h : result.slip_events) dropped += h.monitor.dropped();
+  s["events_dropped"] = dropped;  // over all elements; each says its own
   s["bodies"] = body_events(result.body_events);
   if (result.instability) {
     nlohmann::ordered_json inst;

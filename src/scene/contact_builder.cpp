@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -26,6 +27,13 @@ namespace stiction::scene {
 using core::Vec3;
 
 namespace {
+
+// Contact points per contact (issue 25): measured peak memory of `run --no-plots` on a box with
+// 1000 and 10000 listed points over 101 output rows, less `check`'s: 51-52 kB a point (the
+// elements, their output columns, events and the summary). 10000 points: about 0.5 GB, 30 s
+// for 2000 steps.
+constexpr std::size_t kMaxContactPoints = 10000;
+constexpr double kBytesPerContactPoint = 51e3;
 
 // Components check their own parameters too: report what they reject at the table.
 template <typename Make>
@@ -132,6 +140,19 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     const toml::array* a = node->as_array();
     if (a == nullptr || a->empty())
       table.fail("points", "expected a non-empty array of [x, y, z] points");
+    // Refused before anything is allocated: each point is an element with 9 output columns,
+    // events and a summary entry, about 51 kB of a run's memory (docs/limits.md); 100000 points
+    // ended in std::bad_alloc (issue 25).
+    if (a->size() > kMaxContactPoints) {
+      char estimate[64];
+      std::snprintf(estimate, sizeof estimate, "%.1f GB",
+                    static_cast<double>(a->size()) * kBytesPerContactPoint / 1e9);
+      table.fail("points", std::to_string(a->size()) + " contact points would need about " +
+                               estimate + " (about " +
+                               std::to_string(static_cast<int>(kBytesPerContactPoint / 1000)) +
+                               " kB each); the limit is " + std::to_string(kMaxContactPoints) +
+                               " points per contact (docs/limits.md)");
+    }
     for (const toml::node& e : *a) {
       const toml::array* xyz = e.as_array();
       bool ok = xyz != nullptr && xyz->size() == 3;

@@ -156,7 +156,9 @@ class Study {
         say("largest step " + limit.integrator + ": stable " + format_g(limit.bisected, 4) +
             " s (" + std::to_string(limit.runs) + " runs), within the target " +
             format_g(limit.accurate, 4) + " s (" + std::to_string(limit.accuracy_runs) +
-            " more runs); predicted unstable above " + format_g(limit.predicted, 4) + " s");
+            " more runs); " +
+            (limit.predicted_skipped ? std::string("no prediction (too many states)")
+                                     : "predicted unstable above " + format_g(limit.predicted, 4) + " s"));
       }
     } else {
       result_.limits.clear();  // predicted only for the grid: the table is the bisections'
@@ -494,6 +496,7 @@ class Study {
     predicted.max_step = limit.predicted;
     predicted.unbounded = limit.predicted_unbounded;
     predicted.chatter_free_step = limit.chatter_free;
+    predicted.skipped = limit.predicted_skipped;
     const StepGrid grid =
         default_step_grid(scene_.run.dt, predicted, finest, result_.duration / 4.0);
     limit.grid_past_limit = grid.past_limit;
@@ -591,13 +594,25 @@ class Study {
       if (!is_fixed_step(integrator)) continue;
       StabilityLimit limit;
       limit.integrator = integrator;
-      const core::StepLimit predicted = core::predict_step_limit(*scene_.network, integrator, states);
+      const core::StepLimit predicted = core::predict_step_limit(
+          *scene_.network, integrator, states, 1e-9, 1.0, &sys::interrupt_flag());
+      if (sys::interrupted()) throw sys::Interrupted{};
+      if (predicted.skipped) {  // too many states for the dense analysis: no prediction
+        limit.predicted_skipped = true;
+        note("predicted limits of " + integrator + ": skipped: the network has " +
+             std::to_string(scene_.network->state_dim()) + " states, more than the " +
+             std::to_string(core::kMaxAnalysedStates) +
+             " the step analysis linearizes (docs/limits.md); the grid is the scene's dt x 8, 4, "
+             "2, ...");
+      }
       limit.predicted = predicted.max_step;
       limit.predicted_unbounded = predicted.unbounded;
       limit.predicted_time = predicted.limiting_time;
       limit.chatter_free = predicted.chatter_free_step;
-      say("predicted " + integrator + ": unstable above " + format_g(limit.predicted, 4) +
-          " s, stuck friction chatters above " + format_g(limit.chatter_free, 4) + " s");
+      if (!predicted.skipped) {
+        say("predicted " + integrator + ": unstable above " + format_g(limit.predicted, 4) +
+            " s, stuck friction chatters above " + format_g(limit.chatter_free, 4) + " s");
+      }
       result_.limits.push_back(limit);
     }
   }

@@ -103,6 +103,7 @@ struct StabilityLimit {
   std::string integrator;
   double predicted = 0.0;  // core::predict_step_limit (0: none found)
   bool predicted_unbounded = false;
+  bool predicted_skipped = false;  // too many states for the step analysis: no prediction
   double predicted_time = 0.0;  // time of the sampled state that limits it
   double chatter_free = 0.0;    // largest step at which no stuck friction chatters either
   double bisected = 0.0;        // largest step found stable by whole runs (0: none)

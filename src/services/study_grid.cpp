@@ -35,9 +35,12 @@ StepGrid default_step_grid(double scene_dt, const core::StepLimit& predicted, do
                            double longest) {
   StepGrid grid;
   const double limit = predicted.max_step;
-  if (predicted.unbounded || !(limit > 0.0)) {
+  if (predicted.skipped || predicted.unbounded || !(limit > 0.0)) {
     grid.steps = ladder(scene_dt, 8.0 * scene_dt, finest);
-    grid.note = predicted.unbounded
+    grid.note = predicted.skipped
+                    ? "no prediction (too many states for the step analysis): the grid is the "
+                      "scene's dt x 8, 4, 2, ..."
+                : predicted.unbounded
                     ? "predicted stable at every step up to " + format_g(limit) +
                           " s: the grid is the scene's dt x 8, 4, 2, ... and does not pass a limit"
                     : "no stable step predicted: the grid is the scene's dt x 8, 4, 2, ...";

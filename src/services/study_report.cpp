@@ -101,7 +101,9 @@ std::string largest_steps_markdown(const StudyResult& r) {
         "the limit |\n|---|---:|---:|---:|---:|---|---:|---:|---:|---:|\n";
     for (const auto& l : r.limits) {
       const std::string predicted =
-          l.predicted_unbounded ? ">= " + num(l.predicted, 4) : cell(l.predicted, 4);
+          l.predicted_skipped     ? std::string("skipped")
+          : l.predicted_unbounded ? ">= " + num(l.predicted, 4)
+                                  : cell(l.predicted, 4);
       std::string above = l.accuracy_failure.empty()
                               ? std::string("–")
                               : l.accuracy_failure + " at " + num(l.inaccurate_above, 4) + " s";
@@ -311,7 +313,9 @@ std::string study_markdown(const StudyResult& r) {
           "| first unstable [s] | predicted / bisected | runs | note |\n"
           "|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
     for (const auto& l : r.limits) {
-      const std::string predicted = l.predicted_unbounded ? ">= " + num(l.predicted, 4) : cell(l.predicted, 4);
+      const std::string predicted = l.predicted_skipped     ? std::string("skipped")
+                                    : l.predicted_unbounded ? ">= " + num(l.predicted, 4)
+                                                            : cell(l.predicted, 4);
       const double ratio = l.bisected > 0.0 && l.predicted > 0.0 ? l.predicted / l.bisected : NAN;
       md += "| " + l.integrator + " | " + predicted + " | " + cell(l.predicted_time, 4) + " | " +
             cell(l.chatter_free, 4) + " | " + cell(l.bisected > 0.0 ? l.bisected : NAN, 4) + " | " +

@@ -139,3 +139,38 @@ TEST_CASE("the step suggestion's trials are bounded for a step and duration near
     CHECK(child.err().find("more than the limit") == std::string::npos);
   }
 }
+
+TEST_CASE("a contact with 100000 points is refused before allocating, with a located error", "[bounded][contact_points]") {
+  // The old program ended in std::bad_alloc (exit 1), even with --no-plots.
+  const fs::path dir = scratch_dir("bounded", "box100000");
+  write(dir, box_scene(100000, 29));
+  Child child({"run", "scene.toml", "--out", "out", "--no-plots", "--no-video"}, dir);
+  const int code = child.wait(std::chrono::seconds(120));  // hang guard
+  INFO(child.err());
+  CHECK(code == 2);
+  const std::string err = child.err();
+  CHECK(err.find("scene.toml:") != std::string::npos);  // file:line:col
+  CHECK(err.find("points") != std::string::npos);      // the key
+  CHECK(err.find("100000 contact points") != std::string::npos);
+  CHECK(err.find(" GB") != std::string::npos);         // the estimate
+  CHECK(err.find("limit") != std::string::npos);
+  CHECK(err.find("bad_alloc") == std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "out" / "summary.json"));
+}
+
+TEST_CASE("study on a network too large for the step analysis says it has no prediction and goes on", "[bounded][study]") {
+  // 150 points: 313 states, past the analysis' bound; the old study linearized it densely
+  // (without its stop flag) for minutes.
+  const fs::path dir = scratch_dir("bounded", "study_box150");
+  write(dir, box_scene(150, 30));
+  Child child({"study", "scene.toml", "--integrators", "rk4", "--repeats", "1", "--out", "study", "--set",
+               "simulation.duration=0.01"},
+              dir);
+  const int code = child.wait(std::chrono::seconds(60));  // hang guard
+  INFO(child.err() + child.out());
+  REQUIRE(code == 0);
+  const std::string report = read_text(dir / "study" / "study.md");
+  CHECK(report.find("skipped") != std::string::npos);
+  CHECK(report.find("313 states") != std::string::npos);
+  CHECK((child.err() + child.out()).find("unstable above 0 s") == std::string::npos);
+}
