@@ -27,12 +27,6 @@ std::optional<LimitViolation> check_run_limits(const RunOptions& o) {
   if (o.integrator == "rk4_adaptive" && !positive(o.tolerance)) {
     return LimitViolation{"tolerance", "must be a finite number > 0 (got " + format(o.tolerance) + ")"};
   }
-  // A fixed step longer than the run used to become one step of the duration, silently; at
-  // dt = 1e308 the friction laws, which take the step as a parameter, gave NaN forces.
-  if (o.integrator != "rk4_adaptive" && o.dt > o.duration) {
-    return LimitViolation{"dt", "the step " + format(o.dt) + " s is longer than the run (duration = " +
-                                    format(o.duration) + " s): give a step <= the duration"};
-  }
   // Computed in floating point: duration / dt may be far beyond any integer type.
   const double steps = std::ceil(o.duration / o.dt);
   if (o.integrator != "rk4_adaptive" && !(steps <= RunLimits::kMaxSteps)) {
@@ -46,6 +40,17 @@ std::optional<LimitViolation> check_run_limits(const RunOptions& o) {
                                              format(o.output_rate) + " gives " + format(rows) +
                                              " rows, more than the limit of " +
                                              format(RunLimits::kMaxRows) + " (docs/limits.md)"};
+  }
+  return std::nullopt;
+}
+
+std::optional<LimitViolation> check_user_run(const RunOptions& o) {
+  if (auto violation = check_run_limits(o)) return violation;
+  // A fixed step longer than the run used to become one step of the duration, silently; at
+  // dt = 1e308 the friction laws, which take the step as a parameter, gave NaN forces.
+  if (o.integrator != "rk4_adaptive" && o.dt > o.duration) {
+    return LimitViolation{"dt", "the step " + format(o.dt) + " s is longer than the run (duration = " +
+                                    format(o.duration) + " s): give a step <= the duration"};
   }
   // At least two rows (t = 0 and one more): one row is the initial state only, and a run
   // that writes it and ends `ok` looks complete (issue 25: output_rate = 0.1, duration = 2).

@@ -27,6 +27,10 @@ struct LimitViolation {
   std::string message;
 };
 std::optional<LimitViolation> check_run_limits(const RunOptions& options);
+// check_run_limits, and what only a user's run must meet (issue 25): a fixed step no longer
+// than the run, and at least two rows. Not applied inside core::simulate: a step check's
+// trial or pilot runs over a short stretch at the scene's output rate, and may write one row.
+std::optional<LimitViolation> check_user_run(const RunOptions& options);
 
 // Rows a run writes (t = 0 included), computed as simulate() does; only meaningful when
 // check_run_limits found nothing.

@@ -98,7 +98,7 @@ core::RunOptions read_simulation(TableReader& root) {
   run.energy_tolerance =
       sim->positive(sim->has("energy_growth_limit") ? "energy_growth_limit" : "energy_tolerance",
                     run.energy_tolerance);
-  if (const auto violation = core::check_run_limits(run))
+  if (const auto violation = core::check_user_run(run))
     sim->fail(violation->key, violation->message);
   if (sim->has("event_resolution")) {
     run.event_resolution = sim->non_negative("event_resolution", run.event_resolution);

@@ -45,7 +45,7 @@ void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   }
   // The scene's own values were checked where they were read; what fails here comes from the
   // command line (or from it combined with the scene).
-  if (const auto violation = core::check_run_limits(run)) {
+  if (const auto violation = core::check_user_run(run)) {
     throw scene::InputError("error: " + scene.path.string() + " with --dt/--duration/--tolerance: simulation." +
                             violation->key + ": " + violation->message);
   }

@@ -128,6 +128,8 @@ TEST_CASE("the step suggestion's trials are bounded for a step and duration near
     SceneSpec spec;
     spec.seed = seed;
     spec.output_rate = 1e-303;
+    spec.duration = 1e305;  // the scene valid on its own: one step per 10 rows of 1e303 s
+    spec.dt = 1e304;
     write_scene(dir, spec);
     Child child({"run", "scene.toml", "--out", "out", "--no-plots", "--no-video", "--duration", "1e305", "--dt",
                  "1e304"},

@@ -189,8 +189,7 @@ TEST_CASE("expressions are one expression without assignment, and a non-finite v
   };
   for (const Case& c : {Case{"t=5", "assignment"}, Case{"t+=1", "assignment"}, Case{"1,2", "list"},
                         Case{"sin(t), 3", "list"}, Case{"1/0", "t = 0 s"}, Case{"log(0)", "t = 0 s"},
-                        Case{"log(t - 0.5)", "t = 0 s"}, Case{"1/(t - 0.75)", "t = 0.75 s"},
-                        Case{"1/(m.p.z - 1)", "m.p.z = 1"}}) {
+                        Case{"log(t - 0.5)", "t = 0 s"}, Case{"1/(t - 0.75)", "t = 0.75 s"}}) {
     INFO(c.expression);
     write(dir / "e.toml", scene(c.expression));
     for (const char* command : {"run", "check"}) {
@@ -201,6 +200,11 @@ TEST_CASE("expressions are one expression without assignment, and a non-finite v
       CHECK_THAT(r.err, Contains("e.toml:13:") && Contains("impedances.push.force[0]") && Contains(c.says));
     }
   }
+  // An expression of the state that is not finite is the run's instability (exit 3), never
+  // `ok`: it is not blamed on the expression, since a runaway's or a Newton trial's finite
+  // state can overflow a sound one.
+  write(dir / "e.toml", scene("1/(m.p.z - 1)"));
+  CHECK(run_scene(dir, "e.toml").code == 3);
   // Comparisons, function argument lists and the conditional stay expressions.
   for (const std::string ok : {"t >= 0.5 ? 1 : 0", "min(1, t) + (t == 0) + (t != 1) + (t <= 2)"}) {
     INFO(ok);
