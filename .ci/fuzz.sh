@@ -20,6 +20,8 @@ mkdir -p build-fuzz/corpus/scene build-fuzz/corpus/structure build-fuzz/artifact
 cp scenes/*.toml fuzz/seeds/* build-fuzz/corpus/scene/
 find fuzz/regressions -maxdepth 1 -type f ! -name README.md -exec cp {} build-fuzz/corpus/scene/ \;
 export ASAN_OPTIONS=detect_leaks=1
+# The libraries whose own leaks are suppressed, and why: .ci/lsan.supp.
+export LSAN_OPTIONS="suppressions=$PWD/.ci/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 common=(-timeout=10 -rss_limit_mb=2048 -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1)
 echo "== fuzz_scene for $((seconds * 2 / 3)) s" >&2
