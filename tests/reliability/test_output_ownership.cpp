@@ -28,15 +28,6 @@ namespace {
 
 fs::path scratch(const std::string& name) { return scratch_dir("ownership", name); }
 
-// Every regular file under `dir` with its content, relative names.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_regular_file()) files[fs::relative(e.path(), dir).generic_string()] = read_text(e.path());
-  }
-  return files;
-}
-
 std::vector<std::string> listed(const fs::path& out) {
   const auto s = nlohmann::json::parse(read_text(out / "summary.json"));
   std::vector<std::string> files;

@@ -25,14 +25,6 @@ namespace {
 
 fs::path scratch(const std::string& name) { return scratch_dir("golden", name); }
 
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_regular_file()) files[fs::relative(e.path(), dir).generic_string()] = read_text(e.path());
-  }
-  return files;
-}
-
 // A small scene whose [verify] compares `frames` and `figures` as asked (tiny frames).
 fs::path verify_scene(const fs::path& dir, bool frames, bool figures, unsigned seed = 1) {
   SceneSpec spec;
