@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "io/atomic_file.hpp"
+#include "services/text_hash.hpp"
 
 namespace stiction::services {
 namespace fs = std::filesystem;
@@ -51,23 +52,11 @@ std::string program_identity() {
          std::to_string(st.st_mtim.tv_nsec);
 }
 
-// FNV-1a, 64 bits: names the entry; the key itself is compared on load.
-std::string hash_text(const std::string& text) {
-  std::uint64_t h = 14695981039346656037ULL;
-  for (const unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  char name[17];
-  std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(h));
-  return name;
-}
-
 }  // namespace
 
 StepCheckCache::StepCheckCache(std::string key) : key_(program_identity() + "\n" + std::move(key)) {
   const fs::path dir = cache_directory();
-  if (!dir.empty()) file_ = (dir / "step_check" / (hash_text(key_) + ".json")).string();
+  if (!dir.empty()) file_ = (dir / "step_check" / (text_hash(key_) + ".json")).string();
 }
 
 std::optional<nlohmann::json> StepCheckCache::load() const {

@@ -17,6 +17,7 @@
 #include "services/step_guard.hpp"
 #include "sys/interrupt.hpp"
 #include "text/number_text.hpp"
+#include "services/text_hash.hpp"
 
 namespace stiction::services {
 namespace fs = std::filesystem;
@@ -26,18 +27,6 @@ std::string number_text(double v) {
   std::string s;
   io::append_number(s, v);
   return s;
-}
-
-// FNV-1a, 64 bits: a stable fingerprint of the scene's text for sweep.plan.json.
-std::string fingerprint(const std::string& text) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (const unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
 }
 
 std::string file_text(const fs::path& path) {
@@ -60,7 +49,7 @@ std::vector<std::string> plan_settings(const SweepSettings& settings, const scen
     for (const std::string& o : settings.overrides) text += "\n--set " + o;
   }
   std::vector<std::string> s;
-  s.push_back("scene fnv1a64 " + fingerprint(text));
+  s.push_back("scene fnv1a64 " + text_hash(text));
   if (settings.run.integrator) s.push_back("--integrator " + *settings.run.integrator);
   if (settings.run.dt) s.push_back("--dt " + number_text(*settings.run.dt));
   if (settings.run.duration) s.push_back("--duration " + number_text(*settings.run.duration));
