@@ -24,6 +24,15 @@ extern char** environ;
 
 namespace stiction::testing {
 
+// The limits below are hang guards, never timing assertions. Under ASan the test and the
+// child it starts are both instrumented and run 3-10 times slower (a sweep resumed in CI
+// took over 60 s), so every guard is stretched there.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr double kHangGuardScale = 5.0;
+#else
+inline constexpr double kHangGuardScale = 1.0;
+#endif
+
 inline std::string read_text(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -100,7 +109,7 @@ class Child {
   int wait(std::chrono::duration<double> limit = std::chrono::seconds(60)) {
     const auto start = std::chrono::steady_clock::now();
     while (running()) {
-      if (std::chrono::steady_clock::now() - start > limit) {
+      if (std::chrono::steady_clock::now() - start > kHangGuardScale * limit) {
         ::kill(pid_, SIGKILL);
         int status = 0;
         ::waitpid(pid_, &status, 0);
@@ -153,7 +162,7 @@ inline RunResult run_child(const std::vector<std::string>& args, const std::file
 template <typename Predicate>
 bool wait_until(Child& child, Predicate ready, std::chrono::duration<double> limit = std::chrono::seconds(60)) {
   const auto start = std::chrono::steady_clock::now();
-  while (std::chrono::steady_clock::now() - start < limit) {
+  while (std::chrono::steady_clock::now() - start < kHangGuardScale * limit) {
     if (ready()) return true;
     if (!child.running()) return ready();
     std::this_thread::sleep_for(std::chrono::milliseconds(5));

@@ -111,7 +111,7 @@ TEST_CASE("a sweep resumed after SIGKILL leaves no temporaries of the killed run
   SceneSpec spec;
   spec.bodies = 3;
   const fs::path scene = write_scene(dir, spec);
-  const std::vector<std::string> args{"sweep", scene.string(), "--vary", "simulation.duration=30,31,32",
+  const std::vector<std::string> args{"sweep", scene.string(), "--vary", "simulation.duration=10,11,12",
                                       "--keep", "all", "-j", "1", "--quiet", "--out", "s"};
   {
     Child child(args, dir, "killed");
