@@ -181,8 +181,15 @@ void Expression::fail_at(const std::string& signal, const std::string& why) cons
   throw InputError::at(inside(where_, column), what_ + ": " + why);
 }
 
-void Expression::fail_value(double t, double value) const {
-  const std::string inputs = "t = " + number_text(t) + " s";
+void Expression::fail_value(double t, double value, const double* values) const {
+  std::string inputs = "t = " + number_text(t) + " s";
+  if (values != nullptr) {
+    // The values it saw: the initial state's, or the step check's perturbation of them.
+    inputs += " with ";
+    for (std::size_t i = 0; i < used_.size(); ++i)
+      inputs += (i == 0 ? "" : ", ") + used_[i] + " = " + number_text(values[i]);
+    inputs += " (the start of the run)";
+  }
   throw ExpressionValueError(
       InputError::at(inside(where_, 0), what_ + ": the expression \"" + text_ + "\" is " +
                                             number_text(value) + " at " + inputs +
@@ -201,11 +208,17 @@ double Expression::evaluate(double t) const {
 double Expression::evaluate(double t, const double* values) const {
   impl_->t = t;
   std::copy(values, values + impl_->values.size(), impl_->values.begin());
-  // Not thrown here: an expression of the state that goes non-finite at a finite but wild
-  // state (a runaway, an implicit integrator's Newton trial) is the run's instability, which
-  // the run's monitors report (exit 3) and the implicit integrator answers by halving its
-  // step. Only an expression of t alone is the expression's own fault (evaluate(t) above).
-  return impl_->parser.Eval();
+  // An expression of the state that goes non-finite at a finite but wild state (a runaway, an
+  // implicit integrator's Newton trial) is the run's instability, which the run's monitors
+  // report (exit 3) and the implicit integrator answers by halving its step. At t = 0 the
+  // state is the scene's own initial state (or the step check's tiny perturbations of it),
+  // which no integrator has touched: a value that is not finite there is the expression's
+  // fault, as for an expression of t alone.
+  const double v = impl_->parser.Eval();
+  if (!std::isfinite(v) && t == 0.0 &&
+      std::all_of(values, values + impl_->values.size(), [](double x) { return std::isfinite(x); }))
+    fail_value(t, v, values);
+  return v;
 }
 
 void Expression::check_over(double duration, double output_rate) const {

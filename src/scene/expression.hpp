@@ -16,9 +16,11 @@
 namespace stiction::scene {
 
 // An expression of t alone that gave a value that is not finite (1/0, log(0), sqrt(-1)) at a
-// finite t: bad input at the expression (exit 2), with the time. (One of the state that goes
-// non-finite is left to the run's instability monitors: the state may be a runaway's.) It passes
-// through core::simulate (core::ModelFault) instead of becoming an instability.
+// finite t, or an expression of the state that did at t = 0 with the scene's initial state:
+// bad input at the expression (exit 2), with the time and the state's values. (One of the
+// state that goes non-finite later is left to the run's instability monitors: the state may be
+// a runaway's.) It passes through core::simulate (core::ModelFault) instead of becoming an
+// instability.
 class ExpressionValueError : public InputError, public core::ModelFault {
  public:
   explicit ExpressionValueError(const std::string& message) : InputError(message) {}
@@ -45,7 +47,8 @@ class Expression {
   const std::vector<std::string>& used_signals() const { return used_; }
   // ExpressionValueError when the value is not finite while t is (evaluate(t) only).
   double evaluate(double t) const;
-  // values[i] is the value of used_signals()[i].
+  // values[i] is the value of used_signals()[i]. ExpressionValueError when the value is not
+  // finite at t = 0 while the values are (the initial state is the scene's own).
   double evaluate(double t, const double* values) const;
   // Evaluates an expression of t alone at t = 0, at the output rows' times k / output_rate
   // (up to 10001 of them, spread evenly over the run past that) and at t = duration:
@@ -57,7 +60,8 @@ class Expression {
   [[noreturn]] void fail_at(const std::string& signal, const std::string& why) const;
 
  private:
-  [[noreturn]] void fail_value(double t, double value) const;
+  // `values` (the used signals' values, or null) are named in the message.
+  [[noreturn]] void fail_value(double t, double value, const double* values = nullptr) const;
   struct Impl;
   std::string text_;
   toml::source_region where_;

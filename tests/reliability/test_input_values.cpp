@@ -200,10 +200,21 @@ TEST_CASE("expressions are one expression without assignment, and a non-finite v
       CHECK_THAT(r.err, Contains("e.toml:13:") && Contains("impedances.push.force[0]") && Contains(c.says));
     }
   }
-  // An expression of the state that is not finite is the run's instability (exit 3), never
-  // `ok`: it is not blamed on the expression, since a runaway's or a Newton trial's finite
-  // state can overflow a sound one.
+  // An expression of the state that is not finite at the start (the scene's own initial
+  // state) is the expression's fault, named with the values it saw, by run as by check.
   write(dir / "e.toml", scene("1/(m.p.z - 1)"));
+  for (const char* command : {"run", "check"}) {
+    INFO(command);
+    const RunResult r = std::string(command) == "run" ? run_scene(dir, "e.toml")
+                                                     : run_child({"check", "e.toml"}, dir);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains("e.toml:13:") && Contains("impedances.push.force[0]") &&
+                          Contains("is inf at t = 0 s with m.p.z = 1"));
+  }
+  // One that becomes non-finite later, as the body is pulled to x = 0.5, is the run's
+  // instability (exit 3), never `ok`: it is not blamed on the expression, since a runaway's or
+  // a Newton trial's finite state can overflow a sound one.
+  write(dir / "e.toml", scene("1/(0.5 - m.p.x)"));
   CHECK(run_scene(dir, "e.toml").code == 3);
   // Comparisons, function argument lists and the conditional stay expressions.
   for (const std::string ok : {"t >= 0.5 ? 1 : 0", "min(1, t) + (t == 0) + (t != 1) + (t <= 2)"}) {
