@@ -5,6 +5,7 @@
 
 #include "core/events.hpp"
 #include "io/atomic_file.hpp"
+#include "io/json_members.hpp"
 
 namespace stiction::io {
 
@@ -51,7 +52,7 @@ nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histori
       entry["intervals"].push_back(
           {{"kind", i.kind}, {"start", i.start}, {"end", i.end}, {"duration", i.duration()}});
     }
-    events[h.component] = std::move(entry);
+    append_member(events, h.component, std::move(entry));
   }
   return events;
 }
@@ -71,7 +72,7 @@ nlohmann::ordered_json body_events(const std::vector<core::BodyEventHistory>& bo
       entry["intervals"].push_back(
           {{"kind", i.kind}, {"start", i.start}, {"end", i.end}, {"duration", i.duration()}});
     }
-    out[b.body] = std::move(entry);
+    append_member(out, b.body, std::move(entry));
   }
   return out;
 }
@@ -84,6 +85,29 @@ nlohmann::ordered_json column_table(const std::vector<core::ColumnInfo>& columns
   }
   return table;
 }
+
+// The state the run ended in (RunResult::end_row), which the output rate may put no row at;
+// the last row where a run has no end row. NaN and infinity have no JSON form: nlohmann writes
+// them as null. Appended without a key search (io/json_members.hpp); a name met twice keeps
+// its first value, checked with a hash set.
+namespace {
+
+nlohmann::ordered_json final_row(const core::RunResult& result) {
+  nlohmann::ordered_json row = nlohmann::ordered_json::object();
+  const core::Trajectory& tr = result.trajectory;
+  const bool has_end = result.end_row.size() == static_cast<std::size_t>(tr.column_count());
+  if (!has_end && tr.row_count() == 0) return row;
+  const int last = tr.row_count() - 1;
+  std::unordered_set<std::string_view> seen;
+  for (int c = 0; c < tr.column_count(); ++c) {
+    const std::string& name = tr.columns()[static_cast<std::size_t>(c)];
+    if (!seen.insert(name).second) continue;
+    append_member(row, name, has_end ? result.end_row[static_cast<std::size_t>(c)] : tr.at(last, c));
+  }
+  return row;
+}
+
+}  // namespace
 
 nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunResult& result) {
   nlohmann::ordered_json s;
@@ -98,29 +122,7 @@ nlohmann::ordered_json make_summary(const RunDescription& run, const core::RunRe
   s["state_dim"] = run.state_dim;
   s["wall_seconds"] = result.wall_seconds;
   s["status"] = result.instability ? "unstable" : result.interrupted ? "interrupted" : "ok";
-  nlohmann::ordered_json final_row = nlohmann::ordered_json::object();
-  const core::Trajectory& tr = result.trajectory;
-  if (result.end_row.size() == static_cast<std::size_t>(tr.column_count())) {
-    // The state the run ended in, which the output rate may put no row at (RunResult::end_row).
-    for (int c = 0; c < tr.column_count(); ++c) {
-      final_row[tr.columns()[c]] = result.end_row[static_cast<std::size_t>(c)];
-    }
-  } else if (tr.row_count() > 0) {
-    const int last = tr.row_count() - 1;
-    // NaN and infinity have no JSON form; nlohmann writes them as null.
-    // Appended to the object's vector directly: ordered_json's operator[] searches the keys
-    // it holds, which made this loop quadratic in the columns (40000 links: 11 s, issue 25).
-    // A name met twice keeps its first value, checked with a hash set.
-    auto& entries = static_cast<nlohmann::ordered_json::object_t::Container&>(
-        final_row.get_ref<nlohmann::ordered_json::object_t&>());
-    entries.reserve(static_cast<std::size_t>(tr.column_count()));
-    std::unordered_set<std::string_view> seen;
-    for (int c = 0; c < tr.column_count(); ++c) {
-      const std::string& name = tr.columns()[static_cast<std::size_t>(c)];
-      if (seen.insert(name).second) entries.emplace_back(name, tr.at(last, c));
-    }
-  }
-  s["final"] = std::move(final_row);
+  s["final"] = final_row(result);
   if (!run.columns.empty()) s["columns"] = column_table(run.columns);
   s["events"] = slip_events(result.slip_events);
   std::size_t dropped = 0;

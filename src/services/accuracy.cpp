@@ -10,6 +10,7 @@
 
 #include "core/integrator.hpp"
 #include "core/row_sink.hpp"
+#include "io/json_members.hpp"
 #include "text/number_text.hpp"
 
 namespace stiction::services {
@@ -306,13 +307,13 @@ nlohmann::ordered_json accuracy_json(const AccuracyEstimate& e) {
                       {"time", a.time},
                       {"error", a.error ? json(*a.error) : json(nullptr)}});
     }
-    events[element.element] = std::move(list);
+    io::append_member(events, element.element, std::move(list));
   }
   j["events"] = std::move(events);
   json finals = json::object();
   for (const FinalAccuracy& f : e.finals) {
-    finals[f.column] = {
-        {"value", f.value}, {"error", f.error}, {"scale", f.scale}, {"judged", f.judged}};
+    io::append_member(finals, f.column,
+                      {{"value", f.value}, {"error", f.error}, {"scale", f.scale}, {"judged", f.judged}});
   }
   j["final"] = std::move(finals);
   j["verdict"] = e.verdict;
