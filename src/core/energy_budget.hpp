@@ -13,13 +13,17 @@
 // falling body's bound grows with the speed it gains. `tolerance` is
 // RunOptions::energy_tolerance ([simulation] energy_tolerance, default 0.01).
 //
-// During the first kSettleObservations observations the tolerance is widened by 1/(2k) at
-// the k-th: a first-order method started from rest gains KE/(2k) at its k-th step (explicit
-// Euler's first step adds speed but no fall), an error of 1/(2k) of all the energy moved so
-// far that no a-posteriori scale can absorb; it is below 1% from the 50th step on. A runaway
-// grows geometrically and passes that widened bound within a few steps, so a short run with
-// a large step is still caught (a run of 10 steps has no window to hide in). The headroom
-// (below) ignores the widening, as chatter outlasts it.
+// The tolerance is widened by 1/k of the scale at the k-th step: a first-order method started
+// from rest has gained KE/k after k steps (explicit Euler's first step adds speed but no fall:
+// a body falling from rest has v_k = g k T but has fallen only g T^2 k (k - 1) / 2, so E - W
+// has risen by m g^2 T^2 k / 2 against the KE m g^2 T^2 k^2 / 2), an error of 1/k of all the
+// energy moved so far that no a-posteriori scale can absorb. It was 1/(2k) for the first 64
+// steps and none after, which stopped explicit Euler on a free fall at its first step, and
+// again at its 65th (1/65 > 1%). A runaway grows geometrically and passes that widened bound
+// within a few steps, so a short run with a large step is still caught (a run of 10 steps has
+// no window to hide in). The headroom (below) ignores the widening, as chatter outlasts it,
+// and the step prediction judges a state of the first kSettleObservations steps by the
+// headroom at that step (core/stability.cpp).
 //
 // The same budget gives the stability prediction its headroom (core/stability.cpp), so that
 // a stuck friction's chatter counts as an instability exactly where the monitor stops it.
@@ -43,6 +47,9 @@ struct EnergyParts {
 };
 
 inline constexpr long kSettleObservations = 64;
+
+// The widening of the tolerance (a fraction of the scale) at the k-th step: 1/k.
+inline double settling_allowance(long k) { return k >= 1 ? 1.0 / static_cast<double>(k) : 0.0; }
 
 class EnergyBudget {
  public:
@@ -96,8 +103,8 @@ class EnergyBudget {
   double rise() const { return rise_; }
   double headroom() const { return monitored() ? allowed() - rise_ : INFINITY; }
   bool exceeded() const {
-    const double settling =
-        observations_ <= kSettleObservations ? 0.5 / static_cast<double>(observations_) : 0.0;
+    // The first observation is the initial state: the k-th step is observation k + 1.
+    const double settling = settling_allowance(observations_ - 1);
     if (overflowed_) return true;
     const double bound = allowed() + settling * scale();
     return monitored() && (rise_ > bound || !std::isfinite(bound));
