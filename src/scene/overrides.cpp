@@ -70,6 +70,14 @@ std::vector<Step> parse_path(const std::string& key, const std::shared_ptr<const
   return steps;
 }
 
+// Top-level tables whose absence means all their defaults, exactly as an empty table does:
+// `--set render.fps=10` on a scene without [render] creates it (it was "unknown key
+// 'render'"). Components, plots and the overlay or inset are not created: an empty one is
+// not the same as none.
+bool is_table_of_defaults(const std::string& key) {
+  return key == "simulation" || key == "render" || key == "camera" || key == "verify";
+}
+
 }  // namespace
 
 void apply_override(toml::table& document, const std::string& assignment) {
@@ -109,6 +117,9 @@ void apply_override(toml::table& document, const std::string& assignment) {
                              "unknown key '" + step.path + "' (its parent is not a table)");
       }
       next = t->get(step.key);
+      if (next == nullptr && s == 0 && is_table_of_defaults(step.key)) {
+        next = t->insert(toml::key(step.key, region(source, step.column)), toml::table{}).first->second.as_table();
+      }
     } else {
       toml::array* a = current->as_array();
       if (a == nullptr) throw InputError::at(region(source, step.column), "'" + steps[s - 1].path + "' is not an array");

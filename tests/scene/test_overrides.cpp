@@ -63,3 +63,20 @@ mass = 1.0
   CHECK_THROWS_WITH(build_scene(std::move(d), "s.toml"),
                     StartsWith("--set bodies.ball.mas:1:1: error: unknown key 'bodies.ball.mas'"));
 }
+
+TEST_CASE("overrides: a missing table of defaults is created, a missing component or inset is not") {
+  toml::table d = doc();  // no [render], [camera], [verify] or [inset]
+  apply_override(d, "render.fps=10");
+  apply_override(d, "render.size=[320, 240]");
+  apply_override(d, "camera.distance=3");
+  apply_override(d, "verify.frames=false");
+  CHECK(d["render"]["fps"].value<int64_t>() == 10);
+  CHECK(d["render"]["size"][1].value<int64_t>() == 240);
+  CHECK(d["camera"]["distance"].value<int64_t>() == 3);
+  CHECK(d["verify"]["frames"].value<bool>() == false);
+  CHECK_THROWS_WITH(apply_override(d, "inset.signals=[\"t\"]"),
+                    StartsWith("--set inset.signals:1:1: error: unknown key 'inset'"));
+  CHECK_THROWS_WITH(apply_override(d, "bodies.nosuch.mass=1"), Contains("unknown key 'bodies.nosuch'"));
+  // Only at the top: a table of the same name further down is not created.
+  CHECK_THROWS_WITH(apply_override(d, "bodies.render.mass=1"), Contains("unknown key 'bodies.render'"));
+}
