@@ -260,8 +260,11 @@ def test_study_on_a_small_grid_matches_the_command_line(tmp_path):
     assert study.table["integrator"].tolist() == ["euler"] * 3 + ["rk4"] * 3
     assert study.table["dt"].tolist() == sorted(dts, reverse=True) * 2  # coarse to fine
     assert (study.table["steps"] > 0).all() and study.table["meets_target"].dtype == bool
-    assert study.table["status"].tolist() == ["unstable"] * 3 + ["ok"] * 3
-    assert study.recommendation["integrator"] == "rk4"  # euler goes unstable at every step
+    # rk4 runs clean at every step; explicit Euler is stopped at the onset of contact at the
+    # two coarser steps (its first steps' energy error, with the contact spring's, passes
+    # the energy monitor's widened bound) and runs at 2e-4 s, about 80 times less accurate than rk4 there.
+    assert study.table["status"].tolist() == ["unstable"] * 2 + ["ok"] * 4
+    assert study.recommendation["integrator"] == "rk4"
     assert "Study" in repr(study) and "recommended" in repr(study)
     assert study.to_dataframe().shape[0] == 6
 

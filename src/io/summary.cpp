@@ -86,12 +86,12 @@ nlohmann::ordered_json column_table(const std::vector<core::ColumnInfo>& columns
   return table;
 }
 
+namespace {
+
 // The state the run ended in (RunResult::end_row), which the output rate may put no row at;
 // the last row where a run has no end row. NaN and infinity have no JSON form: nlohmann writes
 // them as null. Appended without a key search (io/json_members.hpp); a name met twice keeps
 // its first value, checked with a hash set.
-namespace {
-
 nlohmann::ordered_json final_row(const core::RunResult& result) {
   nlohmann::ordered_json row = nlohmann::ordered_json::object();
   const core::Trajectory& tr = result.trajectory;
