@@ -262,7 +262,8 @@ def test_study_on_a_small_grid_matches_the_command_line(tmp_path):
     assert (study.table["steps"] > 0).all() and study.table["meets_target"].dtype == bool
     # rk4 runs clean at every step; explicit Euler is stopped at the onset of contact at the
     # two coarser steps (its first steps' energy error, with the contact spring's, passes
-    # the energy monitor's widened bound) and runs at 2e-4 s, about 80 times less accurate than rk4 there.
+    # the energy monitor's widened bound) and runs at 2e-4 s, about 80 times less accurate
+    # than rk4 there.
     assert study.table["status"].tolist() == ["unstable"] * 2 + ["ok"] * 4
     assert study.recommendation["integrator"] == "rk4"
     assert "Study" in repr(study) and "recommended" in repr(study)
