@@ -29,6 +29,10 @@ std::string labels_of(const core::LayoutEntry& entry) {
 // blows up, and the (smaller) step above which stuck friction chatters but stays bounded.
 void print_limit(const IntegratorLimit& l, const core::RunOptions& run) {
   const char* name = l.integrator.c_str();
+  if (l.limit.over_budget) {
+    std::printf("  %-17s not analysed: the analysis had used its work budget\n", name);
+    return;
+  }
   if (l.limit.unbounded) {
     std::printf("  %-17s stable at every step up to 1 s\n", name);
     return;
@@ -117,6 +121,14 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
   }
   std::printf("; a mode growing > 5%% per step counts as unstable):\n");
   for (const IntegratorLimit& l : report.limits) print_limit(l, run);
+  const auto left = std::count_if(report.limits.begin(), report.limits.end(),
+                                  [](const IntegratorLimit& l) { return l.limit.over_budget; });
+  if (left > 0) {
+    std::printf(
+        "  (the step analysis stops at a work budget of %.3g units, about 10 s on 2 cores: %ld "
+        "of %zu integrators not analysed, the scene's own first; docs/command_line.md)\n",
+        services::kCheckAnalysisWork, static_cast<long>(left), report.limits.size());
+  }
 }
 
 int check_and_print(const std::string& scene_name, const std::string& graph_path, bool json) {

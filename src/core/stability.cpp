@@ -420,9 +420,15 @@ namespace {
 struct SearchStopped {};  // unwinds the search from inside its lambdas
 }  // namespace
 
+double radius_work(const Groups& groups, int n) {
+  double work = 0.0;
+  for (const auto& g : groups) work += std::pow(static_cast<double>(g.size()), 3.0);
+  return work + static_cast<double>(n) * static_cast<double>(n);
+}
+
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
                              const std::vector<TimedState>& states, double h_min,
-                             double h_max, const std::atomic<bool>* stop) {
+                             double h_max, const std::atomic<bool>* stop, AnalysisBudget* budget) {
   if (!analysable(network)) {
     StepLimit skipped;
     skipped.skipped = true;
@@ -442,6 +448,10 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
       const TimedState& s = states[state];
       auto g = groups.find(state);
       if (g == groups.end()) g = groups.emplace(state, state_groups(network, s.t, s.x)).first;
+      if (budget != nullptr) {
+        budget->spent += radius_work(g->second, network.state_dim());
+        if (budget->spent > budget->limit) throw SearchStopped{};
+      }
       it = radii.emplace(std::make_pair(state, h),
                          step_radius(network, integrator, s.t, s.x, h, &g->second))
                .first;
@@ -501,6 +511,7 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
     chatter = first_limit(true, chatter_time);
   } catch (const SearchStopped&) {
     limit.interrupted = true;
+    limit.over_budget = budget != nullptr && budget->spent > budget->limit;
     return limit;
   }
   limit.unbounded = !runaway.has_value();

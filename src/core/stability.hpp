@@ -77,9 +77,18 @@ inline bool analysable(const Network& network) {
   return network.state_dim() <= kMaxAnalysedStates;
 }
 
+// Work the step analysis may spend, in units of one dense radius (the cube of each coupled
+// group's size, plus n^2 for its Jacobian, summed), shared by the searches it is passed to.
+// Machine-independent, so that `check` gives the same answer on any machine.
+struct AnalysisBudget {
+  double limit = 0.0;
+  double spent = 0.0;
+};
+
 struct StepLimit {
   bool skipped = false;      // too many states for the dense analysis (kMaxAnalysedStates)
-  bool interrupted = false;  // `stop` was set before the search ended: no answer
+  bool interrupted = false;  // `stop` was set, or the budget ran out, before the search ended
+  bool over_budget = false;  // the budget ran out: no answer
   double max_step = 0.0;       // largest stable step found (0: none above h_min)
   double limiting_time = 0.0;  // time of the sampled state that limits it
   bool unbounded = false;      // stable up to h_max
@@ -95,6 +104,7 @@ struct StepLimit {
 // than kMaxAnalysedStates states is not analysed (StepLimit::skipped).
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
                              const std::vector<TimedState>& states, double h_min = 1e-9,
-                             double h_max = 1.0, const std::atomic<bool>* stop = nullptr);
+                             double h_max = 1.0, const std::atomic<bool>* stop = nullptr,
+                             AnalysisBudget* budget = nullptr);
 
 }  // namespace stiction::core

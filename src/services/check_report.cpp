@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <regex>
 
 #include "core/integrator.hpp"
@@ -110,14 +111,29 @@ CheckReport check_scene(scene::Scene& scene) {
   const auto states = core::sample_states(network, report.pilot.options, kStatesPerRegime);
   if (sys::interrupted()) throw sys::Interrupted{};
   constexpr double kLowestStep = 1e-9;
-  for (const std::string& name : checked_integrators()) {
-    const core::StepLimit limit = core::predict_step_limit(network, name, states, kLowestStep,
-                                                           1.0, &sys::interrupt_flag());
-    if (limit.interrupted || sys::interrupted()) throw sys::Interrupted{};
-    const StepCheck as_check = step_check_from(limit, name, run.dt, kLowestStep);
-    report.limits.push_back({name, limit, recommend_step(scene, as_check)});
+  // The scene's own integrator first: when the budget runs out, its answer is the one kept.
+  std::vector<std::string> order = checked_integrators();
+  std::stable_partition(order.begin(), order.end(),
+                        [&](const std::string& n) { return n == run.integrator; });
+  core::AnalysisBudget budget{kCheckAnalysisWork, 0.0};
+  std::map<std::string, IntegratorLimit> found;
+  for (const std::string& name : order) {
+    IntegratorLimit l{name, {}, {}};
+    if (budget.spent > budget.limit) {
+      l.limit.over_budget = true;
+    } else {
+      l.limit = core::predict_step_limit(network, name, states, kLowestStep, 1.0,
+                                         &sys::interrupt_flag(), &budget);
+      if (sys::interrupted() || (l.limit.interrupted && !l.limit.over_budget))
+        throw sys::Interrupted{};
+      if (!l.limit.over_budget)
+        l.recommended = recommend_step(scene, step_check_from(l.limit, name, run.dt, kLowestStep));
+    }
     if (sys::interrupted()) throw sys::Interrupted{};
+    found.emplace(name, std::move(l));
   }
+  for (const std::string& name : checked_integrators()) report.limits.push_back(found.at(name));
+  report.analysis_work = budget.spent;
   return report;
 }
 
@@ -160,6 +176,12 @@ nlohmann::json check_json(const scene::Scene& scene, const CheckReport& report) 
   nlohmann::json limits = nlohmann::json::object();
   for (const IntegratorLimit& l : report.limits) {
     nlohmann::json e;
+    e["analysed"] = !l.limit.over_budget;
+    if (l.limit.over_budget) {
+      e["reason"] = "not analysed: the step analysis had used its work budget (docs/command_line.md)";
+      limits[l.integrator] = e;
+      continue;
+    }
     e["unbounded"] = l.limit.unbounded;
     e["unstable_above"] = l.limit.unbounded ? nlohmann::json() : nlohmann::json(l.limit.max_step);
     e["limiting_time"] = l.limit.limiting_time;
@@ -176,7 +198,9 @@ nlohmann::json check_json(const scene::Scene& scene, const CheckReport& report) 
   j["step_limits"] = limits;
   j["analysis"] = {{"skipped", !report.analysis_skipped.empty()},
                    {"state_dim", network.state_dim()},
-                   {"max_states", core::kMaxAnalysedStates}};
+                   {"max_states", core::kMaxAnalysedStates},
+                   {"work", report.analysis_work},
+                   {"work_budget", kCheckAnalysisWork}};
   if (!report.analysis_skipped.empty()) j["analysis"]["reason"] = report.analysis_skipped;
   j["render"] = {{"size", {report.render.width, report.render.height}}, {"fps", report.render.fps}};
   j["plots"] = report.plots;

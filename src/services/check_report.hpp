@@ -39,10 +39,20 @@ struct CheckReport {
   // Non-empty when the network-wide analysis was skipped (more states than
   // core::kMaxAnalysedStates): why, for the text and the JSON. `limits` is then empty.
   std::string analysis_skipped;
+  // The step analysis's work (core::AnalysisBudget units); an integrator left when it passed
+  // kCheckAnalysisWork has limit.over_budget set and no answer.
+  double analysis_work = 0.0;
   render::RenderSettings render;
   std::vector<std::string> plots;
   VerifySettings verify;
 };
+
+// The work check's step analysis may spend over all integrators, in core::AnalysisBudget
+// units (the cube of each coupled group's size plus n^2, per radius): about 10 s of this
+// machine's (2 cores, 2026) at about 3 ns per unit. The bundled scenes but box_stack (5.9e9)
+// need at most 2.4e8 (two_link_penalty); a 20-link arm with joint friction (60 coupled states)
+// 3.3e9, a 40-link one about 8 times that. The scene's own integrator is analysed first.
+inline constexpr double kCheckAnalysisWork = 3e9;
 
 // The fixed-step integrators check predicts limits for, in the order it prints them.
 const std::vector<std::string>& checked_integrators();

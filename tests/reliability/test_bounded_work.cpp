@@ -227,3 +227,51 @@ TEST_CASE("40000 springs on one mass: loading, run and summary stay linear in th
   }
   CHECK(summary["accuracy"]["final"].size() == static_cast<std::size_t>(6 + 3 * n));
 }
+
+TEST_CASE("check on a 40-link arm stops at its work budget and names the integrators it left", "[bounded][budget]") {
+  // 120 coupled states: under the 240 of the skip rule, but one radius costs 120^3. The whole
+  // analysis took 197 s here; it now stops at the work budget (machine-independent units),
+  // the scene's own integrator first, and says what it left.
+  const fs::path dir = scratch_dir("bounded", "arm40");
+  write(dir, arm_scene(40, 29));
+  Child child({"check", "--json", "scene.toml"}, dir);
+  const int code = child.wait(std::chrono::seconds(120));  // hang guard
+  INFO(child.err());
+  REQUIRE(code == 0);
+  std::printf("check on a 40-link arm: %.2f s\n", child.seconds_waited);
+  const auto j = nlohmann::json::parse(child.out());
+  CHECK(j["analysis"]["skipped"] == false);
+  const double work = j["analysis"]["work"].get<double>();
+  const double budget = j["analysis"]["work_budget"].get<double>();
+  // The search stops at the first radius past the budget: one radius of 120 coupled states
+  // (120^3 + 120^2) at most beyond it.
+  CHECK(work > budget);
+  CHECK(work <= budget + 120.0 * 120.0 * 120.0 + 120.0 * 120.0);
+  int left = 0;
+  for (const auto& [name, limit] : j["step_limits"].items()) {
+    INFO(name);
+    if (limit["analysed"] == false) {
+      ++left;
+      CHECK(limit["reason"].get<std::string>().find("work budget") != std::string::npos);
+      CHECK_FALSE(limit.contains("unstable_above"));
+    }
+  }
+  CHECK(left >= 1);
+  CHECK(j["step_limits"].size() == 5);
+}
+
+TEST_CASE("check on a 10-link arm analyses every integrator within the budget", "[bounded][budget]") {
+  const fs::path dir = scratch_dir("bounded", "arm10");
+  write(dir, arm_scene(10, 30));
+  Child child({"check", "--json", "scene.toml"}, dir);
+  const int code = child.wait(std::chrono::seconds(120));  // hang guard
+  INFO(child.err());
+  REQUIRE(code == 0);
+  const auto j = nlohmann::json::parse(child.out());
+  CHECK(j["analysis"]["work"].get<double>() <= j["analysis"]["work_budget"].get<double>());
+  for (const auto& [name, limit] : j["step_limits"].items()) {
+    INFO(name);
+    CHECK(limit["analysed"] == true);
+    CHECK(limit.contains("unbounded"));
+  }
+}
