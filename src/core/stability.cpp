@@ -418,13 +418,15 @@ bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts) {
 
 namespace {
 struct SearchStopped {};  // unwinds the search from inside its lambdas
-}  // namespace
 
+// One radius's work in AnalysisBudget units: an eigenvalue problem per coupled group (its
+// size cubed) and the Jacobian's n^2 entries.
 double radius_work(const Groups& groups, int n) {
   double work = 0.0;
   for (const auto& g : groups) work += std::pow(static_cast<double>(g.size()), 3.0);
   return work + static_cast<double>(n) * static_cast<double>(n);
 }
+}  // namespace
 
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
                              const std::vector<TimedState>& states, double h_min,
