@@ -39,6 +39,10 @@ echo "== sanitizers: built in $((SECONDS - start)) s" >&2
 default_exclude='every bundled scene over its full duration|rk4_adaptive: a sliding sphere sticks on time at every tolerance|slope_hold for 1000 s|box_slope: slides at g|two_link_lugre at 1e-4 s: the unstable bristle state'
 default_exclude+="|dense output: every bundled scene's rows|no bundled scene is stopped at its own step"
 default_exclude+='|a stack of three boxes held by friction on a slope|a stack pushed at the top tips'
+# Two bounded-work tests of issue 25 whose point is size (40000 springs, 540 MB in Release;
+# a 40-link arm's check up to its work budget); the same code runs instrumented on small
+# scenes (every run's summary; `check on a 10-link arm analyses every integrator`).
+default_exclude+='|40000 springs on one mass|check on a 40-link arm stops at its work budget'
 # intercept_tls_get_addr=0: LeakSanitizer (GCC 12) then leaves out the dynamic TLS blocks of
 # dlopen'ed libraries (the render plugin loads OSMesa and LLVM). Tracking them, its leak check
 # at exit crashed in ScanRangeForPointers on a bogus block near address 0 ("Tracer caught
