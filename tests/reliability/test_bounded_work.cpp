@@ -61,13 +61,19 @@ fs::path write(const fs::path& dir, const std::string& text) {
   return p;
 }
 
-// `check --json` on the scene answers (hang guard 60 s) with the analysis skipped.
-void check_skips(const fs::path& dir, int expected_states) {
+// `check --json` on the scene in `dir`, which must answer (exit 0) within `guard`.
+nlohmann::json check_json(const fs::path& dir, std::chrono::seconds guard, const char* what) {
   Child child({"check", "--json", "scene.toml"}, dir);
-  const int code = child.wait(std::chrono::seconds(60));
+  const int code = child.wait(guard);  // hang guard
   INFO(child.err());
   REQUIRE(code == 0);
-  const auto j = nlohmann::json::parse(child.out());
+  std::printf("check on %s: %.2f s\n", what, child.seconds_waited);
+  return nlohmann::json::parse(child.out());
+}
+
+// `check --json` on the scene answers (hang guard 60 s) with the analysis skipped.
+void check_skips(const fs::path& dir, int expected_states) {
+  const auto j = check_json(dir, std::chrono::seconds(60), "a network too large to analyse");
   CHECK(j["state_dim"] == expected_states);
   REQUIRE(j.contains("analysis"));
   CHECK(j["analysis"]["skipped"] == true);
@@ -75,7 +81,6 @@ void check_skips(const fs::path& dir, int expected_states) {
   CHECK(j["analysis"]["max_states"].get<int>() < expected_states);
   CHECK(j["analysis"]["reason"].get<std::string>().find("states") != std::string::npos);
   CHECK(j["step_limits"].empty());
-  std::printf("check on %d states: %.2f s\n", expected_states, child.seconds_waited);
 }
 
 }  // namespace
@@ -234,12 +239,7 @@ TEST_CASE("check on a 40-link arm stops at its work budget and names the integra
   // the scene's own integrator first, and says what it left.
   const fs::path dir = scratch_dir("bounded", "arm40");
   write(dir, arm_scene(40, 29));
-  Child child({"check", "--json", "scene.toml"}, dir);
-  const int code = child.wait(std::chrono::seconds(120));  // hang guard
-  INFO(child.err());
-  REQUIRE(code == 0);
-  std::printf("check on a 40-link arm: %.2f s\n", child.seconds_waited);
-  const auto j = nlohmann::json::parse(child.out());
+  const auto j = check_json(dir, std::chrono::seconds(120), "a 40-link arm");
   CHECK(j["analysis"]["skipped"] == false);
   const double work = j["analysis"]["work"].get<double>();
   const double budget = j["analysis"]["work_budget"].get<double>();
@@ -263,11 +263,7 @@ TEST_CASE("check on a 40-link arm stops at its work budget and names the integra
 TEST_CASE("check on a 10-link arm analyses every integrator within the budget", "[bounded][budget]") {
   const fs::path dir = scratch_dir("bounded", "arm10");
   write(dir, arm_scene(10, 30));
-  Child child({"check", "--json", "scene.toml"}, dir);
-  const int code = child.wait(std::chrono::seconds(120));  // hang guard
-  INFO(child.err());
-  REQUIRE(code == 0);
-  const auto j = nlohmann::json::parse(child.out());
+  const auto j = check_json(dir, std::chrono::seconds(120), "a 10-link arm");
   CHECK(j["analysis"]["work"].get<double>() <= j["analysis"]["work_budget"].get<double>());
   for (const auto& [name, limit] : j["step_limits"].items()) {
     INFO(name);
