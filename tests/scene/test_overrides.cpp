@@ -68,11 +68,11 @@ TEST_CASE("overrides: a missing table of defaults is created, a missing componen
   toml::table d = doc();  // no [render], [camera], [verify] or [inset]
   apply_override(d, "render.fps=10");
   apply_override(d, "render.size=[320, 240]");
-  apply_override(d, "camera.distance=3");
+  apply_override(d, "camera.fov=40");
   apply_override(d, "verify.frames=false");
   CHECK(d["render"]["fps"].value<int64_t>() == 10);
   CHECK(d["render"]["size"][1].value<int64_t>() == 240);
-  CHECK(d["camera"]["distance"].value<int64_t>() == 3);
+  CHECK(d["camera"]["fov"].value<int64_t>() == 40);
   CHECK(d["verify"]["frames"].value<bool>() == false);
   CHECK_THROWS_WITH(apply_override(d, "inset.signals=[\"t\"]"),
                     StartsWith("--set inset.signals:1:1: error: unknown key 'inset'"));
