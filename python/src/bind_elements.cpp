@@ -55,12 +55,23 @@ scene::SourceLaw make_law(const std::shared_ptr<py::object>& law, const std::str
 }
 
 // Sets (or with None removes) the law of source `name`.
+// The fingerprint Python computes for a law or an element maker (_elements._fingerprint;
+// empty: none, the scene is not cached).
+std::string fingerprint_of(const py::object& obj) {
+  const py::object text = py::module_::import("stiction._elements").attr("_fingerprint")(obj);
+  return text.is_none() ? std::string() : text.cast<std::string>();
+}
+
 void set_source(scene::ExternalElements& e, const std::string& name, py::object law,
                 std::optional<std::vector<std::string>> signals) {
   if (law.is_none()) {
     e.sources.erase(name);
+    e.fingerprints.erase(name);
     return;
   }
+  e.fingerprints[name] =
+      fingerprint_of(law) + (signals ? " signals " + std::string(py::repr(py::cast(*signals)))
+                                     : std::string());
   e.sources[name] = {std::move(signals), [law = keep(std::move(law)), name](
                                              const std::vector<std::string>& names, int count) {
                        return make_law(law, name, names, count);
@@ -71,8 +82,10 @@ void set_source(scene::ExternalElements& e, const std::string& name, py::object 
 void set_element(scene::ExternalElements& e, const std::string& name, py::object make) {
   if (make.is_none()) {
     e.impedances.erase(name);
+    e.fingerprints.erase(name);
     return;
   }
+  e.fingerprints[name] = fingerprint_of(make);
   e.impedances[name] = [make = keep(std::move(make))](const std::string& element_name) {
     py::gil_scoped_acquire gil;
     return make_python_impedance(element_name, (*make)());

@@ -19,6 +19,10 @@ them stops the run and is raised by :func:`stiction.run`.
 
 import collections.abc
 import copy
+import hashlib
+import inspect
+import pickle
+import types
 
 from . import _stiction
 from ._scene import Scene
@@ -91,6 +95,66 @@ def set_source(self, name, law, signals=None):
     return self
 
 
+def _value_text(value):
+    """Bytes that change when a value does: its pickle, else its repr (an object's repr with
+    an address changes between runs, which only costs a cache miss)."""
+    try:
+        return pickle.dumps(value, protocol=4)
+    except Exception:
+        return repr(value).encode()
+
+
+def _function_text(fn, seen):
+    """The source of a function with the values it reads: defaults, closure cells and the
+    globals it names (functions among them followed once)."""
+    parts = [inspect.getsource(fn).encode()]
+    parts.append(_value_text(fn.__defaults__))
+    parts.append(_value_text(fn.__kwdefaults__))
+    for cell in fn.__closure__ or ():
+        try:
+            parts.append(_value_text(cell.cell_contents))
+        except ValueError:  # an empty cell
+            parts.append(b"<empty>")
+    for name in fn.__code__.co_names:
+        if name not in fn.__globals__:
+            continue
+        value = fn.__globals__[name]
+        if isinstance(value, types.ModuleType):
+            parts.append(name.encode() + b"=module " + value.__name__.encode())
+        elif isinstance(value, types.FunctionType):
+            if value not in seen:
+                seen.add(value)
+                parts.append(_function_text(value, seen))
+        elif isinstance(value, type):
+            parts.append(inspect.getsource(value).encode())
+        else:
+            parts.append(name.encode() + b"=" + _value_text(value))
+    return b"\0".join(parts)
+
+
+def _fingerprint(obj):
+    """A text that changes whenever a law's or an element's behaviour may (its source code and
+    the values it reads), for the step check's cache; None when it cannot be read (a law typed
+    at an interactive prompt, a builtin): then the scene is not cached."""
+    try:
+        target = getattr(obj, "_stiction_made_from", obj)
+        if isinstance(target, tuple):  # (class or instance, args, kwargs) of an element maker
+            element, args, kwargs = target
+            cls = element if isinstance(element, type) else type(element)
+            text = b"\0".join([inspect.getsource(cls).encode(), _value_text(args),
+                               _value_text(kwargs),
+                               b"" if isinstance(element, type) else _value_text(element.__dict__)])
+        elif isinstance(target, types.MethodType):
+            text = _function_text(target.__func__, set()) + _value_text(target.__self__)
+        elif isinstance(target, types.FunctionType):
+            text = _function_text(target, set())
+        else:  # a callable object
+            text = inspect.getsource(type(target)).encode() + _value_text(target.__dict__)
+        return hashlib.sha256(text).hexdigest()
+    except Exception:
+        return None
+
+
 def _maker(element, args=(), kwargs=None):
     """A zero-argument callable making a fresh Python element for every scene build."""
     kwargs = kwargs or {}
@@ -99,11 +163,15 @@ def _maker(element, args=(), kwargs=None):
     if isinstance(element, type):
         if not issubclass(element, Impedance):
             raise TypeError(f"{element.__name__} is not a subclass of stiction.Impedance")
-        return lambda: element(*args, **kwargs)
+        maker = lambda: element(*args, **kwargs)  # noqa: E731
+        maker._stiction_made_from = (element, args, kwargs)
+        return maker
     if isinstance(element, Impedance):
         if args or kwargs:
             raise TypeError("arguments are for a class, not for an instance")
-        return lambda: copy.deepcopy(element)
+        maker = lambda: copy.deepcopy(element)  # noqa: E731
+        maker._stiction_made_from = (element, (), {})
+        return maker
     raise TypeError(f"expected a subclass of stiction.Impedance or an instance, got {element!r}")
 
 

@@ -41,6 +41,23 @@ std::string first_of(const nlohmann::ordered_json& entry, const std::string& ele
   return text;
 }
 
+// "; counts not converged: 56 sticks, 50 at half the step" from accuracy.not_converged
+// (docs/accuracy.md): repeated events whose number the step decides.
+std::string not_converged(const nlohmann::ordered_json& accuracy, const std::string& element) {
+  if (!accuracy.is_object()) return "";
+  const auto list = accuracy.find("not_converged");
+  if (list == accuracy.end() || !list->is_array()) return "";
+  std::string text;
+  for (const auto& d : *list) {
+    if (d.value("element", "") != element) continue;
+    const std::string kind = d.value("kind", "");
+    const std::string plural = kind == "open" ? "lift-offs" : kind + "s";
+    text += (text.empty() ? "" : "; ") + std::to_string(d.value("run", 0)) + " " + plural +
+            " against " + std::to_string(d.value("companion", 0)) + " in the companion";
+  }
+  return text.empty() ? "" : "; counts not converged: " + text;
+}
+
 bool has_interval(const nlohmann::ordered_json& entry, const char* kind) {
   const auto it = entry.find("intervals");
   if (it == entry.end() || !it->is_array()) return false;
@@ -126,7 +143,7 @@ std::vector<std::string> event_lines(const nlohmann::ordered_json& events,
     if (lift_offs > 0) counts += ", " + counted(lift_offs, "lift-off", "lift-offs");
     const std::string initial = entry.value("initial", "");
     if (!initial.empty()) counts = "starts " + initial + "; " + counts;
-    lines.push_back(element + ": " + what + " (" + counts + ")");
+    lines.push_back(element + ": " + what + " (" + counts + ")" + not_converged(accuracy, element));
   }
   return lines;
 }

@@ -50,6 +50,7 @@ struct BodyEvent {
   std::string kind;  // "stick", "slide", "partial_slip", "tip", "lift_off" or "land"
   double time = 0.0;
   std::string state;  // the state entered (for `land`, the one it lands in)
+  double uncertainty = 0.0;  // s: the largest of its point events' (SlipEvent)
 };
 
 struct BodyEventHistory {

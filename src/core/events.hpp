@@ -44,6 +44,7 @@ namespace stiction::core {
 struct SlipEvent {
   std::string kind;  // "stick", "slip" or "open"
   double time = 0.0;
+  double uncertainty = 0.0;  // s: how precisely it was located (see SlipMonitor)
 };
 
 // One stretch of a single state, from one event (or t = 0) to the next (or the end).

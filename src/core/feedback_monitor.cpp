@@ -3,12 +3,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/integrator_traits.hpp"
+
 namespace stiction::core {
 
 FeedbackMonitor::FeedbackMonitor(Network& network, const RunOptions& options, const Vec& x0)
     : network_(network),
       options_(options),
-      active_(network.has_feedback_sources() && options.integrator != "rk4_adaptive" &&
+      active_(network.has_feedback_sources() && !is_adaptive(options.integrator) &&
               std::isfinite(network.energy(x0))),
       driven_(network, options.energy_tolerance) {
   if (!active_) return;

@@ -35,14 +35,10 @@ const Tableau& rk4_tableau() {
   return t;
 }
 
-std::vector<std::string> integrator_names() {
-  return {"euler", "symplectic_euler", "heun", "rk4", "rk4_adaptive", "implicit"};
-}
-
 const Tableau* find_tableau(const std::string& name) {
-  if (name == "euler") return &euler_tableau();
-  if (name == "heun") return &heun_tableau();
-  if (name == "rk4") return &rk4_tableau();
+  for (const Tableau* t : {&euler_tableau(), &heun_tableau(), &rk4_tableau()}) {
+    if (t->name == name) return t;
+  }
   return nullptr;
 }
 
@@ -53,18 +49,18 @@ const Tableau& tableau_by_name(const std::string& name) {
 
 std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,
                                       double tolerance, double max_step) {
-  if (const Tableau* t = find_tableau(name)) {
-    return std::make_unique<RungeKuttaStepper>(*t, state_dim, dt);
+  switch (integrator_traits(name).method) {  // throws for an unknown name
+    case Method::explicit_rk:
+      return std::make_unique<RungeKuttaStepper>(tableau_by_name(name), state_dim, dt);
+    case Method::symplectic_euler:
+      return std::make_unique<SymplecticEulerStepper>(state_dim, dt);
+    case Method::implicit_euler:
+      return std::make_unique<ImplicitEulerStepper>(state_dim, dt);
+    case Method::adaptive_rk4:
+      if (!(tolerance > 0.0)) throw std::invalid_argument(name + " needs a tolerance > 0");
+      return std::make_unique<AdaptiveRk4Stepper>(state_dim, dt, tolerance, max_step);
   }
-  if (name == "symplectic_euler") return std::make_unique<SymplecticEulerStepper>(state_dim, dt);
-  if (name == "implicit") return std::make_unique<ImplicitEulerStepper>(state_dim, dt);
-  if (name == "rk4_adaptive") {
-    if (!(tolerance > 0.0)) throw std::invalid_argument("rk4_adaptive needs a tolerance > 0");
-    return std::make_unique<AdaptiveRk4Stepper>(state_dim, dt, tolerance, max_step);
-  }
-  std::string known;
-  for (const auto& n : integrator_names()) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown integrator '" + name + "' (known: " + known + ")");
+  throw std::logic_error("make_stepper: a method without a stepper");
 }
 
 RungeKuttaStepper::RungeKuttaStepper(const Tableau& tableau, int state_dim, double dt)

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "core/integrator_traits.hpp"
 #include "core/network.hpp"
 
 namespace stiction::core {
@@ -45,8 +46,6 @@ const Tableau& euler_tableau();
 const Tableau& heun_tableau();
 const Tableau& rk4_tableau();
 
-// Names accepted by make_stepper, for messages and `stiction study`.
-std::vector<std::string> integrator_names();
 
 class Stepper {
  public:

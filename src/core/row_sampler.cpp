@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/hermite.hpp"
+#include "core/integrator_traits.hpp"
 
 namespace stiction::core {
 namespace {
@@ -22,7 +23,7 @@ RowSampler::RowSampler(Network& network, const RunOptions& options, const Steppe
       stepper_(stepper),
       result_(result),
       sink_(sink),
-      dense_(options.integrator == "rk4_adaptive"),
+      dense_(is_adaptive(options.integrator)),
       T_(options.dt),
       sample_period_(1.0 / options.output_rate),
       total_samples_(static_cast<long>(std::floor(options.duration / sample_period_ + 1e-9)) + 1),

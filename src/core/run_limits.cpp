@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/integrator_traits.hpp"
+
 namespace stiction::core {
 namespace {
 
@@ -24,12 +26,12 @@ std::optional<LimitViolation> check_run_limits(const RunOptions& o) {
     return LimitViolation{"output_rate",
                           "must be a finite number > 0 (got " + format(o.output_rate) + ")"};
   }
-  if (o.integrator == "rk4_adaptive" && !positive(o.tolerance)) {
+  if (is_adaptive(o.integrator) && !positive(o.tolerance)) {
     return LimitViolation{"tolerance", "must be a finite number > 0 (got " + format(o.tolerance) + ")"};
   }
   // Computed in floating point: duration / dt may be far beyond any integer type.
   const double steps = std::ceil(o.duration / o.dt);
-  if (o.integrator != "rk4_adaptive" && !(steps <= RunLimits::kMaxSteps)) {
+  if (!is_adaptive(o.integrator) && !(steps <= RunLimits::kMaxSteps)) {
     return LimitViolation{"dt", "duration / dt = " + format(o.duration) + " / " + format(o.dt) +
                                     " = " + format(steps) + " steps, more than the limit of " +
                                     format(RunLimits::kMaxSteps) + " (docs/limits.md)"};
@@ -48,7 +50,7 @@ std::optional<LimitViolation> check_user_run(const RunOptions& o) {
   if (auto violation = check_run_limits(o)) return violation;
   // A fixed step longer than the run used to become one step of the duration, silently; at
   // dt = 1e308 the friction laws, which take the step as a parameter, gave NaN forces.
-  if (o.integrator != "rk4_adaptive" && o.dt > o.duration) {
+  if (!is_adaptive(o.integrator) && o.dt > o.duration) {
     return LimitViolation{"dt", "the step " + format(o.dt) + " s is longer than the run (duration = " +
                                     format(o.duration) + " s): give a step <= the duration"};
   }

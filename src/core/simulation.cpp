@@ -14,6 +14,7 @@
 #include "core/row_sampler.hpp"
 #include "core/run_limits.hpp"
 #include "core/slip_observer.hpp"
+#include "core/integrator_traits.hpp"
 
 namespace stiction::core {
 
@@ -30,7 +31,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   RunResult result;
   const double T = options.dt;
   const double end = options.duration;
-  const bool fixed_step = options.integrator != "rk4_adaptive";
+  const bool fixed_step = !is_adaptive(options.integrator);
   const long total_steps = static_cast<long>(std::ceil(end / T - 1e-9));
   auto stepper = make_stepper(options.integrator, network.state_dim(), T, options.tolerance,
                               adaptive_step_bound(options));

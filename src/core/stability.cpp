@@ -378,11 +378,17 @@ Groups state_groups(Network& network, double t, const Vec& x) {
 StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
                        double h, const Groups* groups) {
   auto radius = [&](bool held) -> std::optional<double> {
-    if (integrator == "symplectic_euler") {
-      return symplectic_step_radius(network, t, x, h, held, groups);
+    switch (integrator_traits(integrator).method) {
+      case Method::symplectic_euler:
+        return symplectic_step_radius(network, t, x, h, held, groups);
+      case Method::implicit_euler:
+        return implicit_step_radius(network, t, x, h, held, groups);
+      case Method::explicit_rk:
+        return rk_step_radius(network, tableau_by_name(integrator), t, x, h, held, groups);
+      case Method::adaptive_rk4:
+        break;
     }
-    if (integrator == "implicit") return implicit_step_radius(network, t, x, h, held, groups);
-    return rk_step_radius(network, tableau_by_name(integrator), t, x, h, held, groups);
+    throw std::invalid_argument(integrator + " has no fixed step to analyse");
   };
   StepRadius r;
   const auto full = radius(false);

@@ -41,6 +41,24 @@ using ImpedanceFactory = std::function<std::unique_ptr<core::Impedance>(const st
 struct ExternalElements {
   std::map<std::string, ExternalSource> sources;       // by torque_source / force_source name
   std::map<std::string, ImpedanceFactory> impedances;  // by `type = "external"` table name
+  // By name, text that changes whenever the element's behaviour may (its source code and
+  // the values it reads), from the program that supplied it; the step check's cache keys on
+  // it. An element without one (empty, or absent) keeps its scene out of the cache.
+  std::map<std::string, std::string> fingerprints;
+  // Whether every source and impedance here has a fingerprint.
+  bool fingerprinted() const {
+    const auto has = [this](const std::string& name) {
+      const auto it = fingerprints.find(name);
+      return it != fingerprints.end() && !it->second.empty();
+    };
+    for (const auto& [name, s] : sources) {
+      if (!has(name)) return false;
+    }
+    for (const auto& [name, f] : impedances) {
+      if (!has(name)) return false;
+    }
+    return true;
+  }
 };
 
 }  // namespace stiction::scene

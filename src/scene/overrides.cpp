@@ -75,7 +75,8 @@ std::vector<Step> parse_path(const std::string& key, const std::shared_ptr<const
 // 'render'"). Components, plots and the overlay or inset are not created: an empty one is
 // not the same as none.
 bool is_table_of_defaults(const std::string& key) {
-  return key == "simulation" || key == "render" || key == "camera" || key == "verify";
+  return key == "simulation" || key == "render" || key == "camera" || key == "verify" ||
+         key == "accuracy";
 }
 
 }  // namespace

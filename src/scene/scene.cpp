@@ -21,9 +21,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Tables owned by the renderer, the plotter and `verify` (validated there, not here).
-constexpr const char* kForeignSections[] = {"render", "camera", "overlay",
-                                            "inset",  "plots",  "verify"};
+// Tables owned by the renderer, the plotter, `verify` and the accuracy verdict (validated
+// there, not here).
+constexpr const char* kForeignSections[] = {"render", "camera", "overlay", "inset",
+                                            "plots",  "verify", "accuracy"};
 
 toml::table parse_text(const std::string& text, const std::string& origin) {
   check_toml_shape(text, origin);  // before toml++: a deep dotted key overflows its stack
@@ -77,15 +78,15 @@ core::RunOptions read_simulation(TableReader& root) {
   if (sim->has("tolerance")) {
     run.tolerance = sim->positive("tolerance", run.tolerance);
     if (!sim->has("integrator")) {
-      run.integrator = "rk4_adaptive";
-    } else if (run.integrator != "rk4_adaptive") {
-      sim->fail("tolerance", "only the integrator rk4_adaptive uses a tolerance (integrator is '" +
-                                 run.integrator + "')");
+      run.integrator = core::adaptive_integrator().name;
+    } else if (!core::is_adaptive(run.integrator)) {
+      sim->fail("tolerance", "only the integrator " + core::adaptive_integrator().name +
+                                 " uses a tolerance (integrator is '" + run.integrator + "')");
     }
-  } else if (run.integrator == "rk4_adaptive") {
-    sim->fail("integrator",
-              "rk4_adaptive needs a tolerance: add tolerance = 1e-8 (for example) "
-              "to [simulation]");
+  } else if (core::is_adaptive(run.integrator)) {
+    sim->fail("integrator", run.integrator +
+                                " needs a tolerance: add tolerance = 1e-8 (for example) "
+                                "to [simulation]");
   }
   run.dt = sim->positive("dt", run.dt);
   run.duration = sim->positive("duration", run.duration);

@@ -1,11 +1,11 @@
-// How accurate a run is (issue 26, item 3; docs/accuracy.md): a companion run of the same
-// scene at a finer setting, and from the two an estimated error of every event time and of
-// every final value, with a verdict. Fixed-step integrators: the companion takes half the
-// step and Richardson's estimate with the integrator's order p gives the error of the run,
-// (y_h - y_{h/2}) 2^p / (2^p - 1). rk4_adaptive: the companion runs at a tolerance 100 times
-// tighter, and the difference is the estimate. Events are matched per element and kind in
-// order; a different number of events in the two runs means the step decides the event
-// sequence: the run is inaccurate whatever the numbers say.
+// How accurate a run is (issue 26 item 3, issue 35; docs/accuracy.md): a companion run of the
+// same scene at a finer setting, compared with the run by the one comparison of two runs
+// (run_comparison.hpp), gives an estimated error of every event time and every final value,
+// and a verdict on the quantities the scene judges. Fixed-step integrators: the companion
+// takes half the step; Richardson's estimate with the integrator's order p for final values,
+// (y_h - y_{h/2}) 2^p / (2^p - 1), and with order 1 for event times (their order is not the
+// integrator's). An adaptive integrator: the companion runs at a tolerance 100 times tighter,
+// and the difference is the estimate.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -15,6 +15,7 @@
 
 #include "core/simulation.hpp"
 #include "scene/scene.hpp"
+#include "services/run_comparison.hpp"
 
 namespace stiction::services {
 
@@ -33,17 +34,16 @@ struct AccuracySettings {
   AccuracyMode mode = AccuracyMode::automatic;
   // automatic: on when the companion's expected cost is at most this (CPU seconds).
   double budget_seconds = 5.0;
-  // An event time's error above this fraction of the duration makes the run inaccurate.
-  double event_tolerance = 1e-3;
-  // A body's final value with an error above this fraction of its signal's scale (the
-  // largest magnitude of the signal, all its axes, over the companion run) likewise.
-  double final_tolerance = 1e-3;
+  // What is judged and the tolerances (run_comparison.hpp); empty: the scene's [accuracy].
+  std::optional<JudgeRule> rule;
 };
 
 struct EventAccuracy {
   std::string kind;
   double time = 0.0;
-  std::optional<double> error;  // none when the two runs' events of this kind differ
+  std::optional<double> error;  // none when this event has no counterpart in the companion
+  double located = 0.0;         // how precisely the run located it (core::SlipEvent)
+  bool judged = false;          // the first or last of its kind, judged by the rule
 };
 
 struct FinalAccuracy {
@@ -70,10 +70,10 @@ struct AccuracyEstimate {
   std::vector<FinalAccuracy> finals;
   std::string verdict = "unknown";  // "accurate", "inaccurate" or "unknown"
   std::vector<std::string> reasons;
+  RunComparison comparison;  // the judged quantities, tolerances and unconverged counts
+  JudgeRule rule;
   double cpu_seconds = 0.0;      // what the companion cost
   bool interrupted = false;      // the companion was stopped by a signal
-  double event_tolerance = 0.0;  // seconds
-  double final_tolerance = 0.0;  // relative to the scale
   PredictedStepLimits limits;    // as passed in; in the JSON (`step_limits`) when known
 };
 
@@ -81,7 +81,14 @@ struct AccuracyEstimate {
 // rk4_adaptive at tolerance / 100, 100^(1/5) (the local error is O(h^5)).
 double companion_cost_factor(const core::RunOptions& run);
 
-// Runs the companion (with scene.run's stop flag) and compares. `result` is the finished,
+// The companion of `run`: half the step, or an adaptive integrator's tolerance / 100, with
+// the run's event resolution; and the comparison of the run with it (Richardson factors with
+// the integrator's order for final values, 2 for event times). Every command that judges a
+// step's accuracy (run, check's and the guard's trials, study's confirmation) uses these.
+core::RunOptions companion_options(const core::RunOptions& run);
+ComparisonSetup companion_setup(const core::RunOptions& run, JudgeRule rule);
+
+// Runs the companion (with scene.run's stop flag) and compares (run_comparison.hpp). `result` is the finished,
 // stable and uninterrupted run of scene.run; its trajectory's last row holds the final
 // values. With mode off, or automatic over the budget, nothing is simulated.
 AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& result,

@@ -6,48 +6,14 @@
 #include <regex>
 
 #include "core/integrator.hpp"
+#include "services/dynamics_fingerprint.hpp"
+#include "services/run_comparison.hpp"
 #include "services/step_check.hpp"
 #include "services/step_guard.hpp"
 #include "sys/interrupt.hpp"
 
 namespace stiction::services {
 namespace {
-
-// Mobility (inverse effective mass or inertia) that impedance i sees at the initial state:
-// push with a unit force through its map, let the admittances accelerate for a unit time
-// and read the velocity part of x_hat back. The largest entry gives the stiffest mode, the
-// one that limits the step. Works for every map whose x_hat is [position (n), velocity (n)]
-// with n = force size; NaN otherwise.
-double largest_mobility(core::Network& network, int i) {
-  const core::CoordinateMap& map = network.map_of(i);
-  const int n = map.force_size();
-  if (map.motion_size() != 2 * n) return std::nan("");
-  const core::Vec x0 = network.initial_state();
-  core::Vec base_hat(map.motion_size()), pushed_hat(map.motion_size());
-  map.motion(x0, base_hat);
-  double largest = 0.0;
-  for (int k = 0; k < n; ++k) {
-    core::Vec u = core::Vec::Zero(n);
-    u[k] = 1.0;
-    core::Vec u_hat = core::Vec::Zero(network.input_dim());
-    map.apply(x0, u, u_hat);
-    core::Vec x1 = x0;
-    for (std::size_t a = 0; a < network.admittances().size(); ++a) {
-      const core::Admittance& adm = *network.admittances()[a];
-      const core::Slot s = network.admittance_slot(static_cast<int>(a));
-      core::Vec with(s.state_size), without(s.state_size);
-      adm.derivative(x0.segment(s.state_offset, s.state_size),
-                     u_hat.segment(s.input_offset, s.input_size), with);
-      adm.derivative(x0.segment(s.state_offset, s.state_size), core::Vec::Zero(s.input_size),
-                     without);
-      x1.segment(s.state_offset, s.state_size) += with - without;
-    }
-    map.motion(x1, pushed_hat);
-    // The moving side receives -u: a positive mobility shows as a negative response.
-    largest = std::max(largest, -(pushed_hat[n + k] - base_hat[n + k]));
-  }
-  return largest;
-}
 
 nlohmann::json number_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
@@ -56,8 +22,13 @@ nlohmann::json number_or_null(double v) {
 }  // namespace
 
 const std::vector<std::string>& checked_integrators() {
-  static const std::vector<std::string> names = {"euler", "symplectic_euler", "heun", "rk4",
-                                                   "implicit"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> analysed;
+    for (const core::IntegratorTraits& t : core::integrator_table()) {
+      if (t.step_analysed()) analysed.push_back(t.name);
+    }
+    return analysed;
+  }();
   return names;
 }
 
@@ -74,6 +45,7 @@ CheckReport check_scene(scene::Scene& scene) {
   if (specs.empty()) specs = plot::default_plot_specs(columns);
   for (const plot::PlotSpec& s : specs) report.plots.push_back(s.name);
   report.verify = read_verify_settings(scene.document, run.duration);
+  read_judge_rule(scene);  // [accuracy]: the same errors as run
 
   for (std::size_t i = 0; i < network.impedances().size(); ++i) {
     const core::Impedance& imp = *network.impedances()[i];
@@ -150,6 +122,13 @@ nlohmann::json check_json(const scene::Scene& scene, const CheckReport& report) 
                      {"dt", run.dt},
                      {"duration", run.duration},
                      {"output_rate", run.output_rate}};
+  // Every integrator with its traits (DESIGN section 3): other tools take the names from here.
+  nlohmann::json integrators = nlohmann::json::array();
+  for (const core::IntegratorTraits& t : core::integrator_table()) {
+    integrators.push_back(
+        {{"name", t.name}, {"order", t.order}, {"implicit", t.implicit}, {"adaptive", t.adaptive}});
+  }
+  j["integrators"] = integrators;
   j["state_dim"] = network.state_dim();
   nlohmann::json layout = nlohmann::json::array();
   for (const core::LayoutEntry& e : network.layout()) {

@@ -1,5 +1,6 @@
 #include "services/run_service.hpp"
 
+#include "services/run_comparison.hpp"
 #include "services/verify_settings.hpp"
 
 namespace stiction::services {
@@ -20,6 +21,7 @@ PreparedRun prepare_run(scene::Scene scene, const RunRequest& request) {
   p.plot_specs = plot::read_plot_specs(p.scene.document, p.scene.path.string(), p.infos);
   if (p.plot_specs.empty()) p.plot_specs = plot::default_plot_specs(p.infos);
   read_verify_settings(p.scene.document, run.duration);  // [verify]: same errors as check/verify
+  p.judge_rule = read_judge_rule(p.scene);                // [accuracy]: likewise
 
   p.warnings = p.scene.warnings;
   return p;
@@ -65,6 +67,7 @@ RunOutcome simulate_run(PreparedRun& p, const RunRequest& request, core::RowSink
 void estimate_run_accuracy(PreparedRun& p, const RunRequest& request, RunOutcome& o) {
   if (o.result.instability || o.result.interrupted) return;
   AccuracySettings settings;
+  settings.rule = p.judge_rule;
   if (request.accuracy) settings.mode = *request.accuracy ? AccuracyMode::on : AccuracyMode::off;
   PredictedStepLimits limits;
   if (p.guard.check.applies) {

@@ -42,6 +42,7 @@ struct PreparedRun {
   std::vector<plot::PlotSpec> plot_specs;  // the scene's [[plots]] or the default figures
   std::vector<scene::Warning> warnings;    // the scene's, then the step guard's
   StepGuard guard;                          // guard.refusal set: do not simulate
+  JudgeRule judge_rule;                     // [accuracy]: what the verdict judges
   bool dt_from_overrides = false;
 };
 

@@ -7,6 +7,7 @@
 
 #include "services/pilot.hpp"
 #include "services/progress.hpp"
+#include "core/integrator_traits.hpp"
 #include "core/run_limits.hpp"
 #include "core/stability.hpp"
 #include "text/number_text.hpp"
@@ -28,18 +29,18 @@ io::RunDescription describe_run(const scene::Scene& scene) {
 void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   core::RunOptions& run = scene.run;
   if (overrides.tolerance) {
-    if (overrides.integrator && *overrides.integrator != "rk4_adaptive") {
+    if (overrides.integrator && !core::is_adaptive(*overrides.integrator)) {
       throw scene::InputError("error: --tolerance selects the integrator rk4_adaptive; it cannot be "
                               "combined with --integrator " + *overrides.integrator);
     }
-    run.integrator = "rk4_adaptive";
+    run.integrator = core::adaptive_integrator().name;
     run.tolerance = *overrides.tolerance;
   } else if (overrides.integrator) {
     run.integrator = *overrides.integrator;
   }
   if (overrides.dt) run.dt = *overrides.dt;
   if (overrides.duration) run.duration = *overrides.duration;
-  if (run.integrator == "rk4_adaptive" && !(run.tolerance > 0.0)) {
+  if (core::is_adaptive(run.integrator) && !(run.tolerance > 0.0)) {
     throw scene::InputError("error: --integrator rk4_adaptive needs a tolerance: give --tolerance "
                             "TOL or set [simulation] tolerance in the scene");
   }
@@ -84,11 +85,12 @@ StepSuggestion suggested_dt(scene::Scene& scene, const StepCheck& check) {
 
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
                        const core::Instability& inst, const StepSuggestion& suggestion) {
-  if (run.integrator == "rk4_adaptive") {
+  if (core::is_adaptive(run.integrator)) {
     std::fprintf(stderr,
-                 "error: %s: numerical instability at t = %.6g s in '%s' (%s) with rk4_adaptive, "
+                 "error: %s: numerical instability at t = %.6g s in '%s' (%s) with %s, "
                  "tolerance %s; try a smaller tolerance, e.g. --tolerance %g\n",
                  scene_name.c_str(), inst.time, inst.component.c_str(), inst.reason.c_str(),
+                 run.integrator.c_str(),
                  text::shortest(run.tolerance).c_str(), run.tolerance / 10.0);
     return;
   }

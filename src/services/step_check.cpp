@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "services/pilot.hpp"
+#include "scene/external_elements.hpp"
 #include "services/step_check_cache.hpp"
 #include "core/stability.hpp"
 #include "sys/interrupt.hpp"
@@ -28,6 +29,13 @@ std::string cache_key(const scene::Scene& scene, const core::RunOptions& pilot) 
       << pilot.integrator << " dt " << pilot.dt << " duration " << pilot.duration << " of "
       << scene.run.duration << " energy " << scene.run.energy_tolerance << "\n"
       << scene.document;
+  // Elements supplied in code, by their fingerprints (check_step caches only when all have
+  // one).
+  if (scene.externals != nullptr) {
+    for (const auto& [name, text] : scene.externals->fingerprints) {
+      key << "\nexternal " << name << " " << text;
+    }
+  }
   return key.str();
 }
 
@@ -55,7 +63,7 @@ bool from_cache(const nlohmann::json& j, StepCheck& c) {
 
 std::string StepCheck::verdict() const {
   if (!applies || skipped) return "not_checked";
-  if (!unbounded && dt > instability_limit) return "unstable";
+  if (!unbounded && dt > instability_limit) return trial_confirmed ? "ok" : "unstable";
   if (dt > chatter_limit) return "chatter";
   return "ok";
 }
@@ -79,8 +87,7 @@ StepCheck check_step(scene::Scene& scene) {
   StepCheck c;
   c.integrator = scene.run.integrator;
   c.dt = scene.run.dt;
-  if (core::find_tableau(c.integrator) == nullptr && c.integrator != "symplectic_euler" &&
-      c.integrator != "implicit") {
+  if (!core::integrator_traits(c.integrator).step_analysed()) {
     c.applies = false;  // rk4_adaptive: its step follows its tolerance
     return c;
   }
@@ -98,8 +105,9 @@ StepCheck check_step(scene::Scene& scene) {
   c.lowest_step = kLowestStepRatio * pilot_run.dt;
 
   const StepCheckCache cache(cache_key(scene, pilot.options));
-  // Elements supplied in code (Python laws) are not in the document the key holds.
-  const bool cacheable = scene.externals == nullptr;
+  // Elements supplied in code (Python laws) are not in the document: the key holds their
+  // fingerprints, and a scene with one that has none is not cached.
+  const bool cacheable = scene.externals == nullptr || scene.externals->fingerprinted();
   if (const auto hit = cacheable ? cache.load() : std::nullopt; hit && from_cache(*hit, c)) {
     c.cached = true;
     return c;
@@ -119,6 +127,31 @@ StepCheck check_step(scene::Scene& scene) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (cacheable) cache.store(to_cache(c));
   return c;
+}
+
+StepCheck SharedStepChecks::check(scene::Scene& scene) {
+  const DynamicsFingerprint fingerprint = dynamics_fingerprint(scene);
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [known, c] : known_) {
+      if (!(known == fingerprint)) continue;
+      StepCheck shared = c;
+      shared.dt = scene.run.dt;
+      shared.shared = true;
+      shared.cached = false;
+      shared.analysis_seconds = 0.0;
+      return shared;
+    }
+  }
+  StepCheck c = check_step(scene);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  known_.emplace_back(fingerprint, c);
+  return c;
+}
+
+std::size_t SharedStepChecks::analysed() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return known_.size();
 }
 
 StepCheck step_check_from(const core::StepLimit& limit, const std::string& integrator, double dt,
@@ -161,10 +194,13 @@ nlohmann::ordered_json step_check_json(const StepCheck& c) {
   j["chatter_margin"] = c.chatter_limit / c.dt;
   j["limiting_time"] = c.limiting_time;
   j["forced"] = c.forced;
+  j["confirmed_by_trial"] = c.trial_confirmed;
+  if (!c.trial.empty()) j["trial"] = c.trial;
   j["pilot"] = {
       {"dt", c.pilot_dt}, {"duration", c.pilot_duration}, {"shortened", c.pilot_shortened}};
   j["analysis_seconds"] = c.analysis_seconds;
   j["cached"] = c.cached;
+  j["shared"] = c.shared;
   return j;
 }
 
@@ -189,6 +225,11 @@ std::string step_check_text(const StepCheck& c) {
                   "dt = %s s is above the step %.3g s where stuck friction chatters under %s "
                   "on this scene (stable up to %.3g s, but sticks may come late or not at all)",
                   dt.c_str(), c.chatter_limit, c.integrator.c_str(), c.instability_limit);
+  } else if (verdict == "ok" && c.trial_confirmed) {
+    std::snprintf(text, sizeof text,
+                  "dt = %s s is above %s's predicted instability limit %.3g s on this scene, "
+                  "but a trial at this step ran stable and accurate",
+                  dt.c_str(), c.integrator.c_str(), c.instability_limit);
   } else if (verdict == "ok") {
     std::snprintf(text, sizeof text, "dt = %s s is below %s's predicted limits on this scene",
                   dt.c_str(), c.integrator.c_str());

@@ -14,11 +14,15 @@
 // settings (step_check_cache.hpp), so a repeated run pays nothing.
 #pragma once
 
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/stability.hpp"
 #include "scene/scene.hpp"
+#include "services/dynamics_fingerprint.hpp"
 
 namespace stiction::services {
 
@@ -43,7 +47,13 @@ struct StepCheck {
   bool pilot_shortened = false;
   double analysis_seconds = 0.0;  // wall time of the analysis (0 when cached)
   bool cached = false;
+  // Taken from another scene of the same dynamics (a sweep's point: SharedStepChecks).
+  bool shared = false;
   bool forced = false;  // --force-step: run even though the verdict is `unstable`
+  // Above the predicted instability limit, a trial of the step itself (bounded as a pilot
+  // run, against half the step) ran stable and accurate: the verdict is `ok`.
+  bool trial_confirmed = false;
+  std::string trial;  // what the trial found, when one ran
 
   // "ok", "chatter", "unstable" or "not_checked" (see the top of this file).
   std::string verdict() const;
@@ -64,6 +74,21 @@ inline constexpr int kStatesPerRegime = 48;
 // scene.authored_dt (the scene file's own step). Throws sys::Interrupted when a signal
 // arrives during the analysis.
 StepCheck check_step(scene::Scene& scene);
+
+// The step checks of several scenes that may share their linear dynamics (a sweep's points,
+// from any thread): a scene whose DynamicsFingerprint matches one already analysed takes its
+// limits (`shared`), judged at its own step; the others are analysed and kept. The limits
+// also depend on the regimes a pilot visits, which a friction coefficient can change: the
+// guard confirms by a trial before it refuses, and every run keeps its own monitors.
+class SharedStepChecks {
+ public:
+  StepCheck check(scene::Scene& scene);
+  std::size_t analysed() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::pair<DynamicsFingerprint, StepCheck>> known_;
+};
 
 // The limits of a prediction (core::predict_step_limit from lowest_step up) as a check of
 // `dt` with `integrator`.

@@ -4,15 +4,23 @@
 
 namespace stiction::services {
 
-StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget) {
+StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget,
+                     SharedStepChecks* shared) {
   StepGuard guard;
-  guard.check = check_step(scene);
+  guard.check = shared != nullptr ? shared->check(scene) : check_step(scene);
   const std::string verdict = guard.check.verdict();
   if (verdict == "unstable") {
     if (force) {
       guard.check.forced = true;
       guard.warning = step_check_text(guard.check) + "; run anyway (--force-step)";
+    } else if (const StepSuggestion trial = trial_at_step(scene, suggestion_budget);
+               trial.verified) {
+      // The linear prediction was conservative here: a trial of this very step ran stable
+      // and accurate, so the step is not refused (and the run's own monitors stay on).
+      guard.check.trial_confirmed = true;
+      guard.check.trial = trial.how;
     } else {
+      guard.check.trial = trial.how;
       guard.refusal = suggest_step(scene, guard.check, suggestion_budget);
     }
   } else if (verdict == "chatter") {
@@ -57,10 +65,13 @@ nlohmann::ordered_json warnings_json(const std::vector<scene::Warning>& warnings
 
 void print_refusal(const std::string& scene_name, const StepGuard& guard) {
   // "works" only for a step a trial confirmed; otherwise it is a step to try.
-  std::fprintf(stderr,
-               "error: %s: %s; nothing was simulated.\n  %s: --dt %g (%s)\n"
-               "  --force-step runs it anyway\n",
-               scene_name.c_str(), step_check_text(guard.check).c_str(),
+  std::fprintf(stderr, "error: %s: %s; nothing was simulated.\n", scene_name.c_str(),
+               step_check_text(guard.check).c_str());
+  if (!guard.check.trial.empty()) {
+    std::fprintf(stderr, "  a trial at dt = %g s: %s\n", guard.check.dt,
+                 guard.check.trial.c_str());
+  }
+  std::fprintf(stderr, "  %s: --dt %g (%s)\n  --force-step runs it anyway\n",
                guard.refusal->verified ? "a step that works" : "a smaller step to try",
                guard.refusal->dt, guard.refusal->how.c_str());
 }

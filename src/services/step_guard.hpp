@@ -25,8 +25,10 @@ struct StepGuard {
 };
 
 // `force`: --force-step. `suggestion_budget`: wall-clock seconds the trials of a refusal's
-// suggestion may take.
-StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget = 30.0);
+// suggestion may take. `shared`: step checks shared among scenes of the same dynamics (a
+// sweep's points).
+StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget = 30.0,
+                     SharedStepChecks* shared = nullptr);
 
 // The guard's warning located as the scene's warnings are: at [simulation] dt of the scene
 // file, or on the command line (file "(command line)", key "--dt") when --dt set the step.

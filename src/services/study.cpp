@@ -11,7 +11,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "services/accuracy.hpp"
 #include "services/pilot.hpp"
+#include "services/run_comparison.hpp"
 #include "services/study_grid.hpp"
 #include "core/integrator.hpp"
 #include "core/stability.hpp"
@@ -42,7 +44,7 @@ double median(std::vector<double> values) {
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-bool is_fixed_step(const std::string& integrator) { return integrator != "rk4_adaptive"; }
+bool is_fixed_step(const std::string& integrator) { return !core::is_adaptive(integrator); }
 
 // CPU time of this thread: core::simulate runs in the calling thread, so this is the
 // simulation's own CPU time, whatever else the process does (the heartbeat thread).
@@ -63,8 +65,9 @@ struct Measured {
 struct Accuracy {
   double event_time_error = kNaN;  // NaN: no events
   double final_value_error = kNaN;
-  double worst = 0.0;      // the larger of the two (infinity: an event missed)
-  std::string worst_name;  // "<element> <kind> time" or "<signal> final"
+  double worst = 0.0;      // the larger of the two (infinity: outside the target)
+  bool meets = false;      // every judged quantity within its tolerance
+  std::string worst_name;  // the worst quantity, or the first reason it is not within
 };
 
 // A whole run at one step, kept so that the two bisections never run the same step twice.
@@ -93,7 +96,10 @@ double first_event(const core::RunResult& run, const std::string& element, const
 class Study {
  public:
   Study(const StudyOptions& options, const StudyLog& log)
-      : options_(options), log_(log), scene_(scene::load_scene(options.scene, options.overrides)) {
+      : options_(options),
+        log_(log),
+        scene_(scene::load_scene(options.scene, options.overrides)),
+        judge_rule_(read_judge_rule(scene_)) {
     result_.scene = scene_.name;
     result_.scene_dt = scene_.run.dt;
     result_.duration = scene_.run.duration;
@@ -166,6 +172,7 @@ class Study {
     result_.candidates = recommendation_candidates(result_);
     for (auto& candidate : result_.candidates) retime(candidate);
     result_.recommendation = cheapest(result_.candidates);
+    confirm_recommendation(result_.recommendation);
     result_.total_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return std::move(result_);
@@ -203,41 +210,25 @@ class Study {
     return m;
   }
 
-  // Event times relative to the scene's duration (an event near t = 0, such as a slide that
-  // starts at once, has no meaningful error relative to its own time); final values relative
-  // to the signal's scale (a final speed of 0 has none relative to itself).
-  Accuracy accuracy(const Measured& run) const {
+  // How far a run is from the reference, by the one comparison of two runs that `run`'s
+  // accuracy verdict uses (run_comparison.hpp): the scene's [accuracy] rule, its default
+  // tolerances set to the target, the reference taken as the truth (factors 1).
+  Accuracy accuracy(const core::RunResult& run) const {
+    ComparisonSetup setup;
+    setup.rule = judge_rule_;
+    setup.rule.event_tolerance = setup.rule.final_tolerance = options_.target_error;
+    setup.scales = &reference_scales_;
+    setup.run_label = "the run";
+    setup.other_label = "the reference";
+    const RunComparison c = compare_runs(*scene_.network, run, reference_run_, setup);
     Accuracy a;
-    auto consider = [&a](double error, const std::string& name) {
-      const double e = std::isnan(error) ? std::numeric_limits<double>::infinity() : error;
-      if (e > a.worst || a.worst_name.empty()) {
-        a.worst = e;
-        a.worst_name = name;
-      }
-    };
-    if (!events_.empty()) {
-      a.event_time_error = 0.0;
-      for (std::size_t i = 0; i < events_.size(); ++i) {
-        // A missed event (NaN) is an infinite error: the run does not say when it happens.
-        double e = std::abs(run.event_times[i] - reference_.event_times[i]) / result_.duration;
-        if (std::isnan(e)) e = std::numeric_limits<double>::infinity();
-        a.event_time_error = std::max(a.event_time_error, e);
-        consider(e, result_.event_names[i] + " time");
-      }
-    }
-    a.final_value_error = 0.0;
-    // Runs that end at another time (or another row) than the reference are not comparable.
-    const bool same_end =
-        std::abs(run.final_time - reference_.final_time) <= 1e-9 * result_.duration;
-    for (std::size_t s = 0; s < run.key.size(); ++s) {
-      double e = std::numeric_limits<double>::infinity();
-      if (same_end && !run.key[s].empty() && !reference_.key[s].empty()) {
-        e = std::abs(run.key[s].back() - reference_.key[s].back()) / result_.key_scales[s];
-      }
-      if (!std::isfinite(e)) e = std::numeric_limits<double>::infinity();
-      a.final_value_error = std::max(a.final_value_error, e);
-      consider(e, result_.key_signals[s] + " final");
-    }
+    const bool any_event = std::any_of(c.events.begin(), c.events.end(),
+                                       [](const ComparedQuantity& q) { return q.judged; });
+    a.event_time_error = any_event ? c.worst_event : kNaN;
+    a.final_value_error = c.worst_final;
+    a.worst = std::max(c.worst_event, c.worst_final);
+    a.meets = c.accurate();
+    a.worst_name = c.accurate() ? c.worst_name : c.reasons.front();
     return a;
   }
 
@@ -309,7 +300,9 @@ class Study {
   void run_reference() {
     const double h = result_.reference_dt;
     say("reference: rk4, dt = " + format_g(h) + " s ...");
-    core::RunResult ref = core::simulate(*scene_.network, options_for("rk4", h, 0.0));
+    reference_run_ =
+        core::simulate(*scene_.network, options_for(result_.reference_integrator, h, 0.0));
+    const core::RunResult& ref = reference_run_;
     if (ref.instability) {
       throw scene::InputError("--reference-dt " + format_g(h) +
                               ": the reference run (rk4) went unstable at t = " +
@@ -330,15 +323,21 @@ class Study {
     events_ = std::move(present);
     reference_ = measure(ref);
     set_scales();
+    reference_scales_ = MotionScales(ref.trajectory);
     // The reference's own error: rk4 at twice its step against it.
-    core::RunResult check = core::simulate(*scene_.network, options_for("rk4", 2.0 * h, 0.0));
+    core::RunResult check = core::simulate(
+        *scene_.network, options_for(result_.reference_integrator, 2.0 * h, 0.0));
     if (check.instability) {
       result_.reference_noise = result_.reference_event_noise = result_.reference_accuracy_noise =
           kNaN;
     } else {
       const Measured m = measure(check);
       result_.reference_noise = key_error(signal_errors(m, 2.0 * h)).first;
-      result_.reference_accuracy_noise = accuracy(m).worst;
+      {
+        const Accuracy a = accuracy(check);
+        result_.reference_accuracy_noise = std::max(a.event_time_error >= 0.0 ? a.event_time_error : 0.0,
+                                                    a.final_value_error);
+      }
       result_.reference_event_noise = events_.empty() ? kNaN : 0.0;
       for (std::size_t i = 0; i < m.event_times.size(); ++i) {
         const double rel = std::abs(m.event_times[i] - reference_.event_times[i]) /
@@ -363,6 +362,60 @@ class Study {
            ", rk4 at twice its step): runs near the target are judged by the reference's error "
            "as much as their own; pass a smaller --reference-dt");
     }
+  }
+
+  // The recommendation must hold as `run` judges it, with a margin from the instability
+  // limit: its step is at most kStableMargin x the bisected stable step, and a run at it
+  // with `run`'s accuracy companion (accuracy.hpp: half the step, the same comparison) must
+  // be accurate; else the step shrinks by kShrink and is tried again (a few times).
+  static constexpr double kStableMargin = 0.8;
+  static constexpr double kShrink = 0.8;
+  void confirm_recommendation(Recommendation& r) {
+    if (r.integrator.empty()) return;
+    const bool fixed = is_fixed_step(r.integrator);
+    if (fixed) {
+      for (const StabilityLimit& limit : result_.limits) {
+        if (limit.integrator == r.integrator && limit.bisected > 0.0 &&
+            r.dt > kStableMargin * limit.bisected && limit.unstable_above > 0.0) {
+          r.dt = kStableMargin * limit.bisected;
+          r.note = "kept 0.8 x below the largest stable step";
+        }
+      }
+    }
+    const core::RunOptions scene_run = scene_.run;
+    for (int attempt = 0; attempt < 4; ++attempt) {
+      scene_.run = options_for(r.integrator, r.dt, r.tolerance);
+      const core::RunResult run = core::simulate(*scene_.network, scene_.run);
+      if (!run.instability) {
+        AccuracySettings on;
+        on.mode = AccuracyMode::on;
+        on.rule = judge_rule_;
+        const AccuracyEstimate e = estimate_accuracy(scene_, run, {}, on);
+        const Accuracy a = accuracy(run);
+        r.run_verdict = e.verdict;
+        if (e.verdict == "accurate" && a.meets) {
+          scene_.run = scene_run;
+          if (!r.note.empty()) {
+            r.event_time_error = a.event_time_error;
+            r.final_value_error = a.final_value_error;
+            r.evaluations_per_second = static_cast<double>(run.evaluations) / result_.duration;
+            retime(r);
+          }
+          say("recommendation confirmed: `run` calls it accurate");
+          return;
+        }
+      } else {
+        r.run_verdict = "unstable";
+      }
+      if (fixed) {
+        r.dt *= kShrink;
+      } else {
+        r.tolerance *= 0.1;
+      }
+      r.note = "shrunk until `run` calls it accurate";
+    }
+    scene_.run = scene_run;
+    say("the recommendation could not be confirmed by run's accuracy verdict");
   }
 
   // Times a candidate again like a grid row (median of the repeats within the repeat budget),
@@ -452,10 +505,10 @@ class Study {
           row.max_event_relative_error = row.event_relative_errors.back();
         }
       }
-      const Accuracy a = accuracy(m);
+      const Accuracy a = accuracy(first);
       row.event_time_error = a.event_time_error;
       row.final_value_error = a.final_value_error;
-      row.meets_target = a.worst <= options_.target_error;
+      row.meets_target = a.meets;
       if (!row.meets_target) row.accuracy_failure = a.worst_name;
     }
 
@@ -490,7 +543,10 @@ class Study {
     // Default grid: from past the predicted instability limit to well inside it, coarse to
     // fine, pruned by the time budget.
     // rk4 finer than 4x the reference step would measure the reference, not itself.
-    const double finest = integrator == "rk4" ? 4.0 * result_.reference_dt : result_.reference_dt;
+    const double finest = core::integrator_traits(integrator).order >=
+                                  core::integrator_traits(result_.reference_integrator).order
+                              ? 4.0 * result_.reference_dt
+                              : result_.reference_dt;
     StabilityLimit& limit = limit_of(integrator);
     core::StepLimit predicted;
     predicted.max_step = limit.predicted;
@@ -552,10 +608,10 @@ class Study {
     p.evaluations = run.evaluations;
     p.stable = !run.instability;
     if (p.stable) {
-      const Accuracy a = accuracy(measure(run));
+      const Accuracy a = accuracy(run);
       p.event_time_error = a.event_time_error;
       p.final_value_error = a.final_value_error;
-      p.meets_target = a.worst <= options_.target_error;
+      p.meets_target = a.meets;
       if (!p.meets_target) p.failure = a.worst_name;
     } else {
       p.failure = "unstable";
@@ -756,6 +812,9 @@ class Study {
   std::vector<std::string> integrators_;
   std::vector<int> key_columns_;
   Measured reference_;
+  core::RunResult reference_run_;  // the reference itself, for the one comparison
+  MotionScales reference_scales_;
+  JudgeRule judge_rule_;           // the scene's [accuracy]
   std::vector<std::pair<std::string, std::string>> events_;  // (element, kind) measured
   std::map<std::pair<std::string, double>, Probe> probes_;   // bisection runs by (integrator, h)
   StudyResult result_;

@@ -146,6 +146,10 @@ struct Recommendation {
   double final_value_error = 0.0;
   bool bisected = false;  // the run is the bisection's, not a grid row
   int repeats = 0;        // timing runs behind cpu_per_second (the median)
+  // `run`'s own accuracy verdict at this setting ("accurate" once confirmed), and what was
+  // changed to get there (a margin from the stability limit, a smaller step).
+  std::string run_verdict;
+  std::string note;
 };
 
 struct StudyResult {

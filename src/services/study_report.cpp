@@ -159,7 +159,11 @@ std::string recommendation_line(const StudyResult& r) {
     errors.push_back("final values " + num(rec.final_value_error, 2));
   if (!errors.empty()) md += " (errors: " + join(errors, ", ") + ")";
   md += rec.bisected ? "; a step the accuracy bisection ran, not a grid row" : "";
-  md += ". The least CPU time among each integrator's cheapest run within the target.\n";
+  if (!rec.note.empty()) md += "; " + rec.note;
+  md += ". The least CPU time among each integrator's cheapest run within the target";
+  md += rec.run_verdict == "accurate"
+            ? ", and `stiction run` at this setting calls itself accurate.\n"
+            : ". `stiction run` at this setting says `" + rec.run_verdict + "` (docs/accuracy.md).\n";
   return md;
 }
 

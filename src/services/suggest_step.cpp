@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <optional>
 
+#include "services/accuracy.hpp"
 #include "services/pilot.hpp"
+#include "services/run_comparison.hpp"
+#include "core/integrator_traits.hpp"
 #include "core/simulation.hpp"
 #include "sys/interrupt.hpp"
 
@@ -40,54 +43,35 @@ core::RunResult timed_run(scene::Scene& scene, const core::RunOptions& options,
   return core::simulate(*scene.network, options, callback);
 }
 
-// The first event time of each kind that a confirmed step must reproduce, per element:
-// empty when the two runs agree within `tolerance`, else what differs.
-std::optional<std::string> events_differ(const core::RunResult& trial,
-                                         const core::RunResult& reference, double tolerance) {
-  for (std::size_t m = 0; m < trial.slip_events.size() && m < reference.slip_events.size(); ++m) {
-    const core::SlipMonitor& a = trial.slip_events[m].monitor;
-    const core::SlipMonitor& b = reference.slip_events[m].monitor;
-    const struct {
-      const char* what;
-      double at_trial, at_reference;
-    } events[] = {{"first stick", a.stick_time(), b.stick_time()},
-                  {"first slip", a.first_slip(), b.first_slip()},
-                  {"last stick", a.last_stick(), b.last_stick()}};
-    for (const auto& e : events) {
-      const bool in_trial = e.at_trial >= 0.0, in_reference = e.at_reference >= 0.0;
-      const std::string element = "'" + trial.slip_events[m].component + "' ";
-      if (in_trial != in_reference) {
-        return element + e.what + (in_trial ? " only at the trial step" : " only at half of it");
-      }
-      if (in_trial && std::abs(e.at_trial - e.at_reference) > tolerance) {
-        return element + e.what +
-               format(" at %.6g s against %.6g s at half the step", e.at_trial, e.at_reference);
-      }
-    }
-  }
-  return std::nullopt;
+// Empty when the trial is accurate by the one comparison of two runs (run_comparison.hpp)
+// against the reference at half its step, exactly as `run` judges a run against its
+// companion; else the first reason it is not.
+std::optional<std::string> trial_inaccurate(const scene::Scene& scene,
+                                            const core::RunOptions& trial_options,
+                                            const core::RunResult& trial,
+                                            const core::RunResult& reference) {
+  const MotionScales scales(reference.trajectory);
+  ComparisonSetup setup = companion_setup(trial_options, read_judge_rule(scene));
+  setup.scales = &scales;
+  const RunComparison c = compare_runs(*scene.network, trial, reference, setup);
+  if (c.accurate()) return std::nullopt;
+  return c.reasons.front();
 }
 
-}  // namespace
-
-double event_tolerance(double step, double duration) { return step + 1e-3 * duration; }
-
-namespace {
 
 // Confirms `candidate` for a run at `base` (its integrator and duration), halving it after
 // each failed trial; `origin` says where the candidate came from.
 StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, double candidate,
                             const std::string& origin, double trial_budget_seconds,
-                            bool pilot_bounded) {
+                            bool pilot_bounded, int trials = 6) {
   StepSuggestion s;
   s.dt = candidate;
   const auto start = Clock::now();
   const auto halvings = [](int n) {
     return n == 0 ? std::string() : format(", halved %g time(s) after failed trials", n);
   };
-  constexpr int kTrials = 6;
   std::string last_failure;
-  for (int trial = 0; trial < kTrials; ++trial) {
+  for (int trial = 0; trial < trials; ++trial) {
     if (seconds_since(start) >= trial_budget_seconds) break;
     core::RunOptions options = base;
     options.dt = s.dt;
@@ -101,9 +85,7 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
     // Trials stop on SIGINT/SIGTERM, whichever command asked for them (the caller's run
     // options may not have the flag yet: the guard runs before the simulation).
     options.stop = &sys::interrupt_flag();
-    core::RunOptions reference_options = options;
-    reference_options.dt = s.dt / 2.0;
-    const double tolerance = event_tolerance(s.dt, options.duration);
+    const core::RunOptions reference_options = companion_options(options);
     try {
       const core::RunResult r = timed_run(scene, options, start, trial_budget_seconds);
       if (r.interrupted) throw sys::Interrupted{};
@@ -120,7 +102,7 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
         s.dt /= 2.0;
         continue;
       }
-      if (const auto differ = events_differ(r, ref, tolerance)) {
+      if (const auto differ = trial_inaccurate(scene, options, r, ref)) {
         last_failure = *differ;
         s.dt /= 2.0;
         continue;
@@ -128,9 +110,9 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
       s.verified = true;
       s.how = origin + halvings(trial) +
               format(
-                  "; a trial at this step ran %g s of the scene and its events matched a run "
-                  "at half the step within %.3g s",
-                  options.duration, tolerance);
+                  "; a trial at this step ran %g s of the scene and was accurate against a run "
+                  "at half the step (docs/accuracy.md)",
+                  options.duration);
       return s;
     } catch (const TrialTimeout& t) {
       s.how = origin + halvings(trial) +
@@ -141,7 +123,8 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
       return s;
     }
   }
-  s.how = origin + halvings(kTrials) + "; not confirmed" +
+  s.failure = last_failure;
+  s.how = origin + halvings(trials) + "; not confirmed" +
           (last_failure.empty() ? std::string(" (interrupted or out of time)")
                                 : ": the last trial failed (" + last_failure + ")");
   return s;
@@ -165,8 +148,8 @@ std::string predicted_origin(const StepCheck& check) {
 StepSuggestion suggest_step(scene::Scene& scene, const StepCheck& check,
                             double trial_budget_seconds, bool pilot_bounded) {
   const core::RunOptions failed = scene.run;
-  if (failed.integrator == "rk4_adaptive") {
-    return {failed.dt / 4.0, false, "lower the tolerance instead"};
+  if (core::is_adaptive(failed.integrator)) {
+    return {failed.dt / 4.0, false, "lower the tolerance instead", ""};
   }
   const double predicted = check.safe_step();
   if (check.applies && !check.skipped && predicted < failed.dt) {
@@ -176,6 +159,20 @@ StepSuggestion suggest_step(scene::Scene& scene, const StepCheck& check,
   return confirm_step(scene, failed, failed.dt / 4.0,
                       "a quarter of the failed step (the prediction sees no limit below it)",
                       trial_budget_seconds, pilot_bounded);
+}
+
+StepSuggestion trial_at_step(scene::Scene& scene, double trial_budget_seconds) {
+  StepSuggestion s = confirm_step(scene, scene.run, scene.run.dt, "the step itself",
+                                  trial_budget_seconds, true, 1);
+  s.dt = scene.run.dt;  // a failed trial halved it: the answer is about this step
+  if (s.verified) {
+    s.how = "it ran stable and accurate against a run at half the step (docs/accuracy.md)";
+  } else if (!s.failure.empty()) {
+    s.how = "it failed: " + s.failure;
+  } else {
+    s.how = format("not finished within its %g s budget", trial_budget_seconds);
+  }
+  return s;
 }
 
 StepSuggestion recommend_step(scene::Scene& scene, const StepCheck& check,

@@ -6,10 +6,9 @@
 // lies below the step where stuck friction chatters, not only below the instability; when
 // the prediction sees no limit below the failed step, a quarter of that. Then a trial run at
 // the candidate and a reference at half of it decide: the candidate is confirmed when the
-// trial ends without instability and, for every element with stick/slip events, its first
-// stick, first slip and last stick exist in both runs alike and differ by at most
-// kEventTolerance (one candidate step plus 1e-3 of the simulated time). A trial that fails
-// halves the candidate and tries again. Trials that outlast their wall-clock budget leave
+// trial ends without instability and is accurate against the reference by the one
+// comparison of two runs that `run`'s accuracy verdict uses (run_comparison.hpp, with the
+// scene's [accuracy] rule). A trial that fails halves the candidate and tries again. Trials that outlast their wall-clock budget leave
 // the candidate suggested on the prediction alone, and the explanation says so.
 #pragma once
 
@@ -24,10 +23,8 @@ struct StepSuggestion {
   double dt = 0.0;
   bool verified = false;  // a trial at dt ran and matched the reference at dt / 2
   std::string how;        // one clause for the message: how dt was obtained
+  std::string failure;    // what the last failed trial found (empty: none failed)
 };
-
-// The largest difference of event times a confirmed step may show against the reference.
-double event_tolerance(double step, double duration);
 
 // For scene.run as it failed or was refused (integrator and dt), with its step check.
 // Throws sys::Interrupted when a signal stops a trial.
@@ -36,6 +33,12 @@ double event_tolerance(double step, double duration);
 // (app/pilot.hpp), as `check` needs.
 StepSuggestion suggest_step(scene::Scene& scene, const StepCheck& check,
                             double trial_budget_seconds = 30.0, bool pilot_bounded = false);
+
+// One trial of scene.run's own step, as a pilot run is bounded, against a reference at half
+// the step: `verified` when it ran stable and accurate. The step guard asks this before it
+// refuses a step above the predicted limit (the prediction is linear; contacts that open and
+// close can make it conservative).
+StepSuggestion trial_at_step(scene::Scene& scene, double trial_budget_seconds = 10.0);
 
 // `check`'s recommendation for check.integrator: the same candidate and confirmation, with
 // the trials bounded as a pilot run is.

@@ -96,9 +96,12 @@ class PointRunner {
         row[base + 4] = "the values of this point change the scene's signals";
         return row;
       }
-      // The step guard, per point (the values may move the limits): a point predicted
-      // unstable is not simulated; its row says so and suggests a step.
-      const StepGuard guard = guard_step(scene, settings_.force_step, kSuggestionBudget);
+      // The step guard, per point (the values may move the limits), its analysis shared
+      // among points whose stiffness and mass the values leave alone (step_check.hpp): a
+      // point predicted unstable, and failing a trial, is not simulated; its row says so and
+      // suggests a step.
+      const StepGuard guard =
+          guard_step(scene, settings_.force_step, kSuggestionBudget, &shared_checks_);
       if (guard.refusal) {
         row[base] = "refused";
         row[base + 3] = number_text(guard.refusal->dt);
@@ -194,6 +197,8 @@ class PointRunner {
   const SweepPlan& plan_;
   const SweepSignals& signals_;
   fs::path out_;
+  // The points of one dynamics share one step analysis (a sweep of mu analyses once).
+  mutable SharedStepChecks shared_checks_;
 };
 
 }  // namespace
