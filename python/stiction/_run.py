@@ -60,7 +60,8 @@ def _warn(result):
         warnings.warn(f"{w['file']}:{w['line']}:{w['column']}: {w['text']}", SceneWarning, stacklevel=3)
     accuracy = summary.get("accuracy") or {}
     if accuracy.get("verdict") == "inaccurate":
-        setting = (f"tolerance {summary.get('tolerance'):g}" if summary["integrator"] == "rk4_adaptive"
+        # An adaptive integrator's summary has its tolerance (check --json lists the traits).
+        setting = (f"tolerance {summary['tolerance']:g}" if summary.get("tolerance")
                    else f"dt = {summary['dt']:g} s")
         reasons = accuracy.get("reasons", [])
         text = (f"{summary['scene']}: the run is inaccurate with {summary['integrator']}, {setting}: "

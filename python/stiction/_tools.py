@@ -141,8 +141,8 @@ class Study:
         r = self.recommendation
         if r["integrator"] is None:
             best = f"no run within {self.target_error:g}"
-        elif r["integrator"] == "rk4_adaptive":
-            best = f"rk4_adaptive, tolerance {r['tolerance']:g}"
+        elif r.get("tolerance"):  # an adaptive integrator's setting is its tolerance
+            best = f"{r['integrator']}, tolerance {r['tolerance']:g}"
         else:
             best = f"{r['integrator']}, dt = {r['dt']:g} s"
         return (f"<stiction.Study {self.scene!r}: {len(self)} runs in {self.seconds:.1f} s; "

@@ -333,11 +333,7 @@ class Study {
     } else {
       const Measured m = measure(check);
       result_.reference_noise = key_error(signal_errors(m, 2.0 * h)).first;
-      {
-        const Accuracy a = accuracy(check);
-        result_.reference_accuracy_noise = std::max(a.event_time_error >= 0.0 ? a.event_time_error : 0.0,
-                                                    a.final_value_error);
-      }
+      result_.reference_accuracy_noise = accuracy(check).worst;
       result_.reference_event_noise = events_.empty() ? kNaN : 0.0;
       for (std::size_t i = 0; i < m.event_times.size(); ++i) {
         const double rel = std::abs(m.event_times[i] - reference_.event_times[i]) /

@@ -41,7 +41,9 @@ StepSuggestion suggest_step(scene::Scene& scene, const StepCheck& check,
 StepSuggestion trial_at_step(scene::Scene& scene, double trial_budget_seconds = 10.0);
 
 // `check`'s recommendation for check.integrator: the same candidate and confirmation, with
-// the trials bounded as a pilot run is.
+// the trials bounded as a pilot run is; then the confirmed step grows by 1.25 while trials
+// at the larger step confirm it (the linear prediction, its chatter limit above all, can be
+// several times below a step that works), stopping at the first failure.
 StepSuggestion recommend_step(scene::Scene& scene, const StepCheck& check,
                               double trial_budget_seconds = 10.0);
 

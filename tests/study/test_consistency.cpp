@@ -52,9 +52,11 @@ std::string wheel(double k, double mu, double mass) {
   s << "name = \"wheel\"\ngravity = [0.0, 0.0, -9.8]\n[simulation]\nintegrator = \"rk4\"\n"
     << "dt = 1e-4\nduration = " << 1.5 * 0.2 * mu * mass * 9.8 / k + 0.3 << "\n"
     << "[bodies.wheel]\ntype = \"rigid_body\"\nshape = \"cylinder\"\nmass = " << mass
-    << "\nradius = 0.2\nlength = 0.1\naxis = [0.0, 1.0, 0.0]\nposition = [0.0, 0.0, 0.2]\n"
+    // On its two lowest rim points (one per end cap), at their static deflection.
+    << "\nradius = 0.2\nlength = 0.1\naxis = [0.0, 1.0, 0.0]\nposition = [0.0, 0.0, "
+    << 0.2 - mass * 9.8 / 2e7 << "]\n"
     << "[impedances.ground]\ntype = \"kikuuwe_contact\"\nbody = \"wheel\"\nstiffness = 1e7\n"
-    << "damping = 2000.0\nmu = " << mu << "\nsettle = true\n"
+    << "damping = 2000.0\nmu = " << mu << "\n"
     << "[impedances.drive]\ntype = \"torque_source\"\nbody = \"wheel\"\naxis = [0.0, 1.0, 0.0]\n"
     << "torque = \"" << k << " * t\"\n";
   return s.str();
@@ -64,10 +66,13 @@ std::vector<Kind> generated_kinds(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const auto set = [](const std::string& key, double v) { return key + "=" + number(v); };
   std::vector<Kind> kinds;
+  // sphere_roll bounces for the whole run (no step is accurate for its first stick, which
+  // moves with the bounce phase): the sphere here starts settled on the floor.
   kinds.push_back({"sphere", scene::SceneSource("sphere_roll"),
                    {set("impedances.ground.mu", 0.1 + 0.2 * u(rng)),
                     "bodies.sphere.velocity=[" + number(1.0 + 2.0 * u(rng)) + ", 0.0, 0.0]",
-                    "simulation.duration=1.2"}});
+                    "bodies.sphere.position=[0.0, 0.0, 0.2]", "impedances.ground.settle=true",
+                    "impedances.ground.damping=2000.0", "simulation.duration=1.2"}});
   kinds.push_back({"box", scene::SceneSource("box_push_slide"),
                    {set("impedances.floor.mu", 0.3 + 0.3 * u(rng)), "simulation.duration=2.0"}});
   kinds.push_back({"cylinder",
@@ -120,7 +125,7 @@ bool stable_at(scene::Scene& scene, double h) {
   return stable;
 }
 
-// The largest step whose whole run is stable, to 3% (0: none down to `low`).
+// The largest step whose whole run is stable, to 5% (0: none found).
 double bisect_stable(scene::Scene& scene, double start) {
   double lo = 0.0, hi = 0.0, h = start;
   const double longest = scene.run.duration / 8.0;
@@ -139,7 +144,7 @@ double bisect_stable(scene::Scene& scene, double start) {
     }
     if (lo == 0.0) return 0.0;
   }
-  while (hi / lo > 1.03) {
+  while (hi / lo > 1.05) {
     const double mid = std::sqrt(lo * hi);
     if (stable_at(scene, mid)) lo = mid; else hi = mid;
   }
@@ -190,11 +195,13 @@ TEST_CASE("consistency: check, the guard, study and run agree on generated scene
     options.overrides = k.overrides;
     options.integrators = {scene.run.integrator};
     options.repeats = 1;
+    options.bisection_precision = 0.03;
     const services::StudyResult study = services::run_study(options);
-    REQUIRE_FALSE(study.recommendation.integrator.empty());
+    CHECK_FALSE(study.recommendation.integrator.empty());
     REQUIRE(study.limits.size() == 1);
     const double largest_accurate = study.limits[0].accurate;
-    const Verdict at_study = run_at(scene, study.recommendation.dt);
+    const bool recommended = !study.recommendation.integrator.empty();
+    const Verdict at_study = recommended ? run_at(scene, study.recommendation.dt) : Verdict{};
 
     std::printf("| %s | %.3g | %.3g | %.2f | %s | %.3g | %s | %.3g | %s | %.3g |\n",
                 k.kind.c_str(), predicted, bisected, ratio, between.c_str(), rec.dt,
