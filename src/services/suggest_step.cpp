@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 
 #include "services/accuracy.hpp"
@@ -48,19 +49,34 @@ core::RunResult timed_run(scene::Scene& scene, const core::RunOptions& options,
   return core::simulate(*scene.network, options, callback);
 }
 
-// Empty when the trial is accurate by the one comparison of two runs (run_comparison.hpp)
-// against the reference at half its step, exactly as `run` judges a run against its
-// companion; else the first reason it is not.
-std::optional<std::string> trial_inaccurate(const scene::Scene& scene,
-                                            const core::RunOptions& trial_options,
-                                            const core::RunResult& trial,
-                                            const core::RunResult& reference) {
+// Why a trial is not accurate against the reference at half its step, by the one
+// comparison of two runs that `run` judges a run by (run_comparison.hpp); `excess`, the
+// largest ratio of a judged quantity's estimated error to its tolerance (infinity for a
+// missing event), tells whether halving the step brings it closer.
+struct Inaccuracy {
+  std::string reason;
+  double excess = 0.0;
+};
+
+std::optional<Inaccuracy> trial_inaccurate(const scene::Scene& scene,
+                                           const core::RunOptions& trial_options,
+                                           const core::RunResult& trial,
+                                           const core::RunResult& reference) {
   const MotionScales scales(reference.trajectory);
   ComparisonSetup setup = companion_setup(trial_options, read_judge_rule(scene));
   setup.scales = &scales;
   const RunComparison c = compare_runs(*scene.network, trial, reference, setup);
   if (c.accurate()) return std::nullopt;
-  return c.reasons.front();
+  Inaccuracy in{c.reasons.front(), 0.0};
+  for (const auto* list : {&c.events, &c.finals}) {
+    for (const ComparedQuantity& q : *list) {
+      if (!q.judged || q.within()) continue;
+      const double r = q.error && q.tolerance > 0.0 ? *q.error / q.tolerance
+                                                    : std::numeric_limits<double>::infinity();
+      in.excess = std::max(in.excess, r);
+    }
+  }
+  return in;
 }
 
 
@@ -76,6 +92,8 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
     return n == 0 ? std::string() : format(", halved %g time(s) after failed trials", n);
   };
   std::string last_failure;
+  double previous_excess = 0.0;
+  int stalled = 0;
   for (int trial = 0; trial < trials; ++trial) {
     if (seconds_since(start) >= trial_budget_seconds) break;
     core::RunOptions options = base;
@@ -108,7 +126,21 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
         continue;
       }
       if (const auto differ = trial_inaccurate(scene, options, r, ref)) {
-        last_failure = *differ;
+        last_failure = differ->reason;
+        // A quantity that does not converge (a bounce's phase, a count of micro-bounces the
+        // rule judges) is not fixed by a smaller step: after two halvings that did not bring
+        // the worst error 1.5x closer to its tolerance each, stop saying so.
+        stalled = previous_excess > 0.0 && !(differ->excess * 1.5 < previous_excess)
+                      ? stalled + 1
+                      : 0;
+        previous_excess = differ->excess;
+        if (stalled >= 2) {
+          s.failure = last_failure;
+          s.how = origin + halvings(trial) +
+                  "; not confirmed: the trials' error does not shrink with the step (" +
+                  last_failure + ")";
+          return s;
+        }
         s.dt /= 2.0;
         continue;
       }

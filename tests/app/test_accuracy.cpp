@@ -4,7 +4,7 @@
 // Kikuuwe friction sticks at J w0 / F (with a joint spring as well: where its speed turns
 // to zero). Generated scenes (random parameters, tilted slopes and joint axes), every
 // fixed-step integrator at two steps: wherever the true error (run minus closed form) is
-// above rounding, the estimate lies within a factor 3 of it. Then the bowling ball of
+// above rounding, the estimate lies at or above it and within a factor 5. Then the bowling ball of
 // issue 26 at dt = 0.003 s (above its chatter limit) is flagged inaccurate by `run`.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -214,7 +214,10 @@ double truth_of(const Case& c, const std::string& what) {
 
 }  // namespace
 
-TEST_CASE("accuracy: estimates within a factor 3 of the closed forms' errors", "[accuracy]") {
+// The estimate is a bound with a safety factor 2 on final values (docs/accuracy.md,
+// "Calibration") and order 1 on event times: on these smoothly converging cases it lies at or
+// above the true error (within rounding of the closed form) and at most 5 times it.
+TEST_CASE("accuracy: estimates bound the closed forms' errors within a factor 5", "[accuracy]") {
   const auto dir = testing::scratch_dir("stiction_accuracy_", "closed");
   std::mt19937 rng(26);
   std::vector<Case> cases{sliding_sphere(rng), block_on_slope(rng), arm_spin_down(rng, false),
@@ -244,8 +247,8 @@ TEST_CASE("accuracy: estimates within a factor 3 of the closed forms' errors", "
           INFO(c.name << ", " << integrator << ", dt " << dt << ", " << q.what << ": true error "
                       << truth_error << ", estimate " << q.estimate << ", rounding "
                       << rounding[q.what]);
-          CHECK(q.estimate <= 3.0 * truth_error);
-          CHECK(q.estimate >= truth_error / 3.0);
+          CHECK(q.estimate <= 5.0 * truth_error);
+          CHECK(q.estimate >= 0.9 * truth_error);
         }
       }
     }

@@ -4,6 +4,7 @@
 // not inaccurate; a step above the predicted limit that a trial confirms is not refused.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -282,5 +283,41 @@ TEST_CASE("one verdict: check --json lists every integrator with its traits",
     CHECK(e["implicit"] == table[i].implicit);
     CHECK(e["adaptive"] == table[i].adaptive);
   }
+  fs::remove_all(dir);
+}
+
+// The guard at the cost of one analysis per dynamics (issue 35 item 6): a sweep of a friction
+// coefficient leaves stiffness and mass alone, so its points share the first point's step
+// analysis (and say so); a sweep of a stiffness analyses every point.
+TEST_CASE("one verdict: a sweep's points share the step analysis where the dynamics agree",
+          "[accuracy][verdict][sweep]") {
+  const fs::path dir = scratch_dir("stiction_verdict_", "sweep");
+  const auto shared_of = [&](const std::string& out) {
+    std::vector<bool> shared;
+    for (int p = 0; p < 4; ++p) {
+      char leaf[16];
+      std::snprintf(leaf, sizeof leaf, "%06d", p);
+      const fs::path summary = dir / out / "points" / leaf / "summary.json";
+      if (!fs::exists(summary)) break;
+      shared.push_back(read_json(summary)["step_check"]["shared"].get<bool>());
+    }
+    return shared;
+  };
+  const Outcome mu = run_stiction({"sweep", "roll_to_slip", "--vary",
+                                   "impedances.ground.mu=0.05,0.1,0.2,0.3", "-j", "1", "--quiet",
+                                   "--keep", "summary", "--set", "simulation.duration=0.5",
+                                   "--out", "mu"},
+                                  dir);
+  INFO(mu.out);
+  REQUIRE(mu.code == 0);
+  CHECK(shared_of("mu") == std::vector<bool>{false, true, true, true});
+  const Outcome k = run_stiction({"sweep", "roll_to_slip", "--vary",
+                                  "impedances.ground.stiffness=1e6,2e6", "-j", "1", "--quiet",
+                                  "--keep", "summary", "--set", "simulation.duration=0.5",
+                                  "--out", "k"},
+                                 dir);
+  INFO(k.out);
+  REQUIRE(k.code == 0);
+  CHECK(shared_of("k") == std::vector<bool>{false, false});
   fs::remove_all(dir);
 }
