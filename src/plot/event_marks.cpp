@@ -265,14 +265,30 @@ EventLabelPlan place_event_labels(Painter& painter, const std::vector<EventMarke
   }
   std::stable_sort(wanted.begin(), wanted.end(),
                    [](const Label& a, const Label& b) { return a.mark_x < b.mark_x; });
-  // Each label whole (at most 80% of the row), then shortened in the middle to half that.
+  // Each label whole (at most 80% of the row), then shortened to about half that, both by the
+  // text rule at the labels' size (whole words left out, never a word cut). A shortened label
+  // keeps its last three words, the kind and the time ("joint1_… stop 4.651 s"): without
+  // them it would not say what happened when.
   std::vector<std::vector<std::string>> versions;
   for (const Label& l : wanted) {
-    const std::string full = fit(painter, events[l.event].label, m.event(), 0.8 * (right - left));
-    const std::string half =
-        fit(painter, full, m.event(), 0.5 * painter.measure(full, m.event()).width);
-    versions.push_back(half == full ? std::vector<std::string>{full}
-                                    : std::vector<std::string>{full, half});
+    const TextRule row{m.event(), m.event(), 0.8 * (right - left), 1};
+    const std::string full = fit_text(painter, events[l.event].label, row).joined();
+    std::size_t tail = full.size();
+    for (int words = 0; words < 3 && tail != std::string::npos && tail > 0; ++words) {
+      tail = full.rfind(' ', tail - 1);
+    }
+    const std::string ending = tail == std::string::npos ? full : full.substr(tail);
+    const double half_width = std::max(0.5 * painter.measure(full, m.event()).width,
+                                       painter.measure("\u2026" + ending, m.event()).width);
+    const FittedText half = fit_text(painter, full, TextRule{m.event(), m.event(), half_width, 1});
+    const std::string shorter = half.joined();
+    const bool keeps_ending =
+        shorter.size() >= ending.size() &&
+        shorter.compare(shorter.size() - ending.size(), ending.size(), ending) == 0;
+    versions.push_back(half.below_floor || shorter == full || !keeps_ending ||
+                               tail == std::string::npos
+                           ? std::vector<std::string>{full}
+                           : std::vector<std::string>{full, shorter});
   }
   // Greedy passes left to right and right to left, with different preferences between a
   // label over its mark and beside it: a label beside its mark, away from the marks still to

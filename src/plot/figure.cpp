@@ -116,20 +116,15 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   const Extent event_extent = painter.measure("Hg", m.event());
   const double label_line = label_extent.line_ascent + label_extent.line_descent;
   const double margin_width = size.width - 2 * m.margin();
-  // The title: in the pixel design shrunk to 70% if need be, then shortened; in print (where
-  // text keeps its size) wrapped onto two lines, then shortened.
+  // The title by the text rule: on one line in the pixel design, on up to two in print.
   double title_size = m.title();
   std::vector<std::string> title_lines;
   if (!figure.title.empty()) {
-    if (m.shrinks) {
-      while (painter.measure(figure.title, title_size).width > margin_width &&
-             title_size > 0.7 * m.title()) {
-        title_size *= 0.95;
-      }
-      title_lines = {fit(painter, figure.title, title_size, margin_width)};
-    } else {
-      title_lines = wrap(painter, figure.title, margin_width, title_size, 2);
-    }
+    const FittedText title = fit_text(
+        painter, figure.title,
+        TextRule{m.title(), m.floor(m.title()), margin_width, std::size_t{m.shrinks ? 1u : 2u}});
+    title_lines = title.lines;
+    title_size = title.size;
   }
   const Extent title_extent = painter.measure("Hg", title_size);
   const double title_line = title_extent.line_ascent + title_extent.line_descent;
@@ -183,16 +178,24 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   EventLabelPlan event_plan;
   bool with_key = false;
   std::string x_title;
+  double x_title_size = m.label();
   std::vector<Legend> legends(n_panels);
   std::vector<Rect> legend_boxes(n_panels);  // inside places (chosen each pass)
-  // Where each legend goes; once a legend leaves the axes it stays out (the passes converge).
+  // Where each legend goes: it moves only from inside to above to beside the axes, and back
+  // inside only for good (`crowded`), so the passes converge.
   std::vector<LegendPlace> places(n_panels, LegendPlace::inside);
-  // Legends with no room outside the axes either, and the data under them (reported).
+  // Legends with no room outside the axes either; the data under each legend inside (reported).
   std::vector<bool> crowded(n_panels, false);
   std::vector<long> legend_ink(n_panels, 0);
-  // Room reserved above each panel and beside the axes for legends there; like the places and
-  // the event rows it only grows from pass to pass, so the passes settle.
+  // Room reserved above each panel and beside the axes for legends there; like the event rows
+  // it only grows from pass to pass (but for a legend that leaves the place above, which
+  // happens at most once), so the passes settle.
   std::vector<double> above(n_panels, 0.0);
+  // Rows a legend above may take: two, or all its entries' when it has no other place.
+  std::vector<int> above_rows(n_panels, 2);
+  auto n_entries = [&](std::size_t p) {
+    return static_cast<int>(legend_entries(panel_at(p)).size());
+  };
   double outside_width = 0.0;
   Ticks x_ticks;
   TickLabels x_labels;
@@ -243,7 +246,7 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
       }
       y_titles.push_back(fit_y_title(painter,
                                      axis_title(panel_at(p).label, panel_at(p).unit, y.exponent),
-                                     panel_h, m.label(), m.shrinks, m.y_title_lines));
+                                     panel_h, m.label(), m.floor(m.label()), m.y_title_lines));
       max_lines = std::max(max_lines, y_titles.back().lines.size());
       y_axes.push_back(std::move(y));
     }
@@ -289,8 +292,8 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     // The panels' width with no legend beside them.
     const double free_width = frames[0].width() + outside_width;
 
-    // Legends: inside at a place with no data under it; else above the panel when its
-    // entries fit side by side in two rows, else beside the axes on the right.
+    // Legends: inside where they cover the least data, when that is little (legend.hpp); else
+    // above the panel or beside the axes on the right, whichever costs the data less room.
     bool moved = false;
     for (std::size_t p = 0; p < n_panels; ++p) {
       const Rect& f = frames[p];
@@ -302,16 +305,19 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
         lines[p].push_back(to_pixels(series, x_axis, y.axis));
       if (legend_entries(panel_at(p)).empty()) continue;
       if (places[p] == LegendPlace::inside) {
-        // What the panel shows: its reference lines, event marks and series, as drawn.
-        const DataInk ink(f, font, [&](Painter& mask) {
+        // What the panel shows, as drawn: its data (reference lines and series) and its
+        // event marks, apart (a legend may cover a mark more readily than data).
+        const DataInk data(f, font, [&](Painter& mask) {
           draw_references(mask, panel_at(p), y.axis, f, m);
-          draw_event_marks(mask, figure.events, x_axis, f, event_rug, m);
           draw_series(mask, panel_at(p), lines[p], f, m.line, nullptr);
         });
-        if (const auto inside = free_place_inside(panel_at(p), painter, m, f, ink)) {
+        const DataInk marks(f, font, [&](Painter& mask) {
+          draw_event_marks(mask, figure.events, x_axis, f, event_rug, m);
+        });
+        const PanelInk ink{data, marks};
+        if (const auto inside = free_place_inside(panel_at(p), painter, m, f, ink, legend_ink[p])) {
           legends[p] = inside->legend;
           legend_boxes[p] = inside->box;
-          legend_ink[p] = 0;
           continue;
         }
         if (crowded[p]) {  // no room outside either: where the least data is
@@ -327,38 +333,62 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
         }
         // Outside: where it costs the data least room, as a fraction of the figure (beside
         // the axes every panel narrows, unless a legend is there already), a legend with
-        // shortened labels counting as worse.
-        const Legend on_top = legend_above(panel_at(p), painter, m, f.width());
+        // shortened labels counting as worse beside and not going above at all.
+        const Legend on_top = legend_above(panel_at(p), painter, m, f.width(), 2);
+        // Beside the axes at most 40% of the figure's width and half the panels' width, or
+        // the width of the legends there already (its labels smaller, down to their floor, or
+        // shortened to fit).
+        const double beside_width =
+            std::min(0.4 * size.width, std::max(0.5 * free_width, outside_width) - 16 * s);
         const Legend beside =
-            legend_beside(panel_at(p), painter, m, 0.4 * size.width, frames.back().y1 - f.y0);
-        // Not above when that would leave the panels too short to hold two tick labels.
+            legend_beside(panel_at(p), painter, m, beside_width, frames.back().y1 - f.y0);
+        // Not above when that would leave the panels too short to hold two tick labels, nor
+        // in more than two rows (a column of entries goes beside the axes).
         const bool room_above =
+            on_top.rows <= 2 && !on_top.shortened && on_top.width <= f.width() &&
             panel_h - (on_top.height + 6 * s) / static_cast<double>(n_panels) > 3 * tick_line;
-        const double cost_above =
-            room_above ? (on_top.height + 6 * s) / size.height +
-                             (on_top.shortened || on_top.width > f.width() ? 0.15 : 0.0)
-                       : std::numeric_limits<double>::infinity();
+        const double cost_above = room_above ? (on_top.height + 6 * s) / size.height
+                                             : std::numeric_limits<double>::infinity();
         // Not beside when the panels would keep less than half the width they have without
-        // legends beside them.
+        // legends beside them (a legend as narrow as those there already costs nothing).
         const double narrower = std::max(0.0, beside.width + 16 * s - outside_width);
-        const bool room_beside = std::max(outside_width, beside.width + 16 * s) <= 0.5 * free_width;
+        const bool room_beside = beside.width + 16 * s <= outside_width + 0.5 ||
+                                 beside.width + 16 * s <= 0.5 * free_width;
         const double cost_beside = room_beside
                                        ? narrower / size.width + (beside.shortened ? 0.15 : 0.0)
                                        : std::numeric_limits<double>::infinity();
         moved = true;
         if (std::isinf(cost_above) && std::isinf(cost_beside)) {
-          crowded[p] = true;  // the next pass puts it inside, where the least data is
-          continue;
+          // Above in as many rows as it takes, labels whole, while the panels keep room for
+          // two tick labels; else inside where the least data is (the next pass).
+          const Legend tall = legend_above(panel_at(p), painter, m, f.width(), n_entries(p));
+          if (tall.shortened || tall.width > f.width() ||
+              panel_h - (tall.height + 6 * s) / static_cast<double>(n_panels) <= 3 * tick_line) {
+            crowded[p] = true;
+            continue;
+          }
+          places[p] = LegendPlace::above;
+          above_rows[p] = n_entries(p);
+        } else {
+          places[p] = cost_above <= cost_beside ? LegendPlace::above : LegendPlace::right;
         }
-        places[p] = cost_above <= cost_beside ? LegendPlace::above : LegendPlace::right;
       }
       if (places[p] == LegendPlace::above) {
-        legends[p] = legend_above(panel_at(p), painter, m, f.width());
-        if (legends[p].height + 6 * s > above[p] + 0.5) {
+        legends[p] = legend_above(panel_at(p), painter, m, f.width(), above_rows[p]);
+        if (legends[p].rows > above_rows[p] || legends[p].shortened ||
+            legends[p].width > f.width() + 0.5) {
+          // No longer whole as the panels narrowed: beside the axes instead (a
+          // place changes at most from inside to above to beside to inside, so the passes
+          // still settle), its room above given back.
+          places[p] = LegendPlace::right;
+          above[p] = 0.0;
+          moved = true;
+        } else if (legends[p].height + 6 * s > above[p] + 0.5) {
           above[p] = legends[p].height + 6 * s;
           moved = true;
         }
-      } else {
+      }
+      if (places[p] == LegendPlace::right) {
         // Beside the axes the legend may hang down to the next panel with a legend there.
         double column_bottom = frames.back().y1;
         for (std::size_t q = p + 1; q < n_panels; ++q) {
@@ -367,9 +397,11 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
             break;
           }
         }
-        legends[p] = legend_beside(panel_at(p), painter, m, 0.4 * size.width,
-                                   std::max(f.height(), column_bottom - f.y0));
-        if (legends[p].width + 16 * s > 0.5 * free_width) {
+        legends[p] = legend_beside(
+            panel_at(p), painter, m,
+            std::min(0.4 * size.width, std::max(0.5 * free_width, outside_width) - 16 * s),
+            std::max(f.height(), column_bottom - f.y0));
+        if (legends[p].width + 16 * s > std::max(0.5 * free_width, outside_width + 0.5)) {
           // Grown too wide as the panels changed (more columns): inside, where the least
           // data is, rather than squeezing the panels.
           places[p] = LegendPlace::inside;
@@ -453,9 +485,12 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
           const double px = x_axis.map(e.x);
           return !e.labelled && std::isfinite(px) && px >= frames[0].x0 && px <= frames[0].x1;
         });
-    x_title = fit(painter, axis_title(figure.x_label, figure.x_unit, x_labels.exponent), m.label(),
-                  frames.back().width());
-    const double x_title_half = 0.5 * painter.measure(x_title, m.label()).width;
+    const FittedText x_fitted =
+        fit_text(painter, axis_title(figure.x_label, figure.x_unit, x_labels.exponent),
+                 TextRule{m.label(), m.floor(m.label()), frames.back().width(), 1});
+    x_title = x_fitted.joined();
+    x_title_size = x_fitted.size;
+    const double x_title_half = 0.5 * painter.measure(x_title, x_title_size).width;
     const double centre = 0.5 * (frames.back().x0 + frames.back().x1);
     const bool key_beside = size.width - m.margin() - key.width >= centre + x_title_half + 16 * s ||
                             m.margin() + key.width <= centre - x_title_half - 16 * s;
@@ -521,9 +556,10 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
                            (legends[p].place == LegendPlace::above && !legends[p].entries.empty()
                                 ? legends[p].height + 6 * s
                                 : 0.0);
-      painter.text(fit(painter, panel.caption, m.event(), f.width()), f.x0,
-                   f.y0 - above - 5 * s - caption_extent.line_descent, m.event(), kText,
-                   TextRole::note, pi);
+      const FittedText caption =
+          fit_text(painter, panel.caption, TextRule{m.event(), m.floor(m.event()), f.width(), 1});
+      painter.text(caption.joined(), f.x0, f.y0 - above - 5 * s - caption_extent.line_descent,
+                   caption.size, kText, TextRole::note, pi);
     }
     // Legend: inside at its free place, above the panel (right-aligned, over the event
     // labels of the top panel) or beside the axes.
@@ -544,7 +580,7 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     layout.legends.push_back(box);
     layout.legend_outside.push_back(L.place != LegendPlace::inside);
     layout.legend_panels.push_back(pi);
-    layout.legend_ink.push_back(legend_ink[p]);
+    layout.legend_ink.push_back(L.place == LegendPlace::inside ? legend_ink[p] : 0);
     draw_legend(painter, panel, L, box, pi, m);
   }
 
@@ -560,12 +596,12 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     painter.text(x_labels.labels[i], px - 0.5 * w, tick_baseline, m.tick(), kText,
                  TextRole::tick_label, static_cast<int>(n_panels) - 1);
   }
-  const double xw = painter.measure(x_title, m.label()).width;
+  const double xw = painter.measure(x_title, x_title_size).width;
   const double x_title_baseline =
       tick_baseline + tick_extent.line_descent + 8 * s + label_extent.line_ascent;
   const Rect x_title_box =
-      painter.text(x_title, 0.5 * (bottom.x0 + bottom.x1) - 0.5 * xw, x_title_baseline, m.label(),
-                   kText, TextRole::axis_label, -1);
+      painter.text(x_title, 0.5 * (bottom.x0 + bottom.x1) - 0.5 * xw, x_title_baseline,
+                   x_title_size, kText, TextRole::axis_label, -1);
 
   // ---- Event labels above the top panel, at their marks; the key beside the time axis title.
   draw_event_labels(painter, event_plan, figure.events, frames[0], m, layout);

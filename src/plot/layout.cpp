@@ -51,9 +51,14 @@ std::vector<std::string> layout_problems(const FigureLayout& layout) {
         problems.push_back("overlap: " + describe(a) + " and " + describe(b));
       }
     }
-    if (a.role == TextRole::event_label || a.role == TextRole::title) {
-      for (const Rect& l : layout.legends) {
-        if (shrunk(a.box).overlaps(l)) problems.push_back("over a legend: " + describe(a));
+    // A legend's box is filled: over any text but its own entries it would hide that text
+    // in a PNG or PDF (drawn in order) and not in an SVG (its text drawn last).
+    for (std::size_t l = 0; l < layout.legends.size(); ++l) {
+      const bool own = a.role == TextRole::legend_entry && l < layout.legend_panels.size() &&
+                       a.panel == layout.legend_panels[l] &&
+                       shrunk(a.box).inside(layout.legends[l]);
+      if (!own && shrunk(a.box).overlaps(shrunk(layout.legends[l]))) {
+        problems.push_back("under legend " + std::to_string(l) + ": " + describe(a));
       }
     }
   }

@@ -56,8 +56,9 @@ struct FigureLayout {
   std::vector<Rect> legends;         // legend boxes (their entries are in `texts`)
   std::vector<bool> legend_outside;  // per legend: placed outside the axes (above or beside)
   std::vector<int> legend_panels;    // per legend: the panel it belongs to
-  // Per legend: pixels of data (series, reference lines, event marks) under its box; 0 but
-  // for a legend that found no free place inside and no room outside the axes.
+  // Per legend: pixels of data (series and reference lines, as drawn) under its box and a
+  // margin around it: at most plot::kLegendDataShare of its panel's data for a legend inside,
+  // unless it found no room outside the axes either; 0 for a legend outside.
   std::vector<long> legend_ink;
   std::vector<int> legends_left_out;           // panels whose legend had no room at all (a problem)
   std::vector<AxisRange> y_axes;               // per panel: its vertical axis

@@ -25,21 +25,37 @@ Legend shape_legend(const Panel& panel, const std::vector<int>& entries, Painter
   Legend L;
   L.entries = entries;
   const int n = static_cast<int>(entries.size());
-  L.size = size;
   L.pad = 12 * m.s;
   L.sample = 56 * m.s;
-  L.row = 1.45 * size;
   L.columns = std::clamp(columns, 1, std::max(1, n));
   L.rows = (n + L.columns - 1) / L.columns;
   L.by_rows = L.columns >= L.rows;
   const double text_room =
       std::max(40 * m.s, max_width / L.columns - L.pad - L.sample - 12 * m.s - L.pad);
-  double text_width = 0.0;
+  // The labels by the text rule, all at one size: the smallest any of them needs down to the
+  // floor (a label that needs less than the floor alone is smaller still).
+  const double floor = std::min(size, m.floor(m.legend()));
+  std::vector<FittedText> fitted;
+  double common = size;
   for (int i : entries) {
     const std::string& label = i >= 0 ? panel.series[i].label : panel.references[-1 - i].label;
-    L.labels.push_back(fit(painter, label, size, text_room));
-    L.shortened = L.shortened || L.labels.back() != label;
-    text_width = std::max(text_width, painter.measure(L.labels.back(), size).width);
+    fitted.push_back(fit_text(painter, label, TextRule{size, floor, text_room, 1}));
+    common = std::min(common, std::max(fitted.back().size, floor));
+  }
+  L.size = common;
+  L.row = 1.45 * common;
+  L.shrunk = common < size;
+  double text_width = 0.0;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const int i = entries[k];
+    const std::string& label = i >= 0 ? panel.series[i].label : panel.references[-1 - i].label;
+    if (fitted[k].size > common) {
+      fitted[k] = fit_text(painter, label, TextRule{common, common, text_room, 1});
+    }
+    L.labels.push_back(fitted[k].joined());
+    L.label_sizes.push_back(fitted[k].size);
+    L.shortened = L.shortened || fitted[k].shortened || fitted[k].below_floor;
+    text_width = std::max(text_width, painter.measure(L.labels.back(), fitted[k].size).width);
   }
   L.column = L.sample + 12 * m.s + text_width + L.pad;
   L.width = L.pad + L.columns * L.column;
@@ -51,52 +67,73 @@ Legend legend_beside(const Panel& panel, Painter& painter, const Metrics& m, dou
                      double max_height) {
   const std::vector<int> entries = legend_entries(panel);
   const int n = static_cast<int>(entries.size());
-  // Shrink the font (to 75%, in the pixel design) before adding columns.
+  // Smaller, down to the floor of its text (text_fit.hpp), before a second column.
+  const double floor = m.floor(m.legend());
   double size = m.legend();
   int columns = 1;
-  for (;; size *= 0.9) {
+  for (;; size = std::max(floor, 0.9 * size)) {
     const double row = 1.45 * size, fixed = 12 * m.s * 1.4;
     const int fit_rows = std::max(1, static_cast<int>((max_height - fixed) / row));
     columns = (n + fit_rows - 1) / fit_rows;
-    if (columns <= 1 || !m.shrinks || size < 0.76 * m.legend()) break;
+    if (columns <= 1 || size <= floor) break;
   }
   Legend L = shape_legend(panel, entries, painter, m, columns, max_width, size);
   L.place = LegendPlace::right;
   return L;
 }
 
-Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, double max_width) {
+Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
+                    int max_rows) {
   const std::vector<int> entries = legend_entries(panel);
   const int n = static_cast<int>(entries.size());
-  Legend best;
-  for (int columns = std::max(1, n); columns >= 1; --columns) {
-    Legend L = shape_legend(panel, entries, painter, m, columns, max_width, m.legend());
-    best = L;
-    if (!L.shortened && L.width <= max_width) break;
+  // Side by side, its labels whole, at the legend's size or the floor of its text: the
+  // shape of the least height (up to max_rows rows; the legend's size on a tie); failing
+  // that, in one row at the legend's size, whatever it takes (shortened: the caller's to
+  // refuse).
+  std::optional<Legend> lowest;
+  for (const double size : {m.legend(), m.floor(m.legend())}) {
+    for (int columns = std::max(1, n); columns >= 1; --columns) {
+      Legend L = shape_legend(panel, entries, painter, m, columns, max_width, size);
+      if (L.rows > max_rows) break;  // fewer columns: more rows still
+      if (!L.shortened && !L.shrunk && L.width <= max_width &&
+          (!lowest || L.height < lowest->height - 0.5)) {
+        lowest = std::move(L);
+      }
+    }
   }
-  best.place = LegendPlace::above;
-  return best;
+  Legend L = lowest
+                 ? *lowest
+                 : shape_legend(panel, entries, painter, m, std::max(1, n), max_width, m.legend());
+  L.place = LegendPlace::above;
+  return L;
 }
 
 namespace {
 
-// Every candidate place inside, in order of preference, and the ink under each (within a
-// margin around the box); stops at the first free one when `first_free`.
-std::vector<std::pair<InsidePlace, long>> inside_places(const Panel& panel, Painter& painter,
-                                                        const Metrics& m, const Rect& f,
-                                                        const DataInk& ink, bool first_free) {
-  std::vector<std::pair<InsidePlace, long>> found;
+struct Candidate {
+  InsidePlace place;
+  long data = 0;  // data pixels under the box and its margin
+  double score = 0.0;
+};
+
+// Every candidate place inside, in order of preference, with the ink under each (within a
+// margin around the box).
+std::vector<Candidate> inside_places(const Panel& panel, Painter& painter, const Metrics& m,
+                                     const Rect& f, const PanelInk& ink, double size) {
+  std::vector<Candidate> found;
   const std::vector<int> entries = legend_entries(panel);
   if (entries.empty()) return found;
   const double inset = 14 * m.s, margin = std::max(2.0, 3 * m.line);
   const int n = static_cast<int>(entries.size());
-  std::vector<Legend> shapes;
+  // Shapes with whole labels; shortened ones only when no shape keeps them whole.
+  std::vector<Legend> shapes, shortened;
   for (int columns = 1; columns <= std::min(n, 4); ++columns) {
-    Legend L = shape_legend(panel, entries, painter, m, columns, 0.9 * f.width(), m.legend());
+    Legend L = shape_legend(panel, entries, painter, m, columns, 0.9 * f.width(), size);
     if (L.width <= f.width() - 2 * inset && L.height <= f.height() - 2 * inset) {
-      shapes.push_back(std::move(L));
+      (L.shortened ? shortened : shapes).push_back(std::move(L));
     }
   }
+  if (shapes.empty()) shapes = std::move(shortened);
   // Places as fractions along the free width and height: corners, middles, then along the
   // top and bottom edges and down the sides.
   std::vector<std::pair<double, double>> places{{1, 0},   {0, 0},   {1, 1},   {0, 1},
@@ -116,26 +153,50 @@ std::vector<std::pair<InsidePlace, long>> inside_places(const Panel& panel, Pain
       const Rect box{std::round(x0), std::round(y0), std::round(x0 + L.width),
                      std::round(y0 + L.height)};
       const Rect around{box.x0 - margin, box.y0 - margin, box.x1 + margin, box.y1 + margin};
-      const long under = ink.count(around);
-      found.push_back({InsidePlace{L, box}, under});
-      if (first_free && under == 0) return found;
+      const long data = ink.data.count(around);
+      const double score = static_cast<double>(data) + 0.25 * ink.marks.count(around);
+      found.push_back({InsidePlace{L, box}, data, score});
     }
   }
   return found;
 }
 
+// The candidate with the least score, the first on a tie (the order of preference).
+const Candidate* best(const std::vector<Candidate>& found) {
+  const Candidate* pick = nullptr;
+  for (const Candidate& c : found) {
+    if (!pick || c.score < pick->score) pick = &c;
+  }
+  return pick;
+}
+
 }  // namespace
 
 std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                             const Rect& f, const DataInk& ink) {
-  auto found = inside_places(panel, painter, m, f, ink, true);
-  if (found.empty() || found.back().second != 0) return std::nullopt;
-  return found.back().first;
+                                             const Rect& f, const PanelInk& ink, long& ink_under) {
+  const long allowed =
+      static_cast<long>(std::floor(kLegendDataShare * static_cast<double>(ink.data.count(f))));
+  // At the legend's size, else at the floor of its text (text_fit.hpp): a smaller legend
+  // inside costs the data less than one above or beside the axes.
+  for (const double size : {m.legend(), m.floor(m.legend())}) {
+    std::vector<Candidate> free;
+    for (const Candidate& c : inside_places(panel, painter, m, f, ink, size)) {
+      if (c.data <= allowed) free.push_back(c);
+    }
+    if (const Candidate* pick = best(free)) {
+      ink_under = pick->data;
+      return pick->place;
+    }
+  }
+  return std::nullopt;
 }
 
 InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                     const Rect& f, const DataInk& ink, long& ink_under) {
-  auto found = inside_places(panel, painter, m, f, ink, false);
+                                     const Rect& f, const PanelInk& ink, long& ink_under) {
+  std::vector<Candidate> found = inside_places(panel, painter, m, f, ink, m.legend());
+  for (Candidate& c : inside_places(panel, painter, m, f, ink, m.floor(m.legend()))) {
+    found.push_back(std::move(c));
+  }
   if (found.empty()) {
     // Too big for the frame in every shape: one row, its labels shortened to the frame's
     // width, at the top (the caller checks that it fits the frame's height).
@@ -144,13 +205,15 @@ InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const
                             m.legend());
     const Rect box{std::round(f.x0), std::round(f.y0), std::round(f.x0 + L.width),
                    std::round(f.y0 + L.height)};
-    ink_under = ink.count(box);
+    ink_under = ink.data.count(box);
     return InsidePlace{L, box};
   }
-  const auto best = std::min_element(
-      found.begin(), found.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
-  ink_under = best->second;
-  return best->first;
+  const Candidate* pick = nullptr;
+  for (const Candidate& c : found) {
+    if (!pick || c.data < pick->data || (c.data == pick->data && c.score < pick->score)) pick = &c;
+  }
+  ink_under = pick->data;
+  return pick->place;
 }
 
 void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Rect& box,
@@ -173,7 +236,7 @@ void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Re
     const double cy = box.y0 + 0.8 * L.pad + row * L.row + 0.5 * L.row;
     painter.line({x0, cy}, {x0 + L.sample, cy}, make_stroke(style, m.line));
     painter.text(L.labels[k], x0 + L.sample + 12 * s,
-                 cy + 0.5 * (le.line_ascent - le.line_descent) - 1 * s, L.size, kText,
+                 cy + 0.5 * (le.line_ascent - le.line_descent) - 1 * s, L.label_sizes[k], kText,
                  TextRole::legend_entry, panel_index);
   }
 }

@@ -1,8 +1,8 @@
 // A panel's legend: its entries (labelled series, then labelled reference lines), their
-// labels (shortened only when they cannot fit), the box's size in rows and columns, and where
-// it goes: inside the axes at the most preferred place (a corner first) with no data under
-// it; when every place inside has data, above the panel (entries side by side) or beside the
-// axes on the right, rather than over the data. Internal to src/plot.
+// labels (by the text rule, text_fit.hpp), the box's size in rows and columns, and where it
+// goes: inside the axes where it covers the least data, as matplotlib's loc="best" (corners
+// first on a tie), when that is at most kLegendDataShare of the panel's data; else above the
+// panel (entries side by side) or beside the axes on the right. Internal to src/plot.
 #pragma once
 
 #include <optional>
@@ -21,11 +21,13 @@ enum class LegendPlace { inside, above, right };
 struct Legend {
   std::vector<int> entries;  // series indices, then -1 - k for reference line k
   std::vector<std::string> labels;
-  double size = 0.0;  // font size
+  std::vector<double> label_sizes;  // each label's size: `size`, or smaller to fit (text_fit)
+  double size = 0.0;                // font size
   double width = 0.0, height = 0.0, row = 0.0, sample = 0.0, pad = 0.0, column = 0.0;
   int columns = 1, rows = 0;
   bool by_rows = false;    // entries fill rows first (a wide legend reads left to right)
-  bool shortened = false;  // some label shortened to fit
+  bool shortened = false;  // some label shortened (or set under the floor) to fit
+  bool shrunk = false;     // the labels set smaller than asked, to fit
   LegendPlace place = LegendPlace::inside;
 };
 
@@ -33,34 +35,53 @@ struct Legend {
 // (one series: the axis label already names it).
 std::vector<int> legend_entries(const Panel& panel);
 
-// The legend in `columns` columns (entries down each column), its labels shortened to fit
-// `max_width` in all, at font size `size`.
+// The legend in `columns` columns (entries down each column), at font size `size`, its labels
+// fitted to `max_width` in all by the text rule (smaller, then shortened at whole words).
 Legend shape_legend(const Panel& panel, const std::vector<int>& entries, Painter& painter,
                     const Metrics& m, int columns, double max_width, double size);
 
-// Beside the axes: as many columns as its height needs within max_height (in the pixel
-// design the font shrinks to 75% first).
+// Beside the axes: as many columns as its height needs within max_height (its text smaller,
+// down to its floor, first).
 Legend legend_beside(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
                      double max_height);
 
-// Above the panel: as many entries side by side as fit max_width, labels whole if they can be.
-Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, double max_width);
+// Above the panel: its entries side by side, labels whole, at the legend's size or the floor
+// of its text, in the shape of the least height (up to `max_rows` rows); else one row,
+// shortened.
+Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
+                    int max_rows = 2);
 
-// Inside the frame: the first place, in order of preference (the corners: top right, top
-// left, bottom right, bottom left; then the middles of the edges; then along the edges), in
-// the first shape (one column, then more) that has no data under it within a margin. None
-// when every place has data.
+// The share of a panel's data (its series and reference lines as drawn) a legend inside may
+// cover: a corner that a curve merely grazes is still free. More, and the legend goes outside.
+inline constexpr double kLegendDataShare = 0.02;
+
+// What a panel shows, for placing its legend: its data (series and reference lines) and its
+// event marks, each rasterized as drawn.
+struct PanelInk {
+  const DataInk& data;
+  const DataInk& marks;
+};
+
+// Inside the frame: of every place (the corners: top right, top left, bottom right, bottom
+// left; the middles of the edges; places along the edges) and shape (one to four columns),
+// the one whose box, with a margin, covers the least data (an event mark counting a quarter
+// of a data pixel); the first in that order on a tie. When that covers more than
+// kLegendDataShare of the panel's data, the same at the floor size of the legend's text
+// (Metrics::floor); none when that does too. `ink_under` gets the data pixels under it.
 struct InsidePlace {
   Legend legend;
   Rect box;
 };
 std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                             const Rect& frame, const DataInk& ink);
+                                             const Rect& frame, const PanelInk& ink,
+                                             long& ink_under);
 
-// The place inside with the least data under it, for a figure with no room outside the axes
-// (`ink_under` gets the count of inked pixels under its box).
+// The place inside with the least data under it whatever the share (at the legend's size
+// or the floor of its text), for a figure with no room outside the axes (`ink_under` gets
+// the count of data pixels under its box). Shapes with shortened labels only when no shape
+// keeps them whole, here and in free_place_inside.
 InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                     const Rect& frame, const DataInk& ink, long& ink_under);
+                                     const Rect& frame, const PanelInk& ink, long& ink_under);
 
 // The box and its entries: a line sample in the series' style, then the label.
 void draw_legend(Painter& painter, const Panel& panel, const Legend& legend, const Rect& box,

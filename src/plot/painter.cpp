@@ -11,7 +11,7 @@ Painter::Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout,
     : cr_(cr), font_(font), layout_(layout), deferred_(deferred) {
   cairo_set_font_face(cr_, font.face());
   cairo_font_options_t* options = cairo_font_options_create();
-  // Unhinted metrics: the same advances on every surface, so PNG, SVG and PDF lay out alike.
+  // How glyphs are rendered where they are drawn; where they go is measure()'s alone.
   cairo_font_options_set_hint_metrics(options, CAIRO_HINT_METRICS_OFF);
   cairo_font_options_set_hint_style(options, CAIRO_HINT_STYLE_SLIGHT);
   cairo_font_options_set_antialias(options, CAIRO_ANTIALIAS_GRAY);
@@ -19,6 +19,30 @@ Painter::Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout,
   cairo_font_options_destroy(options);
   cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+  // The measuring font's options, complete: nothing left for a surface to decide.
+  measure_options_ = cairo_font_options_create();
+  cairo_font_options_set_hint_metrics(measure_options_, CAIRO_HINT_METRICS_OFF);
+  cairo_font_options_set_hint_style(measure_options_, CAIRO_HINT_STYLE_NONE);
+  cairo_font_options_set_antialias(measure_options_, CAIRO_ANTIALIAS_GRAY);
+  cairo_font_options_set_subpixel_order(measure_options_, CAIRO_SUBPIXEL_ORDER_DEFAULT);
+}
+
+Painter::~Painter() {
+  for (auto& [size, font] : measuring_) cairo_scaled_font_destroy(font);
+  cairo_font_options_destroy(measure_options_);
+}
+
+cairo_scaled_font_t* Painter::measuring_font(double size) {
+  for (const auto& [s, font] : measuring_) {
+    if (s == size) return font;
+  }
+  cairo_matrix_t font_matrix, identity;
+  cairo_matrix_init_scale(&font_matrix, size, size);
+  cairo_matrix_init_identity(&identity);
+  cairo_scaled_font_t* font =
+      cairo_scaled_font_create(font_.face(), &font_matrix, &identity, measure_options_);
+  measuring_.emplace_back(size, font);
+  return font;
 }
 
 struct Painter::Glyphs {
@@ -45,17 +69,14 @@ struct Painter::Glyphs {
   }
 };
 
-Painter::Glyphs Painter::shape(const std::string& text) {
+Painter::Glyphs Painter::shape(const std::string& text, double size) {
   Glyphs g;
-  cairo_scaled_font_t* font = cairo_get_scaled_font(cr_);
+  cairo_scaled_font_t* font = measuring_font(size);
   if (cairo_scaled_font_text_to_glyphs(font, 0.0, 0.0, text.c_str(), static_cast<int>(text.size()),
                                        &g.glyphs, &g.count, &g.clusters, &g.cluster_count,
                                        &g.flags) != CAIRO_STATUS_SUCCESS) {
     return Glyphs{};
   }
-  cairo_matrix_t matrix;
-  cairo_get_font_matrix(cr_, &matrix);
-  const double size = matrix.xx;  // no rotation or skew in the font matrix
   double shift = 0.0;
   for (int i = 1; i < g.count; ++i) {
     shift += size * font_.kerning(g.glyphs[i - 1].index, g.glyphs[i].index);
@@ -65,12 +86,13 @@ Painter::Glyphs Painter::shape(const std::string& text) {
 }
 
 Extent Painter::measure(const std::string& text, double size) {
-  cairo_set_font_size(cr_, size);
+  cairo_scaled_font_t* scaled = measuring_font(size);
   cairo_font_extents_t font;
-  cairo_font_extents(cr_, &font);
-  const Glyphs g = shape(text);
+  cairo_scaled_font_extents(scaled, &font);
+  const Glyphs g = shape(text, size);
   cairo_text_extents_t ink{};
-  if (g.count > 0) cairo_glyph_extents(cr_, g.glyphs, g.count, &ink);
+  if (g.count > 0) cairo_scaled_font_glyph_extents(scaled, g.glyphs, g.count, &ink);
+  // x_advance: from the first glyph's origin to the pen after the last, kerning included.
   return {ink.x_advance, -ink.y_bearing, font.ascent, font.descent};
 }
 
@@ -84,7 +106,8 @@ Rect Painter::text(const std::string& s, double x, double baseline, double size,
     cairo_save(cr_);
     cairo_translate(cr_, x, baseline);
     if (rotated) cairo_rotate(cr_, -0.5 * std::acos(-1.0));
-    const Glyphs g = shape(s);
+    cairo_set_font_size(cr_, size);
+    const Glyphs g = shape(s, size);
     cairo_show_text_glyphs(cr_, s.c_str(), static_cast<int>(s.size()), g.glyphs, g.count,
                            g.clusters, g.cluster_count, g.flags);
     cairo_new_path(cr_);

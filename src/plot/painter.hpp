@@ -35,8 +35,17 @@ class Painter {
   // With `deferred`, text is measured and recorded but not drawn: it is appended there.
   Painter(cairo_t* cr, const CairoFont& font, FigureLayout& layout,
           std::vector<PlacedText>* deferred = nullptr);
+  ~Painter();
+  Painter(const Painter&) = delete;
+  Painter& operator=(const Painter&) = delete;
 
   // Advances include the font's kerning (as SVG viewers and word processors apply it).
+  // Measured with a font of its own (unhinted, identity transformation), never with the
+  // drawing surface's: cairo merges a surface's font options into a context's (an image
+  // surface may round glyph positions, a vector surface does not) and scales by the
+  // context's transformation, so a measure taken through the context could differ between
+  // the PNG, the SVG and the PDF of one figure, and with it which tick labels fit. The
+  // glyphs are then drawn at the positions measured here, on every surface.
   Extent measure(const std::string& text, double size);
 
   // Text at the pen origin (x, baseline); rotated: reads bottom to top, the pen origin at the
@@ -57,14 +66,18 @@ class Painter {
   void apply(const Stroke& stroke);
   void set_dash_offset(const Stroke& stroke, double offset);
 
-  // The text's glyphs at the current font size, from the pen origin (0, 0), kerned.
+  // The text's glyphs at `size`, from the pen origin (0, 0), kerned, in the measuring font.
   struct Glyphs;
-  Glyphs shape(const std::string& text);
+  Glyphs shape(const std::string& text, double size);
+  // The measuring font at `size` (created once per size).
+  cairo_scaled_font_t* measuring_font(double size);
 
   cairo_t* cr_;
   const CairoFont& font_;
   FigureLayout& layout_;
   std::vector<PlacedText>* deferred_;
+  cairo_font_options_t* measure_options_ = nullptr;
+  std::vector<std::pair<double, cairo_scaled_font_t*>> measuring_;  // by size
 };
 
 }  // namespace stiction::plot

@@ -21,6 +21,7 @@ Metrics figure_metrics(const Figure& figure, int width, int height) {
   m.title_size = (figure.print->font_pt + 1.0) * pixels_per_point;
   m.label_size = m.tick_size = m.legend_size = m.event_size = body;
   m.shrinks = false;
+  m.px_per_pt = pixels_per_point;
   m.x_tick_spacing = 140.0;
   m.y_title_lines = 4;
   return m;

@@ -37,23 +37,32 @@ inline constexpr std::array<image::Rgba, 7> kPalette{{{0, 114, 178, 255},
 // Sizes of the figure's parts in pixels. Two designs:
 //  - in pixels (no Figure::print): everything scales with s = min(width/1600, height/1000),
 //    fonts of 32 (title), 27, 24, 23 and 22 px at 1600x1000; a text that does not fit may
-//    shrink (to about 70%) before it is shortened;
+//    shrink to 70% before it is shortened (text_fit.hpp);
 //  - in points (Figure::print): the page is width_mm x height_mm at dpi; every text but the
-//    title is font_pt (the title font_pt + 1), none shrinks (it wraps, takes columns or is
-//    shortened instead); layout lengths (margins, gaps, paddings, tick length) keep the
+//    title is font_pt (the title font_pt + 1); a text that does not fit wraps, then may
+//    shrink to 75% but not below 6 pt (a journal's least), before it is shortened
+//    (text_fit.hpp); layout lengths (margins, gaps, paddings, tick length) keep the
 //    proportions of the pixel design relative to the tick font, so s = font_pt / 24 pt;
 //    lines are in units of 0.3 pt: series 0.96 pt, frame 0.48 pt, grid 0.36 pt, events 0.6 pt.
 struct Metrics {
   double s = 1.0;     // pixels per layout unit (a pixel of the 1600x1000 design)
   double line = 1.0;  // pixels per line-width unit (LineStyle widths and dashes)
   double title_size = 32, label_size = 27, tick_size = 24, legend_size = 23, event_size = 22;
-  bool shrinks = true;  // texts may shrink to fit (the pixel design only)
+  bool shrinks = true;     // the pixel design: titles stay on one line, legends beside shrink
+  double px_per_pt = 0.0;  // print: pixels per point (0: the pixel design)
   // Time axis ticks: about one per this many layout units (a print figure is narrower for its
   // type, so its ticks are denser).
   double x_tick_spacing = 190.0;
   // Lines a vertical axis title may wrap onto before it is shortened (print: one more, since
   // its font does not shrink).
   std::size_t y_title_lines = 3;
+
+  // The least size a text set at `size` may shrink to before it is shortened (text_fit.hpp):
+  // 70% in the pixel design; in print 75%, not below 6 pt, and a text under 6 pt keeps its size.
+  double floor(double size) const {
+    if (px_per_pt <= 0.0) return 0.7 * size;
+    return std::max(0.75 * size, std::min(size, 6.0 * px_per_pt));
+  }
 
   double title() const { return title_size; }
   double label() const { return label_size; }

@@ -111,17 +111,10 @@ std::string axis_title(const std::string& label, const std::string& unit, int ex
 }
 
 YTitle fit_y_title(Painter& painter, const std::string& title, double panel_height,
-                   double full_size, bool may_shrink, std::size_t max_lines) {
-  YTitle fitted;
-  for (fitted.size = full_size;; fitted.size *= 0.9) {
-    fitted.lines = wrap(painter, title, 0.96 * panel_height, fitted.size, max_lines);
-    const bool shortened =
-        std::any_of(fitted.lines.begin(), fitted.lines.end(), [&](const std::string& l) {
-          return l.find("\u2026") != std::string::npos && title.find("\u2026") == std::string::npos;
-        });
-    if (!shortened || !may_shrink || fitted.size < 0.72 * full_size) break;
-  }
-  return fitted;
+                   double full_size, double floor, std::size_t max_lines) {
+  const FittedText fitted =
+      fit_text(painter, title, TextRule{full_size, floor, 0.96 * panel_height, max_lines});
+  return YTitle{fitted.lines, fitted.size};
 }
 
 void label_minor_ticks(YAxis& y) {

@@ -45,14 +45,14 @@ YAxis make_y_axis(const Panel& panel, double x_lo, double x_hi, int target);
 // "label [×10ⁿ unit]", "label [unit]", "[unit]" or "label".
 std::string axis_title(const std::string& label, const std::string& unit, int exponent);
 
-// A vertical axis title wrapped to the panel's height: its lines and font size (the font
-// shrinks, down to 70%, before any word is shortened).
+// A vertical axis title fitted to the panel's height by the text rule (text_fit.hpp): wrapped
+// onto up to `max_lines` lines, smaller down to `floor`, then shortened at whole words.
 struct YTitle {
   std::vector<std::string> lines;
   double size = 0.0;
 };
 YTitle fit_y_title(Painter& painter, const std::string& title, double panel_height,
-                   double full_size, bool may_shrink, std::size_t max_lines = 3);
+                   double full_size, double floor, std::size_t max_lines);
 
 // A log axis whose decades give fewer than two labels in view also labels its minor ticks at
 // 2 and 5 times a decade ("2×10⁻⁷", "5×10⁻⁷").

@@ -144,6 +144,8 @@ std::pair<double, double> InsetPlot::page_range(double t) {
   return {p.t0, p.t1};
 }
 
+const plot::FigureLayout& InsetPlot::drawn_layout(double t) { return page(t).drawn; }
+
 const InsetPlot::Page& InsetPlot::page(double t) {
   int index = 0;
   double t0 = start_, t1 = end_;
@@ -216,6 +218,7 @@ void InsetPlot::draw_page(Page& page) const {
   for (plot::EventMarker& m : figure.events)
     m.labelled = !m.kind.empty() && figure.events.size() <= 4;
   page.full = plot::render(figure, &page.layout);
+  page.drawn = page.layout;
   for (plot::Panel& panel : figure.panels) {
     for (plot::Series& s : panel.series) {
       s.x.clear();

@@ -50,13 +50,18 @@ class InsetPlot {
   PixelBox panels_box(double t);
   // The time range of the page shown at t.
   std::pair<double, double> page_range(double t);
+  // The layout of the page shown at t as plot::draw laid it out (its texts, legends and
+  // panels, in the pixels of the figure drawn: at least 200 x 150, before any scaling down to
+  // the inset's box), for checks of its text.
+  const plot::FigureLayout& drawn_layout(double t);
 
  private:
   struct Page {
     int index = -1;
     double t0 = 0.0, t1 = 0.0;
     image::Image axes, full;
-    plot::FigureLayout layout;
+    plot::FigureLayout layout;  // its panels scaled to the inset's box
+    plot::FigureLayout drawn;   // as drawn
   };
   const Page& page(double t);
   void draw_page(Page& page) const;

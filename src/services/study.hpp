@@ -28,6 +28,7 @@
 
 #include "core/simulation.hpp"
 #include "image/image.hpp"
+#include "plot/figure.hpp"
 #include "scene/scene.hpp"
 #include "services/step_check.hpp"
 #include "text/font.hpp"
@@ -213,6 +214,8 @@ double largest_accurate_tolerance(const StudyResult& result, const std::string& 
 std::string study_csv(const StudyResult& result);
 std::string study_markdown(const StudyResult& result);
 image::Image work_precision_figure(const StudyResult& result, text::Font& font);
+// The figure work_precision_figure draws (for checks of its layout).
+plot::Figure work_precision_plot(const StudyResult& result);
 // Writes study.csv, study.md and work_precision.png into `out`, each atomically.
 void write_study(const StudyResult& result, const std::filesystem::path& out);
 

@@ -339,6 +339,10 @@ std::string study_markdown(const StudyResult& r) {
 }
 
 image::Image work_precision_figure(const StudyResult& r, text::Font& font) {
+  return plot::render(work_precision_plot(r), font);
+}
+
+plot::Figure work_precision_plot(const StudyResult& r) {
   plot::Figure figure;
   figure.panels.reserve(2);  // `key` and `events` point into it
   figure.title = "Work-precision: " + r.scene + " (reference rk4, dt = " + value(r.reference_dt) + " s)";
@@ -386,7 +390,7 @@ image::Image work_precision_figure(const StudyResult& r, text::Font& font) {
   const plot::PrintSize print;
   figure.print = plot::Figure::Print{print.width_mm, plot::default_height_mm(figure.panels.size()),
                                      print.font_pt, 300.0};
-  return plot::render(figure, font);
+  return figure;
 }
 
 void write_study(const StudyResult& result, const std::filesystem::path& out) {

@@ -1,6 +1,7 @@
-// A legend avoids the data: inside the axes only where no series passes (measured here by
-// rasterizing the series alone, independently of the figure's own placement code), else
-// above the panel or beside the axes, never over a frame. Tested on generated figures:
+// A legend avoids the data: inside the axes where it covers the least, when that is a small
+// share of the panel's data (measured here by rasterizing the series alone, independently of
+// the figure's own placement code), else above the panel or beside the axes, never over a
+// frame. Tested on generated figures:
 // 1..8 series of random shapes per panel, random sizes, pixel and print designs.
 #include <cairo.h>
 
@@ -129,7 +130,8 @@ plot::Series random_series(std::mt19937& rng, double duration, int index) {
 
 }  // namespace
 
-TEST_CASE("legends are placed where no series is, or outside the axes", "[plot][legend]") {
+TEST_CASE("legends go inside where they cover the least data, else outside the axes",
+          "[plot][legend]") {
   std::mt19937 rng(606);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   fs::create_directories(kOut);
@@ -154,7 +156,7 @@ TEST_CASE("legends are placed where no series is, or outside the axes", "[plot][
       for (int k = 0; k < n; ++k) panel.series.push_back(random_series(rng, duration, k));
     }
     plot::FigureLayout layout;
-    if (i < 8 || i == 9 || i == 54) {
+    if (i < 8 || i == 9 || i == 34 || i == 54) {
       layout = plot::write_figure(figure, kOut / ("random_" + std::to_string(i) + ".png"),
                                   plot::Format::png);
     } else {
@@ -175,13 +177,19 @@ TEST_CASE("legends are placed where no series is, or outside the axes", "[plot][
       }
       ++inside;
       CHECK(box.inside(layout.panels[p]));
+      // At most a small share of the panel's data under it (the placement allows 2% of the
+      // data as it draws it; this rasterization is 2 px wider, so a little more).
       const long inked = ink_under(figure, layout, p, box);
-      worst = std::max(worst, static_cast<double>(inked) / (box.width() * box.height()));
-      CHECK(inked == 0);
+      const long data = ink_under(figure, layout, p, layout.panels[p]);
+      const double share = data > 0 ? static_cast<double>(inked) / static_cast<double>(data) : 0.0;
+      worst = std::max(worst, share);
+      INFO("legend over " << inked << " of the panel's " << data << " data pixels");
+      CHECK(share <= 0.05);
     }
   }
   CHECK(inside > 0);
   CHECK(outside > 0);
   WARN("legends inside " << inside << ", outside " << outside
-                         << "; worst fraction of an inside legend's box over a series: " << worst);
+                         << "; the largest share of a panel's data under a legend inside: "
+                         << worst);
 }

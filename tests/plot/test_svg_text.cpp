@@ -166,14 +166,25 @@ TEST_CASE("a print figure's SVG is its page in mm, its text and lines in points"
   CHECK(attribute(tag, "width") == "88mm");
   CHECK(attribute(tag, "height") == "66mm");
   CHECK(attribute(tag, "viewBox") == "0 0 1039 780");
-  // User units are pixels at 300 dpi: 8 pt text is 33.33 units, 9 pt the title.
+  // User units are pixels at 300 dpi: 8 pt text is 33.33 units, 9 pt the title; a text too
+  // long for its place smaller, down to 6 pt (text_fit.hpp), and the SVG says the size the
+  // layout measured it at (the height of its box is the font's ascent + descent).
   const std::vector<SvgText> texts = texts_of(svg);
   REQUIRE(texts.size() == layout.texts.size());
+  int full = 0;
   for (std::size_t i = 0; i < texts.size(); ++i) {
     INFO(texts[i].text);
     const double points = std::stod(attribute(texts[i].tag, "font-size")) * 72.0 / 300.0;
-    CHECK(points == Approx(layout.texts[i].role == plot::TextRole::title ? 9.0 : 8.0));
+    const bool title = layout.texts[i].role == plot::TextRole::title;
+    CHECK(points <= Approx(title ? 9.0 : 8.0));
+    CHECK(points >= Approx(title ? 6.75 : 6.0));
+    const bool rotated =
+        layout.texts[i].role == plot::TextRole::axis_label && layout.texts[i].panel >= 0;
+    const double box = rotated ? layout.texts[i].box.width() : layout.texts[i].box.height();
+    CHECK(box / (points * 300.0 / 72.0) == Approx(1.1641).epsilon(0.01));
+    if (points == Approx(title ? 9.0 : 8.0)) ++full;
   }
+  CHECK(full > static_cast<int>(texts.size()) / 2);  // most text at its size
   // The series are 0.96 pt wide (3.2 line units of 0.3 pt), the frame 0.48 pt.
   const testing::SvgDocument doc = testing::parse_svg(svg);
   REQUIRE(doc.well_formed);
