@@ -8,6 +8,7 @@
 #include <map>
 #include <limits>
 #include <memory>
+#include <unordered_map>
 
 #include "core/integrator_traits.hpp"
 #include "core/row_sink.hpp"
@@ -180,12 +181,15 @@ AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& r
 
   // Every event of the run with its estimate: the first and last of each kind as compared;
   // the others matched by index where the two runs have as many of that kind.
+  // Linear in the elements: the companion's histories and the compared events by name.
+  std::unordered_map<std::string, const core::SlipHistory*> fine_by_name;
+  for (const core::SlipHistory& f : fine.slip_events) fine_by_name.emplace(f.component, &f);
+  std::unordered_map<std::string, const ComparedQuantity*> compared_by_name;
+  for (const ComparedQuantity& q : cmp.events) compared_by_name.emplace(q.name, &q);
   for (const core::SlipHistory& h : result.slip_events) {
     ElementEvents element{h.component, {}};
-    const core::SlipHistory* other = nullptr;
-    for (const core::SlipHistory& f : fine.slip_events) {
-      if (f.component == h.component) other = &f;
-    }
+    const auto found = fine_by_name.find(h.component);
+    const core::SlipHistory* other = found != fine_by_name.end() ? found->second : nullptr;
     const auto mine = by_kind(h.monitor);
     const auto theirs = other != nullptr ? by_kind(other->monitor) : decltype(mine){};
     std::map<std::string, std::size_t> next;  // per kind, the index of the next event
@@ -194,10 +198,9 @@ AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& r
       const std::size_t i = next[e.kind]++;
       const std::size_t n = mine.at(e.kind).size();
       const ComparedQuantity* compared = nullptr;
-      for (const ComparedQuantity& q : cmp.events) {
-        if (q.component != h.component || q.kind != e.kind) continue;
-        const bool first = q.name == h.component + ".first_" + e.kind;
-        if ((first && i == 0) || (!first && i + 1 == n)) compared = &q;
+      for (const auto& [index, which] : {std::pair{std::size_t{0}, "first_"}, {n - 1, "last_"}}) {
+        const auto q = compared_by_name.find(h.component + "." + which + e.kind);
+        if (i == index && q != compared_by_name.end()) compared = q->second;
       }
       const auto it = theirs.find(e.kind);
       if (compared != nullptr) {

@@ -172,9 +172,12 @@ TEST_CASE("study of a sliding block: both largest steps, and a recommendation th
   CHECK(md.find("|  |") == std::string::npos);
   // Each integrator's candidate is its run at its largest accurate step (the fewest
   // evaluations within the target), and the recommendation the one with the least CPU time.
+  // The recommendation holds under `run` (issue 35): run's own verdict at it is accurate.
+  CHECK(rec.run_verdict == "accurate");
   REQUIRE(r.candidates.size() == 2);
   for (const services::Recommendation& c : r.candidates) {
-    CHECK(c.cpu_per_second >= rec.cpu_per_second);
+    // Unless the confirmation moved it (a margin from the stability limit, a smaller step).
+    if (rec.note.empty()) CHECK(c.cpu_per_second >= rec.cpu_per_second);
     for (const services::StabilityLimit& limit : r.limits) {
       if (limit.integrator == c.integrator) CHECK(c.dt == limit.accurate);
     }
