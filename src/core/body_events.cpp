@@ -24,10 +24,12 @@ bool on_edge(const std::vector<Vec3>& touching, const std::vector<Vec3>& open, d
   return std::any_of(open.begin(), open.end(), off_line);
 }
 
-// A stretch of one body state, from `start` to the next stretch's start.
+// A stretch of one body state, from `start` to the next stretch's start; `uncertainty` that of
+// the point events at `start` (the largest).
 struct Segment {
   BodyState state;
   double start;
+  double uncertainty = 0.0;
 };
 
 // The stretches with the states no longer than `resolution` (but the last) left out and equal
@@ -46,7 +48,10 @@ std::vector<Segment> without_short_states(const std::vector<Segment>& segments, 
       }
       const Segment dropped = out.back();
       out.pop_back();
-      if (out.back().state == BodyState::open) s.start = dropped.start;
+      if (out.back().state == BodyState::open) {
+        s.start = dropped.start;
+        s.uncertainty = dropped.uncertainty;
+      }
     }
     if (!out.empty() && out.back().state == s.state) continue;
     out.push_back(s);
@@ -152,18 +157,31 @@ std::vector<BodyEventHistory> body_events(const std::vector<SlipHistory>& histor
     }
     std::sort(times.begin(), times.end());
     times.erase(std::unique(times.begin(), times.end()), times.end());
+    // How precisely each of those moments is known: the largest uncertainty of the point
+    // events there (an interval starts at its event's time, bit for bit).
+    std::map<double, double> uncertainty;
+    for (const Point& p : points) {
+      for (const SlipEvent& e : p.history->monitor.events()) {
+        double& u = uncertainty[e.time];
+        u = std::max(u, e.uncertainty);
+      }
+    }
+    const auto uncertainty_at = [&](double t) {
+      const auto it = uncertainty.find(t);
+      return it != uncertainty.end() ? it->second : 0.0;
+    };
     std::vector<std::string> states(points.size());
     const auto state_now = [&] {
       for (std::size_t i = 0; i < points.size(); ++i)
         states[i] = points[i].intervals[points[i].at].kind;
       return body_state(local, states, tolerance, rolling);
     };
-    std::vector<Segment> segments{{state_now(), points.front().intervals.front().start}};
+    std::vector<Segment> segments{{state_now(), points.front().intervals.front().start, 0.0}};
     for (double t : times) {
       for (Point& p : points) {
         while (p.at + 1 < p.intervals.size() && p.intervals[p.at + 1].start <= t) ++p.at;
       }
-      segments.push_back({state_now(), t});
+      segments.push_back({state_now(), t, uncertainty_at(t)});
     }
     double end = segments.front().start;
     double resolution = 0.0;
@@ -183,7 +201,7 @@ std::vector<BodyEventHistory> body_events(const std::vector<SlipHistory>& histor
       const char* kind = s.state == BodyState::open  ? "lift_off"
                          : before == BodyState::open ? "land"
                                                      : body_state_name(s.state);
-      body.events.push_back({kind, s.start, body_state_name(s.state)});
+      body.events.push_back({kind, s.start, body_state_name(s.state), s.uncertainty});
     }
     out.push_back(std::move(body));
   }

@@ -50,7 +50,9 @@ struct BodyEvent {
   std::string kind;  // "stick", "slide", "partial_slip", "tip", "lift_off" or "land"
   double time = 0.0;
   std::string state;  // the state entered (for `land`, the one it lands in)
-  double uncertainty = 0.0;  // s: the largest of its point events' (SlipEvent)
+  // How precisely `time` was located (s), as SlipEvent::uncertainty: that of the point
+  // event(s) that changed the body's state at `time`, the largest of them.
+  double uncertainty = 0.0;
 };
 
 struct BodyEventHistory {
@@ -64,8 +66,8 @@ struct BodyEventHistory {
 };
 
 // The body's state from its points: `points` in the body frame, `states` the points' element
-// states ("stick", "slip", "open" or "dropped"), one per point; `tolerance` the distance below which a
-// point counts as on a line or at a point (body_events: 1e-6 of the points' extent).
+// states ("stick", "slip", "open" or "dropped"), one per point; `tolerance` the distance below
+// which a point counts as on a line or at a point (body_events: 1e-6 of the points' extent).
 // `rolling`: some points travel over the body (a cylinder's rim points): their place at t = 0
 // says nothing about an edge, so the body is never in `tip`.
 BodyState body_state(const std::vector<Vec3>& points, const std::vector<std::string>& states,

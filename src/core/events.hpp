@@ -23,6 +23,15 @@
 // through zero, not a stick. Touch-down and lift-off are placed at the end of the first step
 // with the new contact state.
 //
+// A creep is a stick (issue 35): an element whose law has released it (saturated) while its
+// speed stays below the threshold, because other elements hold the body, is stuck; its onset
+// is where its speed starts rising to pass the threshold, not the release. The law's bracket
+// places the onset only when the speed rose from the release (observe and settle_pending_slip
+// say how that is told); a creep's onset lies in the step after its last calm step (one whose
+// speed did not start rising). Where the law held the element in its stuck stretch, the onset
+// fit is made to the speed above the level it rose from (at the last held step, or for a
+// creep at its last calm step), not from zero: a stuck or creeping element moves.
+//
 // Resolution: a stick shorter than `resolution` (default one step), or of zero length, is not
 // reported: the slip (or the touch-down) around it continues.
 //
@@ -34,6 +43,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,7 +54,22 @@ namespace stiction::core {
 struct SlipEvent {
   std::string kind;  // "stick", "slip" or "open"
   double time = 0.0;
-  double uncertainty = 0.0;  // s: how precisely it was located (see SlipMonitor)
+  // How precisely `time` was located (s): the width of the interval it was known to lie in
+  // from how it was found, where a fit that converges with the step did not place it. Not
+  // in summary.json (the services read it from here).
+  //   - an onset placed in (or clamped to) the law's bracket, between the last step the law
+  //     held the element and the first it released it: the bracket's width (one step,
+  //     typically);
+  //   - a creep's onset, placed in the step after its last calm step (the speed started
+  //     rising in it): that step; a fit past that step is kept, and carries its distance
+  //     from the last calm step;
+  //   - a time taken at a step's end (touch-down, lift-off, a slip seen already above the
+  //     threshold), a threshold crossing interpolated in its step (the fit rejected), a
+  //     fitted zero clamped to its step's start: that step (the time since the previous
+  //     observation);
+  //   - a time from the zero fit (fit_zero), within its bounds: 0. Zero is not "exact": a fit
+  //     is as good as the speed follows it, which a companion run at half the step measures.
+  double uncertainty = 0.0;
 };
 
 // One stretch of a single state, from one event (or t = 0) to the next (or the end).
@@ -59,6 +84,9 @@ class SlipMonitor {
  public:
   static constexpr std::size_t kKeptHead = 500;  // the first events, kept
   static constexpr std::size_t kKeptTail = 500;  // the last events, kept
+  // Steps after the law's release within which a speed not rising (or the fitted zero) is
+  // still the release's own onset; later, it shows a creep (events.cpp).
+  static constexpr int kCreepSteps = 3;
 
   explicit SlipMonitor(double threshold, double resolution = 0.0)
       : threshold_(threshold), resolution_(resolution) {}
@@ -110,8 +138,9 @@ class SlipMonitor {
   static const char* name(State s);
   static State state_of(const SlipEvent& e);
   double first(const char* kind) const;
-  // Appends an event, applying the order and the resolution (drops short sticks).
-  void commit(State kind, double time);
+  // Appends an event, applying the order and the resolution (drops short sticks);
+  // `uncertainty` as SlipEvent's.
+  void commit(State kind, double time, double uncertainty);
   // Drops the events between the head and the last `tail` events, counting them.
   void drop_middle(std::size_t tail);
   void settle_pending_stick(bool reached);
@@ -119,7 +148,7 @@ class SlipMonitor {
   // Zero time t0 of s = c |t - t0|^p fitted to the samples; `growing`: the speed rises away
   // from t0 (slip onset, fit at the first sample) or falls toward it (stick, at the last).
   // Returns false when the samples do not fit such a curve.
-  static bool fit_zero(const std::vector<Sample>& samples, bool growing, double& t0, double& p);
+  static bool fit_zero(std::span<const Sample> samples, bool growing, double& t0, double& p);
 
   double threshold_;
   double resolution_;
@@ -129,17 +158,27 @@ class SlipMonitor {
   std::string initial_;
   double t_first_ = 0.0;
   double t1_ = 0.0, s1_ = 0.0;  // the previous observation
+  double rise1_ = 0.0;          // its speed's rise over the observation before it
   Vec3 v1_ = Vec3::Zero();
   std::vector<Sample> sliding_;  // the last (up to 3) samples of the current slip
 
   bool stick_pending_ = false;  // a stick whose fitted time lies past the last step
   double stick_raw_ = 0.0, stick_fit_ = 0.0;
+  double stick_step_ = 0.0;    // the step of stick_raw_'s crossing
   bool slip_pending_ = false;  // a slip onset waiting for its first sliding samples
   double slip_raw_ = 0.0, slip_before_t_ = 0.0;
   double last_held_ = -1.0;      // last step the law held it while stuck (< 0: none)
+  double held_speed_ = 0.0;      // the speed there
   double first_release_ = -1.0;  // first step after that the law released it (< 0: none)
+  int since_release_ = 0;        // observations since first_release_
+  bool crept_ = false;           // a creep seen more than kCreepSteps after the release
+  bool onset_crept_ = false;     // crept_ when the pending onset crossed the threshold
   double onset_low_ = -1.0, onset_high_ = -1.0;  // the pending onset's bounds (< 0: none)
-  double calm_ = -1.0;  // last step, while stuck, whose speed did not rise (< 0: none)
+  // Last step, while stuck, whose speed was calm (did not start to rise: a relative rate
+  // below kCalmRate, or a rise smaller than the step before's; < 0: none).
+  double calm_ = -1.0;
+  double calm_end_ = -1.0;   // the observation after calm_ (the speed rose there)
+  double calm_speed_ = 0.0;  // the speed at calm_
   std::vector<Sample> onset_;
 
   std::vector<SlipEvent> events_;

@@ -4,8 +4,11 @@
 // t = mu m g / k where mu < a / h (random mass, size, height, mu, ramp rate, yaw, and the face
 // it rests on); a dropped box lands when its lowest corner has fallen its height; a launched
 // box slides throughout, then sticks at v0 / (mu g); the unloaded back corners of a box about
-// to slide creep below the stick threshold and are stuck. Also the state rule on generated
-// point sets and the monitor's creep rule on speeds in closed form.
+// to slide creep below the stick threshold and are stuck. Issue 35 item 5: generated boxes
+// pulled low by a ramp (random mass, mu, size, yaw, ramp rate from fast to slow, pull height),
+// whose rear corners' law saturates 1.5 ms to 1.3 s before the box moves, slip with the box
+// at mu m g / r, and below breakaway never slip. Also the state rule on generated point sets
+// and the monitor's creep rule on speeds in closed form.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -377,6 +380,199 @@ TEST_CASE(
                     body.events[0].time, t_stop, body.events[0].time - t_stop);
         CHECK(body.events[0].time == Approx(t_stop).epsilon(2e-3));
       }
+    }
+  }
+}
+
+namespace {
+
+// A box standing upright on the floor, turned by `yaw`, pulled along its length by a world
+// force F = min(r t, f_max) through the middle of its front face at height h above the floor.
+// The pull unloads the rear corners (their normal force falls by F h / (2 a) in all, a the
+// half-length) without tipping the box when mu h < a, so their friction limit mu N is reached
+// before the whole box's, mu m g: they are released by their law and creep while the front
+// corners hold, until the box breaks loose at t* = mu m g / r.
+std::string pulled(const Box& b, double h, double r, double f_max, double duration) {
+  const Eigen::Vector3d at = b.body_point({0.5 * b.length, 0.0, h - 0.5 * b.height});
+  const Eigen::Vector3d d = b.direction();
+  const auto component = [&](double c) {
+    return "\"" + num(c) + " * min(" + num(r) + " * t, " + num(f_max) + ")\"";
+  };
+  return "[simulation]\ndt = " + num(kDt) + "\nduration = " + num(duration) +
+         "\noutput_rate = 1000.0\n" + b.table(0.5 * b.height) + "settle = true\n" +
+         "[impedances.pull]\ntype = \"force_source\"\nbody = \"" + b.name +
+         "\"\nframe = \"world\"\npoint = [" + num(at.x()) + ", " + num(at.y()) + ", " +
+         num(at.z()) + "]\nforce = [" + component(d.x()) + ", " + component(d.y()) + ", 0.0]\n";
+}
+
+// A generated pulled box: mass, mu, size, yaw, the ramp's breakaway time t* in [t_min, t_max]
+// (so the rate r = mu m g / t*) and the pull height h, with x = mu h / a in [x_min, x_max]
+// (both log-uniform): the rear corners saturate at about F = mu m g / (1 + x) (equal
+// tangential shares), x / (1 + x) of t* before the box moves: 1% (a short creep, shorter
+// than the onset fit's reach on a slow ramp) to 46% of it.
+struct Pull {
+  Box box;
+  double h = 0.0, r = 0.0, t_star = 0.0, x = 0.0;
+};
+
+Pull random_pull(std::mt19937& rng, double t_min, double t_max, double x_min, double x_max) {
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  Pull p;
+  Box& b = p.box;
+  b.m = 0.3 + 2.7 * uni(rng);
+  b.mu = 0.2 + 0.6 * uni(rng);
+  b.length = 0.1 + 0.3 * uni(rng);
+  b.width = 0.1 + 0.3 * uni(rng);
+  b.yaw = 2.0 * M_PI * uni(rng);
+  b.name = "crate";
+  p.x = x_min * std::pow(x_max / x_min, uni(rng));
+  p.h = p.x * 0.5 * b.length / b.mu;
+  b.height = std::max(p.h / (0.5 + 0.5 * uni(rng)), 0.05);  // the pull point on the face
+  p.t_star = t_min * std::pow(t_max / t_min, uni(rng));     // slow to fast ramps
+  p.r = b.mu * b.m * g / p.t_star;
+  return p;
+}
+
+// The rear bottom corners, away from the pull: body x < 0, z < 0 (box corner numbering:
+// bit 0 is +x, bit 2 is +z).
+bool rear_bottom(int corner) { return (corner & 1) == 0 && (corner & 4) == 0; }
+bool bottom(int corner) { return (corner & 4) == 0; }
+
+// From the rows: the first time a corner's tangential force reaches mu N (its law released
+// it), or a negative value; and its largest slip speed over [t0, t1].
+double release_time(const core::RunResult& r, const std::string& element, double mu) {
+  const core::Trajectory& tr = r.trajectory;
+  const int fx = *tr.find(element + ".f.x"), fy = *tr.find(element + ".f.y"),
+            n = *tr.find(element + ".n_force");
+  for (int row = 0; row < tr.row_count(); ++row) {
+    const double ft = std::hypot(tr.at(row, fx), tr.at(row, fy));
+    if (tr.at(row, n) > 0.0 && ft >= (1.0 - 1e-6) * mu * tr.at(row, n)) return tr.at(row, 0);
+  }
+  return -1.0;
+}
+
+double max_slip(const core::RunResult& r, const std::string& element, double t0, double t1) {
+  const core::Trajectory& tr = r.trajectory;
+  const int sx = *tr.find(element + ".slip.x"), sy = *tr.find(element + ".slip.y");
+  double worst = 0.0;
+  for (int row = 0; row < tr.row_count(); ++row) {
+    if (tr.at(row, 0) < t0 || tr.at(row, 0) > t1) continue;
+    worst = std::max(worst, std::hypot(tr.at(row, sx), tr.at(row, sy)));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("generated pulled boxes: corners that creep after their release slip with the box",
+          "[events][body][creep]") {
+  // Issue 35 item 5: the rear corners' law saturates before the box moves, and they creep
+  // below the threshold; they are stuck until the box breaks loose at t* = mu m g / r, and
+  // then every bottom corner slips and the box slides, all at t*.
+  //
+  // Tolerance 2 steps. The front corners' onset is placed in their law's bracket, the
+  // creeping corners' in the step after their last calm step: each one step wide, the fit
+  // placing it inside. The real onset is the quasi-static t* up to the contacts' compliance:
+  // the box creeps at a steady speed, so the friction force sums to F and saturates at
+  // mu m g, but the law's release can come a fraction of a step early (as on a block:
+  // test_event_uncertainty.cpp), and on the fastest ramps (t* a few tens of ms, a
+  // few periods of the contacts' mode) the box accelerates as the rear corners let go
+  // (friction F - m a): there it broke loose about a step late. Seen: at most 0.94 steps;
+  // the second step is margin.
+  std::mt19937 rng(3505);
+  const double threshold = 1e-3;  // the contacts' default stick threshold
+  const double tolerance = 2.0 * kDt;
+  double worst_front = 0.0, worst_rear = 0.0, worst_body = 0.0;
+  int short_creeps = 0;
+  for (int i = 0; i < 16; ++i) {
+    const Pull p = random_pull(rng, 0.02, 3.0, 0.01, 0.85);
+    const Box& b = p.box;
+    // The onset fit's reach: the speed r (t - t*)^2 / (2 m) passes the threshold after it.
+    const double reach = std::sqrt(2.0 * b.m * threshold / p.r);
+    const double duration = p.t_star + 3.0 * reach + 0.01;
+    const core::RunResult r = run_text(pulled(b, p.h, p.r, 1e300, duration));
+    REQUIRE_FALSE(r.instability);
+    const core::BodyEventHistory& body = body_of(r, b.name);
+    INFO("m " << b.m << " mu " << b.mu << " 2a " << b.length << " H " << b.height << " h " << p.h
+              << " r " << p.r << " yaw " << b.yaw << " t* " << p.t_star << ": " << kinds(body));
+    CHECK(body.initial == "stick");
+    CHECK(body.events.size() == 1);  // no partial_slip before: the creeping corners stuck
+    REQUIRE_FALSE(body.events.empty());
+    const core::BodyEvent& slide = body.events.front();
+    CHECK(slide.kind == "slide");
+    CHECK(std::abs(slide.time - p.t_star) < tolerance);
+    worst_body = std::max(worst_body, std::abs(slide.time - p.t_star));
+    double release = 1e300, creep = 0.0, front = 0.0, rear = 0.0, u_at_slide = 0.0;
+    for (int c = 0; c < 8; ++c) {
+      if (!bottom(c)) continue;
+      const std::string element = "floor." + std::to_string(c);
+      const core::SlipMonitor& m = monitor_of(r, element);
+      INFO(element << " first slip " << num(m.first_slip()));
+      CHECK(m.initial_state() == "stick");
+      REQUIRE(m.events().size() == 1);
+      const core::SlipEvent& e = m.events()[0];
+      CHECK(e.kind == "slip");
+      CHECK(std::abs(e.time - p.t_star) < tolerance);
+      // Located within a step (the bracket, or the step after the last calm one).
+      CHECK(e.uncertainty > 0.5 * kDt);
+      CHECK(e.uncertainty < 1.0 * kDt + 1e-12);
+      if (e.time == slide.time) u_at_slide = std::max(u_at_slide, e.uncertainty);
+      double& worst = rear_bottom(c) ? rear : front;
+      worst = std::max(worst, std::abs(e.time - p.t_star));
+      if (rear_bottom(c)) {
+        const double t_r = release_time(r, element, b.mu);
+        release = std::min(release, t_r);
+        creep = std::max(creep, max_slip(r, element, t_r, p.t_star - 1e-3));
+        CHECK(t_r > 0.0);
+        CHECK(t_r < p.t_star - 10.0 * kDt);  // the case this is about: a creep
+      }
+    }
+    // The body's slide carries the uncertainty of the corner events that made it.
+    CHECK(slide.uncertainty == u_at_slide);
+    short_creeps += p.t_star - release < reach;
+    worst_front = std::max(worst_front, front);
+    worst_rear = std::max(worst_rear, rear);
+    std::printf(
+        "pulled box t* %.6f s: slide %+.2f steps, corners within %.2f (front) %.2f (rear) steps; "
+        "rear corners released %.1f ms before (fit reach %.1f ms), creeping at most at %.2g "
+        "of the threshold\n",
+        p.t_star, (slide.time - p.t_star) / kDt, front / kDt, rear / kDt,
+        1e3 * (p.t_star - release), 1e3 * reach, creep / threshold);
+  }
+  std::printf(
+      "pulled boxes: worst onset error %.2f steps (front corners), %.2f (rear, creeping), %.2f "
+      "(body slide); %d of 16 creeps shorter than the fit's reach\n",
+      worst_front / kDt, worst_rear / kDt, worst_body / kDt, short_creeps);
+  CHECK(short_creeps >= 3);  // the cases the reach alone took for onsets at the release
+}
+
+TEST_CASE("generated pulled boxes below breakaway: creeping corners never slip",
+          "[events][body][creep]") {
+  std::mt19937 rng(3506);
+  for (int i = 0; i < 4; ++i) {
+    const Pull p = random_pull(rng, 0.05, 0.5, 0.1, 0.85);
+    const Box& b = p.box;
+    // Halfway between the rear corners' release, at about 1 / (1 + x) of the breakaway force,
+    // and the breakaway (at least 4.5% below it): the pull either stops rising there and holds
+    // for long, or the run ends when the ramp reaches it.
+    const double fraction = (1.0 + 0.5 * p.x) / (1.0 + p.x);
+    const bool hold = i % 2 == 0;
+    const double f_max = hold ? fraction * b.mu * b.m * g : 1e300;
+    const double duration = hold ? 2.0 * p.t_star + 0.1 : fraction * p.t_star;
+    const core::RunResult r = run_text(pulled(b, p.h, p.r, f_max, duration));
+    REQUIRE_FALSE(r.instability);
+    const core::BodyEventHistory& body = body_of(r, b.name);
+    INFO("m " << b.m << " mu " << b.mu << " h " << p.h << " r " << p.r << ": " << kinds(body));
+    CHECK(body.initial == "stick");
+    CHECK(body.events.empty());
+    for (int c = 0; c < 8; ++c) {
+      if (!bottom(c)) continue;
+      const std::string element = "floor." + std::to_string(c);
+      const core::SlipMonitor& m = monitor_of(r, element);
+      INFO(element);
+      CHECK(m.initial_state() == "stick");
+      CHECK(m.total() == 0);
+      if (rear_bottom(c)) CHECK(release_time(r, element, b.mu) > 0.0);  // it did creep
     }
   }
 }
