@@ -283,14 +283,17 @@ void SlipMonitor::settle_pending_slip() {
     // bracket [calm_, calm_end_], from its speed there. The fit is kept in that step (the
     // body's transient as the other elements let go can still draw it back: a crate's
     // corners by 0.4 ms of a 16 ms reach, fitted from zero); a fit past it (the rise there
-    // was not the onset's) is kept, known only to lie between the two.
+    // was not the onset's) is kept as a fit: it converges with the step (an elbow loaded
+    // slowly by gravity: 1.00527, 1.00580, 1.00611, 1.00626 s at 1e-4 ... 1e-5 s), which a
+    // companion run measures, so it carries one step, not its distance from the calm step
+    // (1 ms there at every step, which no step could bring within a tolerance).
     time = onset_above(level(calm_speed_), fitted);
     const double high = std::max(calm_end_, calm_);
     if (time <= high) {
       time = std::max(time, calm_);
       uncertainty = high - calm_;
     } else {
-      uncertainty = time - calm_;
+      uncertainty = step;
     }
   }
   onset_.clear();

@@ -61,8 +61,8 @@ struct SlipEvent {
   //     held the element and the first it released it: the bracket's width (one step,
   //     typically);
   //   - a creep's onset, placed in the step after its last calm step (the speed started
-  //     rising in it): that step; a fit past that step is kept, and carries its distance
-  //     from the last calm step;
+  //     rising in it): that step; a fit past that step is kept, and carries one step (a
+  //     fit converges with the step, which a companion run measures);
   //   - a time taken at a step's end (touch-down, lift-off, a slip seen already above the
   //     threshold), a threshold crossing interpolated in its step (the fit rejected), a
   //     fitted zero clamped to its step's start: that step (the time since the previous

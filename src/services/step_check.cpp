@@ -64,7 +64,7 @@ bool from_cache(const nlohmann::json& j, StepCheck& c) {
 std::string StepCheck::verdict() const {
   if (!applies || skipped) return "not_checked";
   if (!unbounded && dt > instability_limit) return trial_confirmed ? "ok" : "unstable";
-  if (dt > chatter_limit) return "chatter";
+  if (dt > chatter_limit) return trial_confirmed ? "ok" : "chatter";
   return "ok";
 }
 
@@ -226,10 +226,13 @@ std::string step_check_text(const StepCheck& c) {
                   "on this scene (stable up to %.3g s, but sticks may come late or not at all)",
                   dt.c_str(), c.chatter_limit, c.integrator.c_str(), c.instability_limit);
   } else if (verdict == "ok" && c.trial_confirmed) {
+    const bool past_instability = !c.unbounded && c.dt > c.instability_limit;
     std::snprintf(text, sizeof text,
-                  "dt = %s s is above %s's predicted instability limit %.3g s on this scene, "
-                  "but a trial at this step ran stable and accurate",
-                  dt.c_str(), c.integrator.c_str(), c.instability_limit);
+                  "dt = %s s is above %s's predicted %s %.3g s on this scene, but a trial at "
+                  "this step ran stable and accurate",
+                  dt.c_str(), c.integrator.c_str(),
+                  past_instability ? "instability limit" : "step where stuck friction chatters",
+                  past_instability ? c.instability_limit : c.chatter_limit);
   } else if (verdict == "ok") {
     std::snprintf(text, sizeof text, "dt = %s s is below %s's predicted limits on this scene",
                   dt.c_str(), c.integrator.c_str());

@@ -50,8 +50,8 @@ struct StepCheck {
   // Taken from another scene of the same dynamics (a sweep's point: SharedStepChecks).
   bool shared = false;
   bool forced = false;  // --force-step: run even though the verdict is `unstable`
-  // Above the predicted instability limit, a trial of the step itself (bounded as a pilot
-  // run, against half the step) ran stable and accurate: the verdict is `ok`.
+  // Above a predicted limit (instability or chatter), a trial of the step itself (bounded
+  // as a pilot run, against half the step) ran stable and accurate: the verdict is `ok`.
   bool trial_confirmed = false;
   std::string trial;  // what the trial found, when one ran
 

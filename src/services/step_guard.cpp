@@ -24,9 +24,20 @@ StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget,
       guard.refusal = suggest_step(scene, guard.check, suggestion_budget);
     }
   } else if (verdict == "chatter") {
-    char below[120];
-    std::snprintf(below, sizeof below, "; steps below %.3g s avoid it", guard.check.safe_step());
-    guard.warning = step_check_text(guard.check) + below;
+    // The chatter limit is a linear prediction too: a trial of this step decides whether
+    // the warning is right (a stuck element that chatters in the linearization may still
+    // stick on time).
+    const StepSuggestion trial = trial_at_step(scene, suggestion_budget);
+    guard.check.trial = trial.how;
+    if (trial.verified) {
+      guard.check.trial_confirmed = true;
+    } else {
+      char below[120];
+      std::snprintf(below, sizeof below, "; steps below %.3g s avoid it",
+                    guard.check.safe_step());
+      guard.warning = step_check_text(guard.check) + below + "; a trial at this step: " +
+                      trial.how;
+    }
   } else if (guard.check.skipped) {
     guard.warning = step_check_text(guard.check);
   }

@@ -1,9 +1,12 @@
 // The step guard as every command that simulates applies it (run, compare, verify, each
-// point of a sweep): the step check of app/step_check.hpp, then
-//   unstable and not forced -> a refusal with a confirmed step to suggest (exit 3, nothing
-//                              simulated, nothing written);
-//   chatter                 -> a warning (stderr unless quiet, and summary.json);
-//   ok, not_checked         -> nothing to say.
+// point of a sweep): the step check of services/step_check.hpp, then, above a predicted
+// limit, a trial of the step itself (services/suggest_step.hpp: trial_at_step, judged as
+// `run` judges a run) before anything is said:
+//   unstable, the trial fails, not forced -> a refusal with a confirmed step to suggest
+//                                            (exit 3, nothing simulated, nothing written);
+//   chatter, the trial fails              -> a warning (stderr unless quiet, summary.json);
+//   the trial confirms the step           -> `ok`, step_check.confirmed_by_trial;
+//   ok, not_checked                       -> nothing to say.
 #pragma once
 
 #include <nlohmann/json.hpp>

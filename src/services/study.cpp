@@ -385,7 +385,8 @@ class Study {
       if (!run.instability) {
         AccuracySettings on;
         on.mode = AccuracyMode::on;
-        on.rule = judge_rule_;
+        on.rule = judge_rule_;  // at the study's target, as the rows were judged
+        on.rule->event_tolerance = on.rule->final_tolerance = options_.target_error;
         const AccuracyEstimate e = estimate_accuracy(scene_, run, {}, on);
         const Accuracy a = accuracy(run);
         r.run_verdict = e.verdict;
