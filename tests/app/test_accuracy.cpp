@@ -21,6 +21,7 @@
 #include "services/accuracy.hpp"
 #include "generated_scenes.hpp"
 #include "run_stiction.hpp"
+#include "scene_template.hpp"
 #include "scene/scene.hpp"
 
 namespace {
@@ -43,17 +44,8 @@ struct Case {
   std::vector<double> dts;
 };
 
-std::string fill(std::string text, const std::string& integrator, double dt) {
-  std::ostringstream d;
-  d.precision(17);
-  d << dt;
-  for (const auto& [key, value] :
-       {std::pair<std::string, std::string>{"INTEGRATOR", integrator}, {"DT", d.str()}}) {
-    for (auto at = text.find(key); at != std::string::npos; at = text.find(key)) {
-      text.replace(at, key.size(), value);
-    }
-  }
-  return text;
+std::string fill(const std::string& text, const std::string& integrator, double dt) {
+  return testing::fill_template(text, integrator, dt);
 }
 
 // A duration past the event and a whole number of 2 ms: the last row then lies at the

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "run_stiction.hpp"
+#include "scene_template.hpp"
 #include "scene/scene.hpp"
 #include "services/accuracy.hpp"
 
@@ -40,17 +41,8 @@ struct Case {
   std::vector<double> dts;
 };
 
-std::string fill(std::string text, const std::string& integrator, double dt) {
-  std::ostringstream d;
-  d.precision(17);
-  d << dt;
-  for (const auto& [key, value] :
-       {std::pair<std::string, std::string>{"INTEGRATOR", integrator}, {"DT", d.str()}}) {
-    for (auto at = text.find(key); at != std::string::npos; at = text.find(key)) {
-      text.replace(at, key.size(), value);
-    }
-  }
-  return text;
+std::string fill(const std::string& text, const std::string& integrator, double dt) {
+  return testing::fill_template(text, integrator, dt);
 }
 
 double duration_after(double t) { return 0.002 * std::ceil(1.3 * t / 0.002); }

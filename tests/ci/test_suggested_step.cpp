@@ -12,6 +12,7 @@
 //   confirmed.
 // The scenes run for at most 1.5 s of simulated time (--duration) to keep the suite fast.
 #include <catch2/catch.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -54,7 +55,9 @@ void guarded_steps(const std::string& scene) {
                  Contains("while trials at the larger step confirmed it"));
       // Over the scene's own duration, as check's trials judged it (final values at another
       // time are other quantities).
-      const SplitOutcome at = run_split({"run", scene, "--dt", std::to_string(recommended),
+      char exact[32];  // the step as check gives it (std::to_string keeps 6 decimals)
+      std::snprintf(exact, sizeof exact, "%.17g", recommended);
+      const SplitOutcome at = run_split({"run", scene, "--dt", exact,
                                          "--no-video", "--no-plots", "--quiet", "--accuracy",
                                          "on", "--out", "rec"},
                                         dir);
