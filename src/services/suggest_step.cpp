@@ -58,12 +58,12 @@ struct Inaccuracy {
   double excess = 0.0;
 };
 
-std::optional<Inaccuracy> trial_inaccurate(const scene::Scene& scene,
+std::optional<Inaccuracy> trial_inaccurate(const scene::Scene& scene, const JudgeRule& rule,
                                            const core::RunOptions& trial_options,
                                            const core::RunResult& trial,
                                            const core::RunResult& reference) {
   const MotionScales scales(reference.trajectory);
-  ComparisonSetup setup = companion_setup(trial_options, read_judge_rule(scene));
+  ComparisonSetup setup = companion_setup(trial_options, rule);
   setup.scales = &scales;
   const RunComparison c = compare_runs(*scene.network, trial, reference, setup);
   if (c.accurate()) return std::nullopt;
@@ -91,6 +91,8 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
   const auto halvings = [](int n) {
     return n == 0 ? std::string() : format(", halved %g time(s) after failed trials", n);
   };
+  // The scene's [accuracy] rule, read once for all the trials (run has validated it).
+  const JudgeRule rule = read_judge_rule(scene);
   std::string last_failure;
   double previous_excess = 0.0;
   int stalled = 0;
@@ -125,7 +127,7 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
         s.dt /= 2.0;
         continue;
       }
-      if (const auto differ = trial_inaccurate(scene, options, r, ref)) {
+      if (const auto differ = trial_inaccurate(scene, rule, options, r, ref)) {
         last_failure = differ->reason;
         // A quantity that does not converge (a bounce's phase, a count of micro-bounces the
         // rule judges) is not fixed by a smaller step: after two halvings that did not bring
