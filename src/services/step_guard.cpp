@@ -1,10 +1,11 @@
 #include "services/step_guard.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace stiction::services {
 
-StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget,
+StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_work,
                      SharedStepChecks* shared) {
   StepGuard guard;
   guard.check = shared != nullptr ? shared->check(scene) : check_step(scene);
@@ -13,7 +14,7 @@ StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget,
     if (force) {
       guard.check.forced = true;
       guard.warning = step_check_text(guard.check) + "; run anyway (--force-step)";
-    } else if (const StepSuggestion trial = trial_at_step(scene, suggestion_budget);
+    } else if (const StepSuggestion trial = trial_at_step(scene, std::min(kTrialWork, suggestion_work));
                trial.verified) {
       // The linear prediction was conservative here: a trial of this very step ran stable
       // and accurate, so the step is not refused (and the run's own monitors stay on).
@@ -21,13 +22,13 @@ StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget,
       guard.check.trial = trial.how;
     } else {
       guard.check.trial = trial.how;
-      guard.refusal = suggest_step(scene, guard.check, suggestion_budget);
+      guard.refusal = suggest_step(scene, guard.check, suggestion_work);
     }
   } else if (verdict == "chatter") {
     // The chatter limit is a linear prediction too: a trial of this step decides whether
     // the warning is right (a stuck element that chatters in the linearization may still
     // stick on time).
-    const StepSuggestion trial = trial_at_step(scene, suggestion_budget);
+    const StepSuggestion trial = trial_at_step(scene, std::min(kTrialWork, suggestion_work));
     guard.check.trial = trial.how;
     if (trial.verified) {
       guard.check.trial_confirmed = true;

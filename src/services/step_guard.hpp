@@ -27,10 +27,10 @@ struct StepGuard {
   std::optional<std::string> warning;     // set: the run goes on with this warning
 };
 
-// `force`: --force-step. `suggestion_budget`: wall-clock seconds the trials of a refusal's
-// suggestion may take. `shared`: step checks shared among scenes of the same dynamics (a
+// `force`: --force-step. `suggestion_work`: the component-steps the trials of a refusal's
+// suggestion may take (suggest_step.hpp; the trial of the step itself takes kTrialWork). `shared`: step checks shared among scenes of the same dynamics (a
 // sweep's points).
-StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_budget = 30.0,
+StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_work = kSuggestionWork,
                      SharedStepChecks* shared = nullptr);
 
 // The guard's warning located as the scene's warnings are: at [simulation] dt of the scene

@@ -1,7 +1,7 @@
 #include "services/suggest_step.hpp"
 
-#include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <optional>
@@ -22,31 +22,42 @@ std::string format(const char* pattern, double a, double b = 0.0) {
   return text;
 }
 
-// Thrown from the progress callback to end a trial that has used up its time.
+// Thrown from the progress callback to end a trial that has used up the work budget.
 struct TrialTimeout {
   double reached = 0.0;
 };
 
-using Clock = std::chrono::steady_clock;
-
 // Halvings of a candidate after failed trials: a stick inside a short impact can need a step
 // several hundred times below the stability limit (two glancing spheres: 1.5e-6 s against
-// 7e-4 s), and the trials' time budget bounds the cost anyway.
+// 7e-4 s), and the trials' work budget bounds the cost anyway.
 constexpr int kMaxHalvings = 11;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+// The work the trials have done, in component-steps (steps times the scene's components), as
+// the pilot run is bounded (pilot.hpp): counted, not timed, so that the same scene gets the
+// same verdict and the same advice on every machine, instrumented builds included.
+struct TrialWork {
+  double limit = 0.0;
+  double spent = 0.0;
+  double components = 1.0;
+  bool exhausted() const { return spent >= limit; }
+};
 
-// A run of the scene at `options`, ended by TrialTimeout once the budget is used up.
-core::RunResult timed_run(scene::Scene& scene, const core::RunOptions& options,
-                          Clock::time_point start, double budget) {
+// A run of the scene at `options`, ended by TrialTimeout once the work budget is used up (the
+// progress ticks come at fixed step counts, so where it ends does not depend on the machine).
+core::RunResult counted_run(scene::Scene& scene, const core::RunOptions& options,
+                            TrialWork& work) {
   const double duration = options.duration;
+  const double steps = std::ceil(duration / options.dt);
   const auto callback = [&](double fraction) {
     if (sys::interrupted()) throw sys::Interrupted{};
-    if (seconds_since(start) > budget) throw TrialTimeout{fraction * duration};
+    if (work.spent + fraction * steps * work.components > work.limit) {
+      work.spent = work.limit;
+      throw TrialTimeout{fraction * duration};
+    }
   };
-  return core::simulate(*scene.network, options, callback);
+  core::RunResult r = core::simulate(*scene.network, options, callback);
+  work.spent += static_cast<double>(r.steps) * work.components;
+  return r;
 }
 
 // Why a trial is not accurate against the reference at half its step, by the one
@@ -83,11 +94,10 @@ std::optional<Inaccuracy> trial_inaccurate(const scene::Scene& scene, const Judg
 // Confirms `candidate` for a run at `base` (its integrator and duration), halving it after
 // each failed trial; `origin` says where the candidate came from.
 StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, double candidate,
-                            const std::string& origin, double trial_budget_seconds,
+                            const std::string& origin, TrialWork& work,
                             bool pilot_bounded, int trials = kMaxHalvings + 1) {
   StepSuggestion s;
   s.dt = candidate;
-  const auto start = Clock::now();
   const auto halvings = [](int n) {
     return n == 0 ? std::string() : format(", halved %g time(s) after failed trials", n);
   };
@@ -97,7 +107,7 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
   double previous_excess = 0.0;
   int stalled = 0;
   for (int trial = 0; trial < trials; ++trial) {
-    if (seconds_since(start) >= trial_budget_seconds) break;
+    if (work.exhausted()) break;
     core::RunOptions options = base;
     options.dt = s.dt;
     // Each trial is bounded (issue 25): a scene of 1e305 s at the candidate would be
@@ -112,14 +122,14 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
     options.stop = &sys::interrupt_flag();
     const core::RunOptions reference_options = companion_options(options);
     try {
-      const core::RunResult r = timed_run(scene, options, start, trial_budget_seconds);
+      const core::RunResult r = counted_run(scene, options, work);
       if (r.interrupted) throw sys::Interrupted{};
       if (r.instability) {
         last_failure = format("unstable at t = %.3g s", r.instability->time);
         s.dt /= 2.0;
         continue;
       }
-      const core::RunResult ref = timed_run(scene, reference_options, start, trial_budget_seconds);
+      const core::RunResult ref = counted_run(scene, reference_options, work);
       if (ref.interrupted) throw sys::Interrupted{};
       if (ref.instability) {
         last_failure = format("the reference at half the step went unstable at t = %.3g s",
@@ -156,7 +166,7 @@ StepSuggestion confirm_step(scene::Scene& scene, const core::RunOptions& base, d
     } catch (const TrialTimeout& t) {
       s.how = origin + halvings(trial) +
               format(
-                  "; not confirmed: the trials reached t = %.3g s of %g s within their time "
+                  "; not confirmed: the trials reached t = %.3g s of %g s within their work "
                   "budget",
                   t.reached, options.duration);
       return s;
@@ -182,50 +192,53 @@ std::string predicted_origin(const StepCheck& check) {
   return format("0.8 x the predicted instability limit %.3g s", check.instability_limit);
 }
 
+TrialWork work_budget(const scene::Scene& scene, double component_steps) {
+  const core::Network& n = *scene.network;
+  return {component_steps, 0.0,
+          std::max(1.0, static_cast<double>(n.admittances().size() + n.impedances().size()))};
+}
+
 }  // namespace
 
-StepSuggestion suggest_step(scene::Scene& scene, const StepCheck& check,
-                            double trial_budget_seconds, bool pilot_bounded) {
+StepSuggestion suggest_step(scene::Scene& scene, const StepCheck& check, double trial_work,
+                            bool pilot_bounded) {
   const core::RunOptions failed = scene.run;
   if (core::is_adaptive(failed.integrator)) {
     return {failed.dt / 4.0, false, "lower the tolerance instead", ""};
   }
+  TrialWork work = work_budget(scene, trial_work);
   const double predicted = check.safe_step();
   if (check.applies && !check.skipped && predicted < failed.dt) {
-    return confirm_step(scene, failed, predicted, predicted_origin(check), trial_budget_seconds,
-                        pilot_bounded);
+    return confirm_step(scene, failed, predicted, predicted_origin(check), work, pilot_bounded);
   }
   return confirm_step(scene, failed, failed.dt / 4.0,
                       "a quarter of the failed step (the prediction sees no limit below it)",
-                      trial_budget_seconds, pilot_bounded);
+                      work, pilot_bounded);
 }
 
-StepSuggestion trial_at_step(scene::Scene& scene, double trial_budget_seconds) {
-  StepSuggestion s = confirm_step(scene, scene.run, scene.run.dt, "the step itself",
-                                  trial_budget_seconds, true, 1);
+StepSuggestion trial_at_step(scene::Scene& scene, double trial_work) {
+  TrialWork work = work_budget(scene, trial_work);
+  StepSuggestion s = confirm_step(scene, scene.run, scene.run.dt, "the step itself", work, true, 1);
   s.dt = scene.run.dt;  // a failed trial halved it: the answer is about this step
   if (s.verified) {
     s.how = "it ran stable and accurate against a run at half the step (docs/accuracy.md)";
   } else if (!s.failure.empty()) {
     s.how = "it failed: " + s.failure;
   } else {
-    s.how = format("not finished within its %g s budget", trial_budget_seconds);
+    s.how = format("not finished within its work budget of %.3g component-steps", trial_work);
   }
   return s;
 }
 
-StepSuggestion recommend_step(scene::Scene& scene, const StepCheck& check,
-                              double trial_budget_seconds) {
+StepSuggestion recommend_step(scene::Scene& scene, const StepCheck& check, double trial_work) {
   core::RunOptions base = scene.run;
   base.integrator = check.integrator;
-  const auto start = Clock::now();
+  TrialWork work = work_budget(scene, trial_work);
   const bool limited = !check.unbounded || check.chatter_limit < kMaxAnalysedStep;
   StepSuggestion s =
-      limited ? confirm_step(scene, base, check.safe_step(), predicted_origin(check),
-                             trial_budget_seconds, true)
+      limited ? confirm_step(scene, base, check.safe_step(), predicted_origin(check), work, true)
               : confirm_step(scene, base, scene.run.dt,
-                             "the scene's step (no limit predicted up to 1 s)",
-                             trial_budget_seconds, true);
+                             "the scene's step (no limit predicted up to 1 s)", work, true);
   if (!s.verified) return s;
   // The prediction is linear and its chatter limit conservative (a stuck contact that
   // chatters in the linearization may still stick on time): grow the confirmed step by
@@ -236,10 +249,8 @@ StepSuggestion recommend_step(scene::Scene& scene, const StepCheck& check,
   constexpr int kGrowthTrials = 6;
   int grown = 0;
   for (; grown < kGrowthTrials; ++grown) {
-    const double spent = seconds_since(start);
-    if (spent >= trial_budget_seconds) break;
-    const StepSuggestion bigger = confirm_step(scene, base, s.dt * kGrowth, "",
-                                               trial_budget_seconds - spent, true, 1);
+    if (work.exhausted()) break;
+    const StepSuggestion bigger = confirm_step(scene, base, s.dt * kGrowth, "", work, true, 1);
     if (!bigger.verified) break;
     s.dt = bigger.dt;
   }

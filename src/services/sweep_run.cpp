@@ -71,9 +71,9 @@ class DiscardRows final : public core::RowSink {
   void write(const double*, std::size_t, std::size_t) override {}
 };
 
-// Wall-clock seconds the trial runs behind one point's suggested step may take: a sweep has
-// many points, so less than `run` allows.
-constexpr double kSuggestionBudget = 5.0;
+// The work (component-steps, suggest_step.hpp) the trial runs behind one point's suggested
+// step may take: a sweep has many points, so a sixth of what `run` allows.
+constexpr double kSuggestionBudget = kSuggestionWork / 6.0;
 
 class PointRunner {
  public:

@@ -175,7 +175,7 @@ TEST_CASE("consistency: check, the guard, study and run agree on generated scene
     if (ratio < 0.8) {
       const double h = std::sqrt(predicted * bisected);
       scene.run.dt = h;
-      const services::StepGuard guard = services::guard_step(scene, false, 10.0);
+      const services::StepGuard guard = services::guard_step(scene, false, services::kTrialWork);
       scene.run.dt = scene.authored_dt;
       const Verdict whole = run_at(scene, h);
       between = (guard.refusal ? "refused " : "runs ") + number(h) + " (" +
@@ -187,7 +187,7 @@ TEST_CASE("consistency: check, the guard, study and run agree on generated scene
     }
     CHECK(ratio <= 1.25);  // never refuses a step that the whole run shows stable
 
-    const services::StepSuggestion rec = services::recommend_step(scene, check, 20.0);
+    const services::StepSuggestion rec = services::recommend_step(scene, check, 2.0 * services::kTrialWork);
     const Verdict at_rec = run_at(scene, rec.dt);
 
     services::StudyOptions options;
