@@ -7,19 +7,22 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
-#include "services/accuracy.hpp"
-#include "services/pilot.hpp"
-#include "services/run_comparison.hpp"
-#include "services/study_grid.hpp"
 #include "core/integrator.hpp"
-#include "core/stability.hpp"
+#include "core/integrator_traits.hpp"
 #include "scene/scene.hpp"
+#include "services/accuracy.hpp"
+#include "services/study_grid.hpp"
+#include "services/study_limits.hpp"
+#include "services/study_reference.hpp"
 #include "sys/interrupt.hpp"
 
+// The study's course: the reference (study_reference.hpp), the predicted limits, the grids of
+// each integrator, the two bisections (study_limits.hpp), the candidates
+// (study_recommendation.cpp) and the recommendation confirmed as `run` judges it.
 namespace stiction::services {
 namespace {
 
@@ -54,74 +57,25 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// What the study needs from one reference-like run: the key columns and the event times.
-struct Measured {
-  std::vector<std::vector<double>> key;  // per key signal, per row
-  std::vector<double> event_times;       // per measured event, NaN: none
-  double final_time = 0.0;               // time of the last row
-};
-
-// One run measured against the target (StudyRow's accuracy fields).
-struct Accuracy {
-  double event_time_error = kNaN;  // NaN: no events
-  double final_value_error = kNaN;
-  double worst = 0.0;      // the larger of the two (infinity: outside the target)
-  bool meets = false;      // every judged quantity within its tolerance
-  std::string worst_name;  // the worst quantity, or the first reason it is not within
-};
-
-// A whole run at one step, kept so that the two bisections never run the same step twice.
-struct Probe {
-  bool stable = false;
-  bool meets_target = false;
-  std::string failure;
-  long evaluations = 0;
-  double cpu_seconds = 0.0;
-  double event_time_error = kNaN;
-  double final_value_error = kNaN;
-};
-
-// The event kinds measured per element: its first stick and its first slip.
-constexpr const char* kEventKinds[] = {"stick", "slip"};
-
-double first_event(const core::RunResult& run, const std::string& element, const std::string& kind) {
-  for (const auto& history : run.slip_events) {
-    if (history.component != element) continue;
-    const double t = kind == "stick" ? history.monitor.stick_time() : history.monitor.first_slip();
-    return t >= 0.0 ? t : kNaN;
-  }
-  return kNaN;
-}
-
 class Study {
  public:
   Study(const StudyOptions& options, const StudyLog& log)
       : options_(options),
         log_(log),
         scene_(scene::load_scene(options.scene, options.overrides)),
-        judge_rule_(read_judge_rule(scene_)) {
+        reference_(scene_, options.target_error, result_),
+        limits_(options, result_,
+                [this](const std::string& integrator, double h) { return probe(integrator, h); },
+                log) {
     result_.scene = scene_.name;
     result_.scene_dt = scene_.run.dt;
     result_.duration = scene_.run.duration;
     result_.output_rate = scene_.run.output_rate;
     result_.reference_dt = options.reference_dt.value_or(scene_.run.dt / 16.0);
     if (!(result_.reference_dt > 0.0)) throw scene::InputError("--reference-dt: must be > 0");
-    std::vector<std::string> columns{"t"};
-    for (auto& c : scene_.network->signal_columns()) columns.push_back(std::move(c));
-    result_.key_signals = key_signal_columns(columns);
-    if (result_.key_signals.empty()) {
-      throw scene::InputError(scene_.name + ": the scene has no key signals (*.p.*, *.v.*, *.theta.*) to compare");
-    }
-    for (const auto& name : result_.key_signals) key_columns_.push_back(index_of(columns, name));
-    for (const auto& imp : scene_.network->impedances()) {
-      if (core::capabilities_of(*imp).slip == nullptr) continue;
-      result_.slip_components.push_back(imp->name());
-      for (const char* kind : kEventKinds) events_.push_back({imp->name(), kind});
-    }
     integrators_ = options.integrators.empty() ? core::integrator_names() : options.integrators;
-    const auto known = core::integrator_names();
     for (const auto& name : integrators_) {
-      if (std::find(known.begin(), known.end(), name) == known.end()) {
+      if (core::find_integrator(name) == nullptr) {
         core::make_stepper(name, 1, 1.0, 1.0);  // throws, naming the known integrators
       }
     }
@@ -144,7 +98,7 @@ class Study {
     const auto start = std::chrono::steady_clock::now();
     run_reference();
     const bool any_fixed = std::any_of(integrators_.begin(), integrators_.end(), is_fixed_step);
-    if (any_fixed && (options_.dts.empty() || options_.bisect)) predict_limits();
+    if (any_fixed && (options_.dts.empty() || options_.bisect)) limits_.predict(scene_, integrators_);
     for (const auto& integrator : integrators_) {
       if (is_fixed_step(integrator)) {
         run_fixed_grid(integrator);
@@ -157,8 +111,8 @@ class Study {
     }
     if (options_.bisect) {
       for (auto& limit : result_.limits) {
-        bisect(limit.integrator, limit);
-        bisect_accuracy(limit.integrator, limit);
+        limits_.bisect_stable(limit, scene_.run.dt);
+        limits_.bisect_accurate(limit);
         say("largest step " + limit.integrator + ": stable " + format_g(limit.bisected, 4) +
             " s (" + std::to_string(limit.runs) + " runs), within the target " +
             format_g(limit.accurate, 4) + " s (" + std::to_string(limit.accuracy_runs) +
@@ -179,13 +133,13 @@ class Study {
   }
 
  private:
-  static int index_of(const std::vector<std::string>& columns, const std::string& name) {
-    const auto it = std::find(columns.begin(), columns.end(), name);
-    return static_cast<int>(it - columns.begin());
-  }
-
   void say(const std::string& line) const {
     if (log_) log_(line);
+  }
+
+  void note(const std::string& text) {
+    result_.notes.push_back(text);
+    say(text);
   }
 
   core::RunOptions options_for(const std::string& integrator, double dt, double tolerance) const {
@@ -200,151 +154,15 @@ class Study {
     return run;
   }
 
-  Measured measure(const core::RunResult& run) const {
-    Measured m;
-    const core::Trajectory& tr = run.trajectory;
-    for (int c : key_columns_) m.key.push_back(tr.column(c));
-    const std::vector<double> times = tr.column(0);
-    m.final_time = times.empty() ? kNaN : times.back();
-    for (const auto& [element, kind] : events_) m.event_times.push_back(first_event(run, element, kind));
-    return m;
-  }
-
-  // How far a run is from the reference, by the one comparison of two runs that `run`'s
-  // accuracy verdict uses (run_comparison.hpp): the scene's [accuracy] rule, its default
-  // tolerances set to the target, the reference taken as the truth (factors 1).
-  Accuracy accuracy(const core::RunResult& run) const {
-    ComparisonSetup setup;
-    setup.rule = judge_rule_;
-    setup.rule.event_tolerance = setup.rule.final_tolerance = options_.target_error;
-    setup.scales = &reference_scales_;
-    setup.run_label = "the run";
-    setup.other_label = "the reference";
-    const RunComparison c = compare_runs(*scene_.network, run, reference_run_, setup);
-    Accuracy a;
-    const bool any_event = std::any_of(c.events.begin(), c.events.end(),
-                                       [](const ComparedQuantity& q) { return q.judged; });
-    a.event_time_error = any_event ? c.worst_event : kNaN;
-    a.final_value_error = c.worst_final;
-    a.worst = std::max(c.worst_event, c.worst_final);
-    a.meets = c.accurate();
-    a.worst_name = c.accurate() ? c.worst_name : c.reasons.front();
-    return a;
-  }
-
-  // Largest error of each key signal over the rows both runs have. With a fixed step dt
-  // (> 0), only the rows that fall on a step of the run are compared when there are any:
-  // the others are interpolated linearly between two steps, an O(dt^2) error of the output,
-  // not of the integrator (it would cap rk4's observed order at 2). A step that is no
-  // fraction of the output interval (the default grid's steps around the predicted limits)
-  // lands on few rows or none after t = 0: with fewer than 10 such rows, every row is compared.
-  std::vector<double> signal_errors(const Measured& run, double dt) const {
-    std::vector<bool> use;
-    const std::size_t all = run.key.empty() ? 0 : std::min(run.key[0].size(), reference_.key[0].size());
-    std::size_t on_steps = 0;
-    for (std::size_t r = 0; r < all; ++r) {
-      const double steps = static_cast<double>(r) / result_.output_rate / dt;
-      use.push_back(dt <= 0.0 || std::abs(steps - std::round(steps)) < 1e-6);
-      if (r > 0 && use.back()) ++on_steps;
-    }
-    if (on_steps < std::min<std::size_t>(10, all > 0 ? all - 1 : 0) || on_steps == 0)
-      use.assign(all, true);
-    std::vector<double> errors;
-    for (std::size_t s = 0; s < run.key.size(); ++s) {
-      const auto& a = run.key[s];
-      const auto& b = reference_.key[s];
-      const std::size_t rows = std::min(a.size(), b.size());
-      double worst = 0.0;
-      for (std::size_t r = 0; r < rows; ++r) {
-        if (!use[r]) continue;
-        const double e = std::abs(a[r] - b[r]);
-        worst = std::isfinite(e) ? std::max(worst, e) : std::numeric_limits<double>::infinity();
-      }
-      errors.push_back(worst);
-    }
-    return errors;
-  }
-
-  // max over signals of error / scale, and the signal that attains it.
-  std::pair<double, std::string> key_error(const std::vector<double>& errors) const {
-    double worst = 0.0;
-    std::string name;
-    for (std::size_t s = 0; s < errors.size(); ++s) {
-      const double e = errors[s] / result_.key_scales[s];
-      if (!(e <= worst)) {  // also takes NaN and infinity
-        worst = e;
-        name = result_.key_signals[s];
-      }
-    }
-    return {worst, name};
-  }
-
-  // Scale of each key signal: the largest |value| of any axis of its vector signal
-  // (`sphere.p.*`) in the reference, so that one axis that stays near zero (the height of a
-  // rolling sphere) is measured against the size of the motion, not against itself.
-  void set_scales() {
-    std::map<std::string, double> group_max;
-    auto group_of = [](const std::string& name) { return name.substr(0, name.rfind('.')); };
-    for (std::size_t s = 0; s < reference_.key.size(); ++s) {
-      double m = 0.0;
-      for (double v : reference_.key[s]) m = std::max(m, std::abs(v));
-      double& g = group_max[group_of(result_.key_signals[s])];
-      g = std::max(g, m);
-    }
-    for (const auto& name : result_.key_signals) {
-      const double g = group_max[group_of(name)];
-      result_.key_scales.push_back(g > 0.0 ? g : 1.0);
-    }
-  }
-
   void run_reference() {
     const double h = result_.reference_dt;
-    say("reference: rk4, dt = " + format_g(h) + " s ...");
-    reference_run_ =
-        core::simulate(*scene_.network, options_for(result_.reference_integrator, h, 0.0));
-    const core::RunResult& ref = reference_run_;
-    if (ref.instability) {
-      throw scene::InputError("--reference-dt " + format_g(h) +
-                              ": the reference run (rk4) went unstable at t = " +
-                              format_g(ref.instability->time) + " s in '" +
-                              ref.instability->component + "'; pass a smaller --reference-dt");
-    }
-    result_.reference_steps = ref.steps;
-    result_.reference_wall_seconds = ref.wall_seconds;
-    // Measured from now on: the events the reference has.
-    const Measured all = measure(ref);
-    std::vector<std::pair<std::string, std::string>> present;
-    for (std::size_t i = 0; i < events_.size(); ++i) {
-      if (std::isnan(all.event_times[i])) continue;
-      present.push_back(events_[i]);
-      result_.event_names.push_back(events_[i].first + " " + events_[i].second);
-      result_.reference_event_times.push_back(all.event_times[i]);
-    }
-    events_ = std::move(present);
-    reference_ = measure(ref);
-    set_scales();
-    reference_scales_ = MotionScales(ref.trajectory);
-    // The reference's own error: rk4 at twice its step against it.
-    core::RunResult check = core::simulate(
-        *scene_.network, options_for(result_.reference_integrator, 2.0 * h, 0.0));
-    if (check.instability) {
-      result_.reference_noise = result_.reference_event_noise = result_.reference_accuracy_noise =
-          kNaN;
-    } else {
-      const Measured m = measure(check);
-      result_.reference_noise = key_error(signal_errors(m, 2.0 * h)).first;
-      result_.reference_accuracy_noise = accuracy(check).worst;
-      result_.reference_event_noise = events_.empty() ? kNaN : 0.0;
-      for (std::size_t i = 0; i < m.event_times.size(); ++i) {
-        const double rel = std::abs(m.event_times[i] - reference_.event_times[i]) /
-                           std::abs(reference_.event_times[i]);
-        if (!(rel <= result_.reference_event_noise)) result_.reference_event_noise = rel;
-      }
-    }
-    std::string line = "reference: " + std::to_string(ref.steps) + " steps in " +
-                       format_g(ref.wall_seconds) + " s; rk4 at 2x its step differs by " +
+    const std::string& rk4 = result_.reference_integrator;
+    say("reference: " + rk4 + ", dt = " + format_g(h) + " s ...");
+    reference_.run(options_for(rk4, h, 0.0), options_for(rk4, 2.0 * h, 0.0));
+    std::string line = "reference: " + std::to_string(result_.reference_steps) + " steps in " +
+                       format_g(result_.reference_wall_seconds) + " s; rk4 at 2x its step differs by " +
                        format_g(result_.reference_noise) + " (key error)";
-    if (!events_.empty()) {
+    if (reference_.event_count() > 0) {
       line += std::isnan(result_.reference_event_noise)
                   ? ", events not measured (unstable)"
                   : ", " + format_g(result_.reference_event_noise) + " (event times, relative)";
@@ -358,6 +176,31 @@ class Study {
            ", rk4 at twice its step): runs near the target are judged by the reference's error "
            "as much as their own; pass a smaller --reference-dt");
     }
+  }
+
+  // A whole run at step h for the bisections (study_limits.hpp), measured against the target.
+  StudyProbe probe(const std::string& integrator, double h) {
+    StudyProbe p;
+    const core::RunResult run = simulate_timed(options_for(integrator, h, 0.0), p.cpu_seconds);
+    p.evaluations = run.evaluations;
+    p.stable = !run.instability;
+    if (p.stable) {
+      const StudyAccuracy a = reference_.accuracy(run);
+      p.event_time_error = a.event_time_error;
+      p.final_value_error = a.final_value_error;
+      p.meets_target = a.meets;
+      if (!p.meets_target) p.failure = a.worst_name;
+    } else {
+      p.failure = "unstable";
+    }
+    return p;
+  }
+
+  StabilityLimit& limit_of(const std::string& integrator) {
+    for (auto& limit : result_.limits) {
+      if (limit.integrator == integrator) return limit;
+    }
+    throw std::logic_error("study: no predicted limit for " + integrator);
   }
 
   // The recommendation must hold as `run` judges it, with a margin from the instability
@@ -385,10 +228,10 @@ class Study {
       if (!run.instability) {
         AccuracySettings on;
         on.mode = AccuracyMode::on;
-        on.rule = judge_rule_;  // at the study's target, as the rows were judged
+        on.rule = reference_.rule();  // at the study's target, as the rows were judged
         on.rule->event_tolerance = on.rule->final_tolerance = options_.target_error;
         const AccuracyEstimate e = estimate_accuracy(scene_, run, {}, on);
-        const Accuracy a = accuracy(run);
+        const StudyAccuracy a = reference_.accuracy(run);
         r.run_verdict = e.verdict;
         if (e.verdict == "accurate" && a.meets) {
           scene_.run = scene_run;
@@ -475,8 +318,8 @@ class Study {
     row.wall_seconds = median(walls);
     row.cpu_seconds = median(cpus);
 
-    const Measured m = measure(first);
-    const std::size_t events = events_.size();
+    const StudyMeasurement m = reference_.measure(first);
+    const std::size_t events = reference_.event_count();
     if (first.instability) {
       row.signal_errors.assign(result_.key_signals.size(), kNaN);
       row.key_error = kNaN;
@@ -488,12 +331,12 @@ class Study {
       row.meets_target = false;
       row.accuracy_failure = "unstable";
     } else {
-      row.signal_errors = signal_errors(m, is_fixed_step(integrator) ? dt : 0.0);
-      std::tie(row.key_error, row.worst_signal) = key_error(row.signal_errors);
+      row.signal_errors = reference_.signal_errors(m, is_fixed_step(integrator) ? dt : 0.0);
+      std::tie(row.key_error, row.worst_signal) = reference_.key_error(row.signal_errors);
       row.event_times = m.event_times;
       row.max_event_relative_error = events == 0 ? kNaN : 0.0;
       for (std::size_t i = 0; i < events; ++i) {
-        const double ref = reference_.event_times[i];
+        const double ref = reference_.event_time(i);
         const double err = std::abs(m.event_times[i] - ref);
         row.event_errors.push_back(err);
         row.event_relative_errors.push_back(err / std::abs(ref));
@@ -502,7 +345,7 @@ class Study {
           row.max_event_relative_error = row.event_relative_errors.back();
         }
       }
-      const Accuracy a = accuracy(first);
+      const StudyAccuracy a = reference_.accuracy(first);
       row.event_time_error = a.event_time_error;
       row.final_value_error = a.final_value_error;
       row.meets_target = a.meets;
@@ -518,7 +361,7 @@ class Study {
       line += format_g(row.wall_seconds) + " s, key error " + format_g(row.key_error) +
               (row.meets_target ? ", within the target"
                                 : ", outside the target (" + row.accuracy_failure + ")");
-      for (std::size_t i = 0; i < events_.size(); ++i) {
+      for (std::size_t i = 0; i < events; ++i) {
         line += ", " + result_.event_names[i] + " " +
                 (std::isnan(row.event_times[i]) ? std::string("missed")
                                                 : "error " + format_g(row.event_relative_errors[i]) +
@@ -588,233 +431,13 @@ class Study {
     }
   }
 
-  void note(const std::string& text) {
-    result_.notes.push_back(text);
-    say(text);
-  }
-
-  // A whole run of the scene at step h, measured once: the stability bisection and the
-  // accuracy bisection share it. `runs` counts the runs actually made.
-  const Probe& probe(const std::string& integrator, double h, int& runs) {
-    const auto key = std::make_pair(integrator, h);
-    const auto found = probes_.find(key);
-    if (found != probes_.end()) return found->second;
-    ++runs;
-    Probe p;
-    const core::RunResult run = simulate_timed(options_for(integrator, h, 0.0), p.cpu_seconds);
-    p.evaluations = run.evaluations;
-    p.stable = !run.instability;
-    if (p.stable) {
-      const Accuracy a = accuracy(run);
-      p.event_time_error = a.event_time_error;
-      p.final_value_error = a.final_value_error;
-      p.meets_target = a.meets;
-      if (!p.meets_target) p.failure = a.worst_name;
-    } else {
-      p.failure = "unstable";
-    }
-    return probes_.emplace(key, p).first->second;
-  }
-
-  // Whole run of the scene at step h: true if its monitor saw no instability.
-  bool stable_run(const std::string& integrator, double h, StabilityLimit& limit) {
-    return probe(integrator, h, limit.runs).stable;
-  }
-
-  StabilityLimit& limit_of(const std::string& integrator) {
-    for (auto& limit : result_.limits) {
-      if (limit.integrator == integrator) return limit;
-    }
-    throw std::logic_error("study: no predicted limit for " + integrator);
-  }
-
-  // What `stiction check` predicts, with its functions and its pilot run (bounded in steps),
-  // so that the study's predicted limits are check's.
-  void predict_limits() {
-    const Pilot pilot = bounded_pilot(*scene_.network, scene_.run);
-    say("predicted limits: sampling " + std::to_string(options_.stability_samples) +
-        " states per regime (" + scene_.run.integrator + ", dt = " + format_g(scene_.run.dt) +
-        (pilot.shortened ? ", first " + format_g(pilot.options.duration) + " s" : std::string()) +
-        ")");
-    if (pilot.shortened) {
-      note("predicted limits from the first " + format_g(pilot.options.duration) + " s of " +
-           format_g(scene_.run.duration) + " s (the pilot run's step budget, as `stiction check`)");
-    }
-    const auto states =
-        core::sample_states(*scene_.network, pilot.options, options_.stability_samples);
-    if (sys::interrupted()) throw sys::Interrupted{};
-    for (const auto& integrator : integrators_) {
-      if (!is_fixed_step(integrator)) continue;
-      StabilityLimit limit;
-      limit.integrator = integrator;
-      const core::StepLimit predicted = core::predict_step_limit(
-          *scene_.network, integrator, states, 1e-9, 1.0, &sys::interrupt_flag());
-      if (sys::interrupted()) throw sys::Interrupted{};
-      if (predicted.skipped) {  // too many states for the dense analysis: no prediction
-        limit.predicted_skipped = true;
-        note("predicted limits of " + integrator + ": skipped: the network has " +
-             std::to_string(scene_.network->state_dim()) + " states, more than the " +
-             std::to_string(core::kMaxAnalysedStates) +
-             " the step analysis linearizes (docs/limits.md); the grid is the scene's dt x 8, 4, "
-             "2, ...");
-      }
-      limit.predicted = predicted.max_step;
-      limit.predicted_unbounded = predicted.unbounded;
-      limit.predicted_time = predicted.limiting_time;
-      limit.chatter_free = predicted.chatter_free_step;
-      if (!predicted.skipped) {
-        say("predicted " + integrator + ": unstable above " + format_g(limit.predicted, 4) +
-            " s, stuck friction chatters above " + format_g(limit.chatter_free, 4) + " s");
-      }
-      result_.limits.push_back(limit);
-    }
-  }
-
-  // Largest step within the target. Known runs (the grid's rows and the stability
-  // bisection's probes) give the bracket: `hi` the smallest step outside the target, `lo`
-  // the largest step within it below `hi`; bisected in log h as the stability limit is. The
-  // accuracy need not be monotone in the step (a stick inside an impact moves with the
-  // impact's timing): the answer is a step within the target with every known step below it
-  // within the target too, and a known step within 1% above it outside.
-  void bisect_accuracy(const std::string& integrator, StabilityLimit& limit) {
-    struct Known {
-      double h;
-      bool meets;
-      std::string failure;
-    };
-    std::vector<Known> known;
-    for (const auto& row : result_.rows) {
-      if (row.integrator == integrator)
-        known.push_back({row.dt, row.meets_target, row.accuracy_failure});
-    }
-    for (const auto& [key, p] : probes_) {
-      if (key.first == integrator) known.push_back({key.second, p.meets_target, p.failure});
-    }
-    double lo = 0.0, hi = std::numeric_limits<double>::infinity();
-    std::string failure;
-    for (const auto& k : known) {
-      if (!k.meets && k.h < hi) {
-        hi = k.h;
-        failure = k.failure;
-      }
-    }
-    for (const auto& k : known) {
-      if (k.meets && k.h < hi) lo = std::max(lo, k.h);
-    }
-    if (lo == 0.0) {
-      limit.inaccurate_above = hi;
-      limit.accuracy_failure = failure;
-      limit.accuracy_note = "no step tried meets the target";
-      return;
-    }
-    if (!std::isfinite(hi)) {
-      limit.accuracy_note = "within the target at every step tried, up to " + format_g(lo) + " s";
-    } else {
-      while (hi / lo > 1.0 + options_.bisection_precision) {
-        const double mid = std::sqrt(lo * hi);
-        const Probe& p = probe(integrator, mid, limit.accuracy_runs);
-        if (p.meets_target) {
-          lo = mid;
-        } else {
-          hi = mid;
-          failure = p.failure;
-        }
-      }
-      limit.inaccurate_above = hi;
-      limit.accuracy_failure = failure;
-    }
-    limit.accurate = lo;
-    // The run at `lo`: a grid row or a probe.
-    const auto found = probes_.find(std::make_pair(integrator, lo));
-    const StudyRow* row = nullptr;
-    for (const auto& r : result_.rows) {
-      if (r.integrator == integrator && r.dt == lo) row = &r;
-    }
-    if (row != nullptr) {
-      limit.accurate_evaluations = row->evaluations;
-      limit.accurate_cpu_seconds = row->cpu_seconds;
-      limit.accurate_event_time_error = row->event_time_error;
-      limit.accurate_final_value_error = row->final_value_error;
-    } else if (found != probes_.end()) {
-      limit.accurate_bisected = true;
-      limit.accurate_evaluations = found->second.evaluations;
-      limit.accurate_cpu_seconds = found->second.cpu_seconds;
-      limit.accurate_event_time_error = found->second.event_time_error;
-      limit.accurate_final_value_error = found->second.final_value_error;
-    }
-  }
-
-  // Bracket from the grid (largest stable step below the smallest unstable one), widened by
-  // doubling or halving when the grid has no unstable or no stable step, then bisected in
-  // log h down to options_.bisection_precision.
-  void bisect(const std::string& integrator, StabilityLimit& limit) {
-    double lo = 0.0, hi = std::numeric_limits<double>::infinity();
-    for (const auto& row : result_.rows) {
-      if (row.integrator == integrator && row.status == "unstable") hi = std::min(hi, row.dt);
-    }
-    for (const auto& row : result_.rows) {
-      if (row.integrator == integrator && row.status == "ok" && row.dt < hi) lo = std::max(lo, row.dt);
-    }
-    const double longest = result_.duration / 4.0;
-    if (!std::isfinite(hi)) {
-      double h = lo > 0.0 ? lo : scene_.run.dt;
-      for (;;) {
-        h *= 2.0;
-        if (h > longest) {
-          limit.bisected = lo;
-          limit.note = "stable at every step tried, up to " + format_g(lo) + " s";
-          return;
-        }
-        if (!stable_run(integrator, h, limit)) {
-          hi = h;
-          break;
-        }
-        lo = h;
-      }
-    }
-    if (lo == 0.0) {
-      double h = hi;
-      for (int i = 0; i < 12; ++i) {
-        h /= 2.0;
-        const auto t0 = std::chrono::steady_clock::now();
-        if (stable_run(integrator, h, limit)) {
-          lo = h;
-          break;
-        }
-        hi = h;
-        const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (2.0 * took > options_.max_run_seconds) break;
-      }
-      if (lo == 0.0) {
-        limit.unstable_above = hi;
-        limit.note = "unstable at every step tried, down to " + format_g(hi) + " s";
-        return;
-      }
-    }
-    while (hi / lo > 1.0 + options_.bisection_precision) {
-      const double mid = std::sqrt(lo * hi);
-      if (stable_run(integrator, mid, limit)) {
-        lo = mid;
-      } else {
-        hi = mid;
-      }
-    }
-    limit.bisected = lo;
-    limit.unstable_above = hi;
-  }
-
   const StudyOptions& options_;
   const StudyLog& log_;
   scene::Scene scene_;
-  std::vector<std::string> integrators_;
-  std::vector<int> key_columns_;
-  Measured reference_;
-  core::RunResult reference_run_;  // the reference itself, for the one comparison
-  MotionScales reference_scales_;
-  JudgeRule judge_rule_;           // the scene's [accuracy]
-  std::vector<std::pair<std::string, std::string>> events_;  // (element, kind) measured
-  std::map<std::pair<std::string, double>, Probe> probes_;   // bisection runs by (integrator, h)
   StudyResult result_;
+  StudyReference reference_;  // after scene_ and result_, which it reads and fills
+  StepLimitSearch limits_;
+  std::vector<std::string> integrators_;
 };
 
 }  // namespace
