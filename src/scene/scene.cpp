@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 
 #include "components/admittance/planar_arm.hpp"
 #include "components/admittance/point_mass.hpp"
@@ -15,6 +13,7 @@
 #include "scene/overrides.hpp"
 #include "scene/toml_shape.hpp"
 #include "sys/data_dirs.hpp"
+#include "sys/read_file.hpp"
 
 namespace stiction::scene {
 namespace fs = std::filesystem;
@@ -36,11 +35,13 @@ toml::table parse_text(const std::string& text, const std::string& origin) {
 }
 
 toml::table parse_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": error: cannot read the scene file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_text(text.str(), path.string());
+  std::string text;
+  try {
+    text = sys::read_regular_file(path);
+  } catch (const sys::FileRefused& e) {
+    throw InputError(path.string() + ": error: cannot read the scene file: " + e.what());
+  }
+  return parse_text(text, path.string());
 }
 
 std::string join(const std::vector<std::string>& items) {
@@ -127,6 +128,10 @@ fs::path find_scene(const std::string& name_or_path) {
       if (fs::is_regular_file(candidate, ec)) return candidate;
     }
   }
+  // Something that is there but is no regular file (a FIFO, a device, a directory that is
+  // not a bundled scene's name) is named as what it is by the reader that refuses it
+  // (parse_file), not "no such file".
+  if (fs::exists(fs::status(as_path, ec))) return as_path;
   std::vector<std::string> names;
   for (const auto& [name, description] : bundled_scenes()) names.push_back(name);
   throw InputError("error: SCENE '" + name_or_path + "': no such file" +

@@ -5,12 +5,11 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <cmath>
-#include <fstream>
 #include <mutex>
 #include <optional>
-#include <sstream>
 
 #include "core/safe_normalize.hpp"
+#include "sys/read_file.hpp"
 
 namespace stiction::scene {
 
@@ -266,12 +265,13 @@ UrdfRobot parse_urdf(const std::string& text, const std::string& origin) {
 }
 
 UrdfRobot load_urdf(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw UrdfError(file.string() + ": cannot open the URDF file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in.good() && !in.eof()) throw UrdfError(file.string() + ": cannot read the URDF file");
-  return parse_urdf(text.str(), file.string());
+  std::string text;
+  try {
+    text = sys::read_regular_file(file);
+  } catch (const sys::FileRefused& e) {
+    throw UrdfError(file.string() + ": cannot read the URDF file: " + std::string(e.what()));
+  }
+  return parse_urdf(text, file.string());
 }
 
 }  // namespace stiction::scene

@@ -1,5 +1,6 @@
 #include "services/verify_golden.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -65,12 +66,25 @@ bool exchange(const fs::path& a, const fs::path& b) {
 void check_golden_set(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(fs::status(dir, ec))) return;
+  const fs::path inside = fs::canonical(dir, ec);
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const fs::file_status st = entry.status(ec);
     if (!fs::is_regular_file(st) && !fs::is_directory(st)) {
       throw scene::InputError("error: " + entry.path().string() +
                               ": not a regular file (a FIFO, a device, a socket or a broken link) in a "
                               "golden set; only regular files are read: remove it");
+    }
+    // A link may point within the set, never out of it: a golden set from a pull request
+    // must not have `verify` read, compare or quote (in stderr, junit.xml, report.md) a file
+    // elsewhere on the machine.
+    if (entry.is_symlink(ec)) {
+      const fs::path target = fs::canonical(entry.path(), ec);
+      const auto [end, _] = std::mismatch(inside.begin(), inside.end(), target.begin(), target.end());
+      if (ec || end != inside.end()) {
+        throw scene::InputError("error: " + entry.path().string() +
+                                ": a link that leaves the golden set; only files inside " +
+                                dir.string() + " are read: replace it by the file itself");
+      }
     }
   }
   const fs::path manifest_path = dir / "golden.json";

@@ -117,3 +117,40 @@ TEST_CASE("a special file in a golden set is refused, never opened", "[golden]")
     CHECK(fs::is_fifo(fs::symlink_status(path)));
   }
 }
+
+TEST_CASE("a link that leaves a golden set is refused, and nothing it points to is quoted",
+          "[golden]") {
+  // A golden set from a pull request must not have verify read a file elsewhere and copy
+  // its first line into stderr, junit.xml or report.md (issue 39).
+  for (const std::string name : {"golden.json", "figure_signals_1.png"}) {
+    INFO(name);
+    const fs::path dir = scratch("link_out_" + fs::path(name).stem().string());
+    const fs::path scene = verify_scene(dir, false, true);
+    REQUIRE(run_child({"verify", scene.string(), "--golden", "g", "--update", "--quiet"}, dir).code == 0);
+    const fs::path secret = dir / "secret.txt";
+    std::ofstream(secret) << "SECRET-TOKEN-1234\n";
+    const fs::path path = dir / "g" / "generated" / name;
+    fs::remove(path);
+    fs::create_symlink(secret, path);
+    const RunResult o = run_child({"verify", scene.string(), "--golden", "g", "--out", "report"}, dir);
+    CHECK(o.code == 2);
+    CHECK_THAT(o.err, Contains(name));
+    CHECK_THAT(o.err, Contains("leaves the golden set"));
+    CHECK_THAT(o.err, !Contains("SECRET-TOKEN"));
+    for (const char* report : {"junit.xml", "report.md"}) {
+      const fs::path file = dir / "report" / report;
+      if (!fs::exists(file)) continue;
+      std::ifstream in(file);
+      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      CHECK_THAT(text, !Contains("SECRET-TOKEN"));
+    }
+  }
+  // A link within the set is still read.
+  const fs::path dir = scratch("link_in");
+  const fs::path scene = verify_scene(dir, false, true);
+  REQUIRE(run_child({"verify", scene.string(), "--golden", "g", "--update", "--quiet"}, dir).code == 0);
+  const fs::path set = dir / "g" / "generated";
+  fs::rename(set / "golden.json", set / "manifest.json");
+  fs::create_symlink("manifest.json", set / "golden.json");
+  CHECK(run_child({"verify", scene.string(), "--golden", "g", "--quiet"}, dir).code == 0);
+}
