@@ -92,32 +92,49 @@ class Builder {
     throw UrdfError(origin_ + ": " + message);
   }
 
-  // Adds `link` (reached through fixed joints, at `in` in the frame of moving link `owner`)
-  // and everything below it.
-  void walk(const urdf::Link& link, int owner, const Frame& in) {
-    add_visuals(link, owner, in);
-    if (owner >= 0) {
-      mass_[owner] = combine(mass_[owner], mass_props(link, in));
-    }
-    for (const auto& joint : link.child_joints) {
-      const urdf::LinkSharedPtr child = find_child(link, joint->child_link_name);
-      const Frame at = in * frame_of(joint->parent_to_joint_origin_transform);
-      switch (joint->type) {
-        case urdf::Joint::FIXED:
-          walk(*child, owner, at);
-          break;
-        case urdf::Joint::REVOLUTE:
-        case urdf::Joint::CONTINUOUS:
-        case urdf::Joint::PRISMATIC:
-          add_joint(*joint, *child, owner, at);
-          break;
-        case urdf::Joint::FLOATING:
-        case urdf::Joint::PLANAR:
-          fail("joint '" + joint->name + "' is " +
-               (joint->type == urdf::Joint::FLOATING ? "floating" : "planar") +
-               ": only revolute, continuous, prismatic and fixed joints are supported");
-        default:
-          fail("joint '" + joint->name + "' has an unknown type");
+  // Adds `root` and everything below it, depth first, each moving link after its parent
+  // (SpatialTreeParams needs parents first). An explicit stack, not recursion: a URDF chain
+  // of many thousand joints (a megabyte of XML) must not overflow the call stack.
+  void walk(const urdf::Link& root) {
+    struct Pending {
+      const urdf::Link* link;
+      int owner;                        // the moving link it belongs to (-1: the base)
+      Frame in;                         // its frame in the owner's
+      const urdf::Joint* joint = nullptr;  // set: a moving joint that makes it a new link
+    };
+    std::vector<Pending> stack{{&root, -1, Frame{}}};
+    while (!stack.empty()) {
+      Pending p = stack.back();
+      stack.pop_back();
+      if (p.joint != nullptr) {
+        p.owner = add_joint(*p.joint, *p.link, p.owner, p.in);
+        p.in = Frame{};
+      }
+      add_visuals(*p.link, p.owner, p.in);
+      if (p.owner >= 0) mass_[p.owner] = combine(mass_[p.owner], mass_props(*p.link, p.in));
+      // Children pushed last to first, so that they are taken in the document's order.
+      const auto& joints = p.link->child_joints;
+      for (auto it = joints.rbegin(); it != joints.rend(); ++it) {
+        const urdf::Joint& joint = **it;
+        const urdf::LinkSharedPtr child = find_child(*p.link, joint.child_link_name);
+        const Frame at = p.in * frame_of(joint.parent_to_joint_origin_transform);
+        switch (joint.type) {
+          case urdf::Joint::FIXED:
+            stack.push_back({child.get(), p.owner, at});
+            break;
+          case urdf::Joint::REVOLUTE:
+          case urdf::Joint::CONTINUOUS:
+          case urdf::Joint::PRISMATIC:
+            stack.push_back({child.get(), p.owner, at, &joint});
+            break;
+          case urdf::Joint::FLOATING:
+          case urdf::Joint::PLANAR:
+            fail("joint '" + joint.name + "' is " +
+                 (joint.type == urdf::Joint::FLOATING ? "floating" : "planar") +
+                 ": only revolute, continuous, prismatic and fixed joints are supported");
+          default:
+            fail("joint '" + joint.name + "' has an unknown type");
+        }
       }
     }
   }
@@ -137,7 +154,8 @@ class Builder {
     fail("link '" + name + "' not found under '" + link.name + "'");
   }
 
-  void add_joint(const urdf::Joint& joint, const urdf::Link& child, int owner, const Frame& at) {
+  // The moving link that `joint` makes of `child`; returns its index.
+  int add_joint(const urdf::Joint& joint, const urdf::Link& child, int owner, const Frame& at) {
     SpatialLink l;
     l.joint_name = joint.name;
     l.link_name = child.name;
@@ -169,7 +187,7 @@ class Builder {
     robot_.links.push_back(l);
     robot_.dynamics.push_back(d);
     mass_.emplace_back();
-    walk(child, index, Frame{});
+    return index;
   }
 
   void add_visuals(const urdf::Link& link, int owner, const Frame& in) {
@@ -256,7 +274,7 @@ UrdfRobot parse_urdf(const std::string& text, const std::string& origin) {
   UrdfRobot robot;
   robot.name = model->getName();
   Builder builder(origin, robot);
-  builder.walk(*root, -1, Frame{});
+  builder.walk(*root);
   builder.finish();
   if (robot.links.empty()) {
     throw UrdfError(origin + ": the robot has no moving joint (revolute, continuous or prismatic)");

@@ -214,6 +214,36 @@ TEST_CASE("urdf loader: generated chains with fixed children match frames compos
   }
 }
 
+TEST_CASE("urdf loader: a chain of 30000 joints loads without recursion, parents first",
+          "[urdf]") {
+  // Issue 39: the builder recursed once per joint and a long chain (a megabyte of XML)
+  // overflowed the call stack (SIGSEGV in check and run). Every fifth link has a fixed child,
+  // which the walk folds into its moving link.
+  std::mt19937 rng(39);
+  constexpr int kJoints = 30000;
+  std::vector<GenLink> links(kJoints);
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    GenLink& l = links[i];
+    l.origin = Vec3(0.0, 0.0, 0.01);
+    l.origin_rpy = Vec3::Zero();
+    l.axis = Vec3::UnitY();
+    l.piece = random_piece(rng);
+    l.has_fixed = i % 5 == 0;
+    l.fixed_xyz = Vec3(0.01, 0.0, 0.0);
+    l.fixed_rpy = Vec3::Zero();
+    l.fixed_piece = random_piece(rng);
+  }
+  const scene::UrdfRobot robot = scene::parse_urdf(chain_urdf(links), "long.urdf");
+  REQUIRE(robot.links.size() == links.size());
+  for (std::size_t i = 0; i < robot.links.size(); ++i) {
+    REQUIRE(robot.links[i].parent == static_cast<int>(i) - 1);
+    REQUIRE(robot.links[i].joint_name == std::string("j").append(std::to_string(i)));
+  }
+  // The fixed child's mass is folded into its link.
+  CHECK(robot.links[0].mass == Approx(links[0].piece.mass + links[0].fixed_piece.mass));
+  CHECK(robot.links[1].mass == Approx(links[1].piece.mass));
+}
+
 TEST_CASE("urdf scene: the two-link URDF arm follows two_link's trajectories", "[urdf]") {
   const std::vector<std::string> shorter{"simulation.duration=3.0"};
   scene::Scene planar = scene::load_scene(source_dir() + "/scenes/two_link.toml", shorter);
