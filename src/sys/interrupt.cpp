@@ -3,6 +3,7 @@
 #include <csignal>
 
 #include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "sys/temporaries.hpp"
@@ -12,19 +13,36 @@ namespace {
 
 std::atomic<bool> flag{false};
 std::atomic<int> received{0};
+std::atomic<long long> first_at_ns{0};  // CLOCK_MONOTONIC time of the first signal
 static_assert(std::atomic<bool>::is_always_lock_free);
+static_assert(std::atomic<long long>::is_always_lock_free);
+
+long long monotonic_ns() {
+  timespec t{};
+  ::clock_gettime(CLOCK_MONOTONIC, &t);  // async-signal-safe (POSIX)
+  return static_cast<long long>(t.tv_sec) * 1000000000LL + t.tv_nsec;
+}
 
 // The first signal to reach a handler is the one recorded (compare-and-swap), and its code
 // is the exit code whatever comes after. Both signals are blocked while either handler runs
 // (sa_mask below): otherwise two signals pending together (SIGINT then SIGTERM sent at once)
 // are delivered nested, the later one's handler running before the first one's could record
 // it, and the process would exit with the second signal's code.
+//
+// A SIGTERM that follows a SIGTERM within kTerminateGraceSeconds is the same request again,
+// not impatience: GNU timeout signals the command and then its process group, batch
+// schedulers signal every process of a job, and exiting on it would throw away what the
+// first one asked to keep. A SIGINT (the user pressing Ctrl-C again), a signal of the other
+// kind, or any signal after the grace period exits at once.
 extern "C" void on_signal(int signal) {
   int expected = 0;
   if (received.compare_exchange_strong(expected, signal)) {
+    first_at_ns.store(monotonic_ns());
     flag.store(true);
     return;
   }
+  const double since = 1e-9 * static_cast<double>(monotonic_ns() - first_at_ns.load());
+  if (signal == SIGTERM && expected == SIGTERM && since < kTerminateGraceSeconds) return;
   // Second signal: leave no temporary behind and go, with the first signal's code.
   remove_registered_temporaries();
   ::_exit(128 + received.load());

@@ -1,8 +1,11 @@
 // SIGINT and SIGTERM (DESIGN section 3): the first one asks the program to stop; every phase
 // polls interrupted() often enough to stop within a second, keeps what it has done as
 // partial output and the command exits 128 + the signal (130 / 143). A second signal exits
-// at once (_exit with the same code) after unlinking every registered temporary, so even an
-// impatient user is left with no half-written file.
+// at once (_exit with the first one's code) after unlinking every registered temporary, so
+// even an impatient user is left with no half-written file, except a SIGTERM that follows a
+// SIGTERM within kTerminateGraceSeconds: that is the same request again (GNU timeout signals
+// the command and then its process group; schedulers signal every process of a job), and the
+// partial output still lands.
 #pragma once
 
 #include <atomic>
@@ -10,6 +13,11 @@
 #include <signal.h>
 
 namespace stiction::sys {
+
+// How long after the first signal a SIGTERM is still the same request (documented in
+// docs/limits.md): long enough for a process-group signal to arrive, short enough that a
+// second `kill` soon after is obeyed.
+inline constexpr double kTerminateGraceSeconds = 5.0;
 
 // Installs the handlers for the rest of the process (idempotent).
 void install_interrupt_handlers();

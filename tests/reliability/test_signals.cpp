@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "child.hpp"
@@ -166,11 +167,12 @@ TEST_CASE("a signal during the render keeps video.partial.mp4 and the frames", "
 TEST_CASE("a second signal exits at once with the first one's code and leaves no temporary",
           "[signals]") {
   // The contract (sys/interrupt.hpp): the first signal a handler receives is recorded there,
-  // atomically; a second one exits at once with the first one's code after unlinking every
-  // temporary. To land the second signal while the run still holds its trajectory temporary,
-  // deterministically, the child is stopped, sent SIGINT then SIGTERM, and resumed: both are
-  // pending together, the kernel delivers SIGINT first and SIGTERM as soon as SIGINT's
-  // handler returns, before the run can take note of the first and write its partial output.
+  // atomically; a second one (but a SIGTERM after a SIGTERM within the grace period) exits at
+  // once with the first one's code after unlinking every temporary. To land the second signal
+  // while the run still holds its trajectory temporary, deterministically, the child is
+  // stopped, sent SIGINT then SIGTERM, and resumed: both are pending together, the kernel
+  // delivers SIGINT first and SIGTERM as soon as SIGINT's handler returns, before the run can
+  // take note of the first and write its partial output.
   const fs::path dir = scratch("second");
   SceneSpec spec;
   spec.bodies = 8;
@@ -193,6 +195,35 @@ TEST_CASE("a second signal exits at once with the first one's code and leaves no
   CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));
   CHECK_FALSE(fs::exists(dir / "o" / "summary.json"));
   CHECK(child.err().find("interrupted by") == std::string::npos);
+}
+
+TEST_CASE("a second SIGTERM within the grace period keeps the partial output (GNU timeout)",
+          "[signals]") {
+  // GNU timeout sends SIGTERM to the command and then to its process group, so the command
+  // gets two; batch schedulers do the same. The second is the same request: the rows so far
+  // and summary.json marked interrupted still land, every time.
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    INFO("attempt " << attempt);
+    const fs::path dir = scratch("twice_" + std::to_string(attempt));
+    SceneSpec spec;
+    spec.bodies = 3;
+    spec.duration = 5000.0;
+    spec.output_rate = 10000.0;
+    const fs::path scene = write_scene(dir, spec);
+    Child child({"run", scene.string(), "--no-video", "--no-plots", "--out", "o"}, dir);
+    REQUIRE(wait_until(child, [&] { return streamed_bytes(dir / "o") > 0; }));
+    child.signal(SIGTERM);
+    // The second one 0 to 8 ms later: while the run is stopping or writing its files.
+    std::this_thread::sleep_for(std::chrono::milliseconds(2 * attempt));
+    if (child.running()) child.signal(SIGTERM);
+    const int code = child.wait(std::chrono::seconds(30));
+    CHECK(code == 143);
+    const nlohmann::json s = summary_of(dir / "o");
+    CHECK(s["status"] == "interrupted");
+    CHECK(check_complete_rows(dir / "o" / "trajectory.csv") ==
+          Approx(s["interrupted"]["time_reached"].get<double>()));
+    CHECK(temporaries_under(dir).empty());
+  }
 }
 
 TEST_CASE("a signal during a study stops it without writing a report", "[signals]") {
