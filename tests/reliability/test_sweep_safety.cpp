@@ -144,3 +144,20 @@ TEST_CASE("SIGTERM stops a sweep without running the remaining points", "[sweepd
   CHECK(rows.size() < 40);
   CHECK(temporaries_under(dir / "s").empty());
 }
+
+TEST_CASE("a sweep's progress in a log is plain lines, never carriage returns", "[sweepdir]") {
+  // Issue 39: stderr that is no terminal (a batch job's log) got "\r  3 / 20 points" rewrites
+  // piled into one line. Here stderr is a file.
+  const fs::path dir = scratch("progress_log");
+  SceneSpec spec;
+  spec.bodies = 1;
+  spec.duration = 0.05;
+  const fs::path scene = write_scene(dir, spec);
+  const RunResult r = run_child({"sweep", scene.string(), "--vary",
+                                 "simulation.duration=0.01,0.02,0.03,0.04,0.05,0.06,0.07,0.08,0.09,0.1",
+                                 "-j", "1", "--out", "s"},
+                                dir);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.find('\r') == std::string::npos);
+  CHECK_THAT(r.err, Catch::Matchers::Contains("10 / 10 points after"));
+}
