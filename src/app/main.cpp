@@ -19,6 +19,7 @@
 #include "plot/figure.hpp"
 #include "scene/toml_reader.hpp"
 #include "sys/interrupt.hpp"
+#include "sys/terminal_text.hpp"
 
 namespace {
 
@@ -279,13 +280,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "interrupted by %s; nothing written\n", stiction::sys::interrupt_signal_name());
     return stiction::sys::interrupt_exit_code();
   } catch (const scene::InputError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    // Messages quote names and values from the user's files: escaped for the terminal.
+    std::fprintf(stderr, "%s\n", stiction::sys::terminal_safe(e.what()).c_str());
     return app::kExitBadInput;
   } catch (const io::IoError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", stiction::sys::terminal_safe(e.what()).c_str());
     return app::kExitFailure;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "error: %s\n", stiction::sys::terminal_safe(e.what()).c_str());
     return app::kExitFailure;
   }
 }

@@ -11,6 +11,7 @@
 
 #include "core/capabilities.hpp"
 #include "scene/scene.hpp"
+#include "sys/terminal_text.hpp"
 
 namespace stiction::scene {
 
@@ -344,8 +345,8 @@ std::vector<Warning> plausibility_warnings(const Scene& scene) {
 }
 
 std::string format_warning(const Warning& w) {
-  return w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column) +
-         ": warning: " + w.text;
+  return sys::terminal_safe(w.file + ":" + std::to_string(w.line) + ":" +
+                            std::to_string(w.column) + ": warning: " + w.text);
 }
 
 }  // namespace stiction::scene

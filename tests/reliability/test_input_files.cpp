@@ -69,3 +69,21 @@ TEST_CASE("a URDF file that is a FIFO, /dev/zero or a directory is refused at it
   refused({"check", "robot.toml"}, dir, "/etc", "a directory");
   CHECK_FALSE(fs::exists(dir / "o"));
 }
+
+TEST_CASE("names from a file are echoed with their control characters escaped",
+          "[input_files]") {
+  // A URDF joint named with an OSC sequence (which retitles a terminal) and a CSI colour: the
+  // error names the joint, and stderr holds no escape byte.
+  const fs::path dir = scratch("escapes");
+  std::ofstream(dir / "robot.urdf")
+      << "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/>"
+      << "<joint name=\"j\x1b]0;pwned\x07\x1b[31m\" type=\"floating\"><parent link=\"a\"/>"
+      << "<child link=\"b\"/></joint></robot>";
+  urdf_scene(dir, "robot.urdf");
+  const RunResult r = run_child({"check", "robot.toml"}, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("floating"));
+  CHECK_THAT(r.err, Contains("j\\x1b]0;pwned\\x07\\x1b[31m"));
+  CHECK(r.err.find('\x1b') == std::string::npos);
+  CHECK(r.err.find('\x07') == std::string::npos);
+}
