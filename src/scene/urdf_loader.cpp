@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/safe_normalize.hpp"
+#include "scene/urdf_numbers.hpp"
 #include "sys/read_file.hpp"
 
 namespace stiction::scene {
@@ -250,6 +251,7 @@ UrdfRobot parse_urdf(const std::string& text, const std::string& origin) {
       throw UrdfError(origin + ":" + std::to_string(xml.ErrorRow()) + ":" +
                       std::to_string(xml.ErrorCol()) + ": malformed XML: " + xml.ErrorDesc());
     }
+    check_urdf_numbers(xml, origin);
   }
   urdf::ModelInterfaceSharedPtr model;
   std::string messages;

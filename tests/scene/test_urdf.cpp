@@ -416,3 +416,38 @@ TEST_CASE("urdf scene: errors name the URDF file and the scene key", "[urdf]") {
         "floating");
   fails(write("none.urdf", "<robot name=\"x\"><link name=\"a\"/></robot>").string(), "no moving joint");
 }
+
+TEST_CASE("urdf loader: numbers are read strictly, at their line and attribute", "[urdf]") {
+  // Issue 39: urdfdom read "1,5e-3" and "abc" as 0 and "nan" as NaN without a word, and a
+  // mass of 1e308 came out as "massless links?".
+  const auto robot = [](const std::string& inertial, const std::string& origin) {
+    return "<robot name=\"x\">\n<link name=\"a\"/>\n<link name=\"b\">\n<inertial>" + inertial +
+           "</inertial>\n</link>\n<joint name=\"j\" type=\"continuous\">\n<parent link=\"a\"/>"
+           "<child link=\"b\"/><origin xyz=\"" + origin + "\"/><axis xyz=\"0 0 1\"/></joint>\n</robot>";
+  };
+  const std::string good_inertia =
+      "<mass value=\"1\"/><inertia ixx=\"1e-3\" ixy=\"0\" ixz=\"0\" iyy=\"1e-3\" iyz=\"0\" izz=\"1e-3\"/>";
+  REQUIRE(scene::parse_urdf(robot(good_inertia, "0 0 0.1"), "ok.urdf").links.size() == 1);
+  const struct {
+    std::string inertial, origin, where, why;
+  } cases[] = {
+      {"<mass value=\"1\"/><inertia ixx=\"1,5e-3\" ixy=\"0\" ixz=\"0\" iyy=\"1e-3\" iyz=\"0\" izz=\"1e-3\"/>",
+       "0 0 0.1", "r.urdf:4:", "ixx=\"1,5e-3\": '1,5e-3' is not a number"},
+      {"<mass value=\"abc\"/>", "0 0 0.1", "r.urdf:4:", "<mass> value=\"abc\""},
+      {"<mass value=\"nan\"/>", "0 0 0.1", "r.urdf:4:", "is not finite"},
+      {"<mass value=\"inf\"/>", "0 0 0.1", "r.urdf:4:", "is not finite"},
+      {"<mass value=\"1e308\"/>", "0 0 0.1", "r.urdf:4:", "above 1e12"},
+      {good_inertia, "0 0", "r.urdf:7:", "<origin> xyz=\"0 0\": has 2 number(s), 3 expected"},
+      {good_inertia, "0 0 0.1x", "r.urdf:7:", "'0.1x' is not a number"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.why);
+    try {
+      scene::parse_urdf(robot(c.inertial, c.origin), "r.urdf");
+      FAIL("parsed");
+    } catch (const scene::UrdfError& e) {
+      CHECK_THAT(e.what(), Catch::Matchers::Contains(c.where));
+      CHECK_THAT(e.what(), Catch::Matchers::Contains(c.why));
+    }
+  }
+}
