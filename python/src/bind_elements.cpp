@@ -12,6 +12,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 #include <unordered_map>
 
@@ -51,6 +52,16 @@ scene::SourceLaw make_law(const std::shared_ptr<py::object>& law, const std::str
     py::gil_scoped_acquire gil;
     std::copy(signals, signals + values->values.size(), values->values.begin());
     read_values((*law)(t, *argument), out, count, what);
+    // A non-finite torque or force is the law's fault, not the step's (issue 39).
+    for (int i = 0; i < count; ++i) {
+      if (std::isfinite(out[i])) continue;
+      std::string m = what + " a non-finite value (" + std::to_string(out[i]) + ") at t = " +
+                      std::to_string(t) + " s, for the signals {";
+      for (std::size_t k = 0; k < values->names.size(); ++k) {
+        m += (k ? ", " : "") + values->names[k] + ": " + std::to_string(values->values[k]);
+      }
+      raise(PyExc_ValueError, m + "}");
+    }
   };
 }
 

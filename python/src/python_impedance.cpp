@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -139,9 +141,11 @@ class PythonImpedance : public core::Impedance, public core::EnergyStore {
                                  " items, expected (u, y_dot)");
     }
     read_values(pair[0], u.data(), out_, what_ + ": evaluate()'s u was");
+    require_finite(u.data(), out_, "evaluate()'s u", t);
     const py::object rate = pair[1];
     if (state_ > 0 || !rate.is_none()) {
       read_values(rate, y_dot.data(), state_, what_ + ": evaluate()'s y_dot was");
+      require_finite(y_dot.data(), state_, "evaluate()'s y_dot", t);
     }
   }
 
@@ -167,6 +171,8 @@ class PythonImpedance : public core::Impedance, public core::EnergyStore {
     double energy = 0.0;
     read_values(held_->energy(held_->x, held_->y), &energy, 1,
                 what_ + ": stored_energy() returned");
+    // A NaN energy would switch the energy monitor off for the whole network.
+    require_finite(&energy, 1, "stored_energy()", std::nullopt);
     return energy;
   }
 
@@ -181,10 +187,34 @@ class PythonImpedance : public core::Impedance, public core::EnergyStore {
                             ? py::reinterpret_borrow<py::array>(v).size() == 1
                             : PySequence_Check(v.ptr()) == 0 || py::len(v) == 1;
     read_values(v, out.data(), scalar ? 1 : 3, what_ + ": slip_velocity() returned");
+    require_finite(out.data(), scalar ? 1 : 3, "slip_velocity()", std::nullopt);
     return out;
   }
 
  private:
+  // A non-finite value from the element is the element's fault, named with its inputs
+  // (issue 39): left to the run, it became a NaN state blamed on the step ("try dt = 3.9e-8")
+  // or, from stored_energy(), an energy monitor switched off. Raised as ValueError.
+  void require_finite(const double* values, int n, const char* what,
+                      std::optional<double> t) const {
+    for (int i = 0; i < n; ++i) {
+      if (std::isfinite(values[i])) continue;
+      std::ostringstream m;
+      m.precision(6);
+      m << what_ << ": " << what << " is not finite (" << values[i] << " at entry " << i << ")";
+      if (t) m << " at t = " << *t << " s";
+      m << ", for x_hat = [";
+      for (int k = 0; k < in_; ++k) m << (k ? ", " : "") << x_[k];
+      m << "]";
+      if (state_ > 0) {
+        m << ", y = [";
+        for (int k = 0; k < state_; ++k) m << (k ? ", " : "") << y_[k];
+        m << "]";
+      }
+      raise(PyExc_ValueError, m.str());
+    }
+  }
+
   void copy_in(core::ConstVecRef x_hat, core::ConstVecRef y) const {
     std::memcpy(x_, x_hat.data(), sizeof(double) * static_cast<std::size_t>(in_));
     if (y.size() == state_ && state_ > 0)

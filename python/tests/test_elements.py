@@ -282,6 +282,10 @@ def test_the_accuracy_companion_runs_the_python_law_too():
         return pd_law(t, s)
 
     scene = stiction.Scene("pd_arm").set_source("controller", law)
+    # Twice: the first may also run the step analysis' pilot (not yet in the step-check
+    # cache), which would make `alone` as large as a run with its companion.
+    stiction.run(scene, duration=0.2, accuracy=False, force_step=True)
+    calls["n"] = 0
     stiction.run(scene, duration=0.2, accuracy=False, force_step=True)
     alone = calls["n"]
     calls["n"] = 0
@@ -367,3 +371,28 @@ def test_step_check_of_a_python_law_is_cached_by_its_source(tmp_path, monkeypatc
     from stiction import _elements
     assert _elements._fingerprint(max) is None
     assert _elements._fingerprint(gain_law) == _elements._fingerprint(gain_law)
+
+
+def test_a_non_finite_value_from_python_is_blamed_on_the_element_with_its_inputs():
+    # Issue 39: a NaN force became a NaN state blamed on the step ("try dt = 3.9e-8"), and a
+    # NaN stored_energy() switched the energy monitor off.
+    class NanForce(StoringSpring):
+        def evaluate(self, t, x_hat, y, tau):
+            u, _ = super().evaluate(t, x_hat, y, tau)
+            return (u * float("nan") if t > 0.005 else u), None
+
+    class NanEnergy(StoringSpring):
+        def stored_energy(self, x_hat, y):
+            return float("nan")
+
+    for element, what in ((NanForce(1e4), r"evaluate\(\)'s u is not finite .* at t = "),
+                          (NanEnergy(1e4), r"stored_energy\(\) is not finite")):
+        scene = stiction.Scene.from_toml(SPRING_SCENE.format(mass=1.0, x0=0.01),
+                                         elements={"spring": element})
+        with pytest.raises(ValueError, match=r"element 'spring': " + what + r".*x_hat = \["):
+            stiction.run(scene, accuracy=False, force_step=True)
+
+    scene = stiction.Scene("pd_arm")
+    scene.set_source("controller", lambda t, s: float("nan") if t > 0.01 else 0.0)
+    with pytest.raises(ValueError, match=r"source 'controller' returned a non-finite value .*arm\.theta\.0"):
+        stiction.run(scene, accuracy=False, force_step=True)
