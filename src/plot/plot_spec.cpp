@@ -867,8 +867,12 @@ PlotSpec comparison_spec(const std::vector<Run>& runs, const std::vector<std::st
       }
     }
     if (!found) {
-      throw InputError("--signals: '" + name + "' is not a signal of every run; they have: " +
-                       join(signal_columns(common)));
+      const std::vector<std::string> shared = signal_columns(common);
+      throw InputError(
+          "--signals: '" + name + "' is not a signal of every run; " +
+          (shared.empty() ? std::string("the runs have no signal in common (compare runs of "
+                                        "scenes that share a component name)")
+                          : "the signals they all have: " + join(shared)));
     }
   }
   std::vector<core::ColumnInfo> unique;

@@ -118,3 +118,15 @@ TEST_CASE("compare labels runs of one scene by their overrides, with --signals a
   CHECK_FALSE(fs::exists(dir / "e/compare.png"));
   CHECK(o.out.find("simulated") == std::string::npos);
 }
+
+TEST_CASE("compare --signals of runs with no signal in common says so", "[app][figures]") {
+  // Issue 39: the message ended "they have: " with nothing after it.
+  const fs::path dir = stiction::testing::scratch_dir("stiction_test_figures_", "nothing_common");
+  const auto o = stiction::testing::run_stiction(
+      {"compare", "sphere_roll", "two_link", "--duration", "0.05", "--signals", "sphere.v", "--out", "c"},
+      dir);
+  INFO(o.out);
+  CHECK(o.code == 2);
+  CHECK_THAT(o.out, Contains("'sphere.v' is not a signal of every run") &&
+                        Contains("the runs have no signal in common"));
+}
