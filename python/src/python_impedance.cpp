@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/capabilities.hpp"
+#include "scene/components.hpp"
 #include "python_callbacks.hpp"
 
 namespace stiction::python {
@@ -39,6 +40,14 @@ py::array_t<double> input_array(int n, double*& data) {
 // Always an EnergyStore: an element without stored_energy() holds none (0 J), as a bundled
 // element without the capability; with it, the energy monitor sees what a spring in Python
 // holds, instead of taking its release for an instability.
+// A state label or signal name becomes a column NAME.LABEL: a comma, quote or newline in it
+// would break trajectory.csv's header (issue 39).
+void require_column_name(const std::string& name, const std::string& where) {
+  if (const std::string why = scene::signal_name_problem(name); !why.empty()) {
+    throw std::invalid_argument(where + ": '" + name + "': " + why);
+  }
+}
+
 class PythonImpedance : public core::Impedance, public core::EnergyStore {
  public:
   PythonImpedance(const std::string& name, py::object element)
@@ -57,6 +66,7 @@ class PythonImpedance : public core::Impedance, public core::EnergyStore {
                                     std::to_string(labels_.size()) + " entries, state_size is " +
                                     std::to_string(state_));
       }
+      for (const std::string& label : labels_) require_column_name(label, where + ".state_labels");
     }
     initial_.assign(static_cast<std::size_t>(state_), 0.0);
     if (py::hasattr(element, "initial_state") && state_ > 0) {
@@ -87,6 +97,7 @@ class PythonImpedance : public core::Impedance, public core::EnergyStore {
           if (entry.size() > 1) s.unit = py::str(entry[1]);
           if (entry.size() > 2) s.description = py::str(entry[2]);
         }
+        require_column_name(s.name, where + ".signals()");
         signals_.push_back(std::move(s));
       }
     } else {

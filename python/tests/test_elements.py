@@ -396,3 +396,26 @@ def test_a_non_finite_value_from_python_is_blamed_on_the_element_with_its_inputs
     scene.set_source("controller", lambda t, s: float("nan") if t > 0.01 else 0.0)
     with pytest.raises(ValueError, match=r"source 'controller' returned a non-finite value .*arm\.theta\.0"):
         stiction.run(scene, accuracy=False, force_step=True)
+
+
+def test_signal_names_and_state_labels_that_would_break_the_csv_are_refused():
+    # Issue 39: a comma, quote or newline in a name broke trajectory.csv's header.
+    for bad in ("a,b", 'say "x"', "two\nlines", "", ".x"):
+        class Named(StoringSpring):
+            signals = [(bad, "N")]
+
+            def write_signals(self, x_hat, y, u):
+                return [0.0]
+
+        with pytest.raises(stiction.SceneError, match="signal name"):
+            stiction.Scene.from_toml(SPRING_SCENE.format(mass=1.0, x0=0.01), elements={"spring": Named(1e4)})
+
+    class Labelled(StoringSpring):
+        state_size = 1
+        state_labels = ["e,1"]
+
+        def evaluate(self, t, x_hat, y, tau):
+            return self.k * x_hat[:3], [0.0]
+
+    with pytest.raises(stiction.SceneError, match=r"state_labels: 'e,1'"):
+        stiction.Scene.from_toml(SPRING_SCENE.format(mass=1.0, x0=0.01), elements={"spring": Labelled(1e4)})

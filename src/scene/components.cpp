@@ -61,6 +61,21 @@ std::string component_name_problem(const std::string& name) {
   return {};
 }
 
+std::string signal_name_problem(const std::string& name) {
+  if (name.empty()) return "a signal name must not be empty";
+  if (name.size() > 200) return "a signal name must be at most 200 characters long";
+  if (name.front() == '.' || name.back() == '.' || name.find("..") != std::string::npos) {
+    return "a signal name must not start or end with '.' or hold '..'";
+  }
+  for (const char c : name) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) {
+      return "signal names may use letters, digits, '_', '-' and '.' only (they name CSV "
+             "columns)";
+    }
+  }
+  return {};
+}
+
 namespace {
 
 std::string name_of(const TableReader& table) {

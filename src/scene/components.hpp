@@ -26,6 +26,12 @@ namespace stiction::scene {
 // empty: letters, digits, '_' and '-' only, no '.', 1 to 200 characters.
 std::string component_name_problem(const std::string& name);
 
+// Why `name` cannot name a signal or a state of an element (the SIGNAL part of a column
+// NAME.SIGNAL[.AXIS], from a Python element's `signals` or `state_labels`), or empty:
+// letters, digits, '_', '-' and inner '.', 1 to 200 characters (no comma, quote, space or
+// control character: the CSV header is never quoted).
+std::string signal_name_problem(const std::string& name);
+
 // A torque_source or force_source as read from its table; wired in ComponentBuilder::finish(),
 // once every signal its expressions may read (any component's, including later ones) is known.
 struct SourceSpec {

@@ -73,6 +73,14 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_urdf_body(TableReader& t
   } catch (const UrdfError& e) {
     table.fail("file", e.what());
   }
+  // A joint name becomes a column (NAME.JOINT.theta): a comma, quote or newline in it would
+  // break trajectory.csv (issue 39), a '.' make the column ambiguous.
+  for (const components::SpatialLink& link : robot.links) {
+    if (const std::string why = component_name_problem(link.joint_name); !why.empty()) {
+      table.fail("file", path.string() + ": joint '" + link.joint_name + "': " + why +
+                             " (a URDF joint name names the joint's columns)");
+    }
+  }
 
   components::SpatialTreeParams p;
   p.links = robot.links;

@@ -415,6 +415,12 @@ TEST_CASE("urdf scene: errors name the URDF file and the scene key", "[urdf]") {
             .string(),
         "floating");
   fails(write("none.urdf", "<robot name=\"x\"><link name=\"a\"/></robot>").string(), "no moving joint");
+  // A joint name names columns: a comma would break trajectory.csv (issue 39).
+  fails(write("comma.urdf",
+              "<robot name=\"x\"><link name=\"a\"/><link name=\"b\"/><joint name=\"j,1\" "
+              "type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/></joint></robot>")
+            .string(),
+        "joint 'j,1': component names may use letters, digits");
 }
 
 TEST_CASE("urdf loader: numbers are read strictly, at their line and attribute", "[urdf]") {
