@@ -2,7 +2,7 @@
 
 import warnings
 
-from . import _stiction
+from . import _arguments, _stiction
 from ._result import Result
 from ._scene import as_scene
 from .errors import AccuracyWarning, Interrupted, SceneWarning, UnstableError
@@ -33,9 +33,13 @@ def run(scene, integrator=None, dt=None, duration=None, tolerance=None, accuracy
     """
     scene = as_scene(scene)
     ran = scene.copy()  # the scene as run: later set() calls on `scene` do not change it
-    handle = _stiction._run(scene._handle, integrator=integrator, dt=dt, duration=duration,
-                            tolerance=tolerance, accuracy=accuracy, force_step=force_step,
-                            progress=progress)
+    handle = _stiction._run(scene._handle, integrator=_arguments.text("integrator", integrator),
+                            dt=_arguments.number("dt", dt),
+                            duration=_arguments.number("duration", duration),
+                            tolerance=_arguments.number("tolerance", tolerance),
+                            accuracy=_arguments.flag("accuracy", accuracy, optional=True),
+                            force_step=_arguments.flag("force_step", force_step),
+                            progress=_arguments.flag("progress", progress))
     result = Result(handle, ran)
     _warn(result)
     if result.status == "interrupted":

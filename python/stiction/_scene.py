@@ -2,7 +2,7 @@
 
 import os
 
-from . import _stiction, _toml
+from . import _arguments, _stiction, _toml
 
 
 class Scene:
@@ -110,7 +110,7 @@ def scenes():
 
 def as_scene(scene):
     """A Scene from a Scene or a name/path."""
-    return scene if isinstance(scene, Scene) else Scene(scene)
+    return scene if isinstance(scene, Scene) else Scene(_arguments.scene_source(scene))
 
 
 def _assignments(mapping, keys):

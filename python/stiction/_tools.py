@@ -5,7 +5,7 @@ import math
 import os
 import tomllib
 
-from . import _stiction, _toml
+from . import _arguments, _stiction, _toml
 from ._result import Result
 from ._run import run
 from ._scene import as_scene
@@ -162,10 +162,14 @@ def study(scene, integrators=None, dts=None, tolerances=None, reference_dt=None,
     target_error  relative accuracy a run must meet (event times, final values), in (0, 1)
     progress      print one line per run to stderr
     """
-    handle = _stiction._study(as_scene(scene)._handle, list(integrators or []),
-                              [float(d) for d in (dts if dts is not None else [])],
-                              [float(t) for t in (tolerances if tolerances is not None else [])],
-                              reference_dt, int(repeats), float(target_error), bool(progress))
+    handle = _stiction._study(as_scene(scene)._handle, _arguments.names("integrators", integrators),
+                              [_arguments.number("dts", d) for d in (dts if dts is not None else [])],
+                              [_arguments.number("tolerances", t)
+                               for t in (tolerances if tolerances is not None else [])],
+                              _arguments.number("reference_dt", reference_dt),
+                              _arguments.integer("repeats", repeats, minimum=1),
+                              _arguments.number("target_error", target_error),
+                              _arguments.flag("progress", progress))
     return Study(handle)
 
 
@@ -271,12 +275,13 @@ def sweep(scene, vary, zip=False, jobs=0, record=None, plot=None, integrator=Non
             keys.append((key, values))
         else:
             keys.append((key, [_toml.value(v) for v in values]))
-    handle = _stiction._sweep(as_scene(scene)._handle, keys, bool(zip), int(jobs),
-                              list(record or []), list(plot or []), integrator,
-                              None if dt is None else float(dt),
-                              None if duration is None else float(duration),
-                              None if tolerance is None else float(tolerance), bool(force_step),
-                              bool(progress))
+    handle = _stiction._sweep(as_scene(scene)._handle, keys, _arguments.flag("zip", zip),
+                              _arguments.integer("jobs", jobs), _arguments.names("record", record),
+                              _arguments.names("plot", plot), _arguments.text("integrator", integrator),
+                              _arguments.number("dt", dt), _arguments.number("duration", duration),
+                              _arguments.number("tolerance", tolerance),
+                              _arguments.flag("force_step", force_step),
+                              _arguments.flag("progress", progress))
     result = Sweep(handle)
     if handle.interrupted:
         raise Interrupted(f"sweep of {result.scene}: interrupted after {len(result)} of "

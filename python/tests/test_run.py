@@ -192,3 +192,25 @@ def test_save_refuses_a_directory_it_does_not_own(tmp_path):
     assert (mine / "trajectory.csv").read_text() != "the user's\n"
     assert (mine / ".stiction-output").is_file()
     result.save(mine)  # now its own: saved again without overwrite
+
+
+def test_arguments_of_the_wrong_type_or_value_are_refused_by_name():
+    # Issue 39: accuracy=nan and duration=True were taken; wrong types raised AttributeError
+    # from inside the module.
+    import math
+
+    for kwargs, error, match in (
+        ({"accuracy": math.nan}, TypeError, "accuracy: expected True or False or None"),
+        ({"duration": True}, TypeError, "duration: expected a number"),
+        ({"dt": "1e-4"}, TypeError, "dt: expected a number"),
+        ({"dt": math.inf}, stiction.SceneError, "dt: must be a finite number > 0"),
+        ({"duration": -1.0}, stiction.SceneError, "duration: must be a finite number > 0"),
+        ({"integrator": 4}, TypeError, "integrator: expected a string"),
+        ({"force_step": "yes"}, TypeError, "force_step: expected True or False"),
+    ):
+        with pytest.raises(error, match=match):
+            stiction.run("sphere_roll", **kwargs)
+    with pytest.raises(TypeError, match="scene: expected a Scene"):
+        stiction.run(42)
+    with pytest.raises(TypeError, match="repeats: expected an integer"):
+        stiction.study("sphere_roll", repeats=2.5)
