@@ -29,6 +29,14 @@ std::optional<LimitViolation> check_run_limits(const RunOptions& o) {
   if (is_adaptive(o.integrator) && !positive(o.tolerance)) {
     return LimitViolation{"tolerance", "must be a finite number > 0 (got " + format(o.tolerance) + ")"};
   }
+  // A local error bound below the rounding of a double (about 1e-16 of a state of order 1)
+  // cannot be met by any step: the step would shrink until it underflows.
+  if (is_adaptive(o.integrator) && o.tolerance < RunLimits::kMinTolerance) {
+    return LimitViolation{"tolerance", "must be at least " + format(RunLimits::kMinTolerance) +
+                                           " (got " + format(o.tolerance) +
+                                           "): no step meets a local error below the rounding of "
+                                           "double precision"};
+  }
   // Computed in floating point: duration / dt may be far beyond any integer type.
   const double steps = std::ceil(o.duration / o.dt);
   if (!is_adaptive(o.integrator) && !(steps <= RunLimits::kMaxSteps)) {

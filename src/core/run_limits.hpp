@@ -18,6 +18,8 @@ struct RunLimits {
   static constexpr double kMaxSteps = 1e11;
   // Rows of trajectory.csv: 1e8 rows is about 2e9 bytes of CSV per column.
   static constexpr double kMaxRows = 1e8;
+  // rk4_adaptive's smallest tolerance: below it the local error is the state's rounding.
+  static constexpr double kMinTolerance = 1e-15;
 };
 
 // What is wrong with the run's numbers, naming the option (`dt`, `duration`, `output_rate`)

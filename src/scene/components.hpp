@@ -95,6 +95,10 @@ class ComponentBuilder {
   void add_contact(TableReader& table, const std::string& name);
   // kikuuwe_contact with `other`: a contact between two bodies (pair_contact_builder.cpp).
   void add_pair_contact(TableReader& table, const std::string& name);
+  // Refuses (at the table) `count` more contact elements when the scene would then hold more
+  // than kMaxSceneContactElements (issue 39: 500 spheres with pairwise contacts ended in
+  // std::bad_alloc after loading).
+  void count_contact_elements(TableReader& table, std::size_t count);
 
   void check_name(TableReader& table);
   const BodyInfo& body(TableReader& table, std::string_view key);
@@ -131,6 +135,9 @@ class ComponentBuilder {
   std::map<std::string, BodyInfo> bodies_;
   std::map<std::string, std::string> impedance_types_;
   std::map<std::string, double> stick_thresholds_;
+  // Contact elements built so far (points, corners, rim points, pairs): bounded over the
+  // whole scene (count_contact_elements).
+  std::size_t contact_elements_ = 0;
   std::filesystem::path directory_;
   std::map<std::string, std::vector<UrdfVisual>> robot_visuals_;
   core::Admittance* clock_ = nullptr;  // time for moving surfaces, made on first use

@@ -34,6 +34,8 @@ namespace {
 // for 2000 steps.
 constexpr std::size_t kMaxContactPoints = 10000;
 constexpr double kBytesPerContactPoint = 51e3;
+// Contact elements in a whole scene (issue 39): about 1 GB of a run's memory at that figure.
+constexpr std::size_t kMaxSceneContactElements = 20000;
 
 // Components check their own parameters too: report what they reject at the table.
 template <typename Make>
@@ -112,6 +114,22 @@ void reject_for_cylinder(TableReader& table, bool moving, bool settle) {
 }
 
 }  // namespace
+
+void ComponentBuilder::count_contact_elements(TableReader& table, std::size_t count) {
+  contact_elements_ += count;
+  if (contact_elements_ <= kMaxSceneContactElements) return;
+  char estimate[64];
+  std::snprintf(estimate, sizeof estimate, "%.1f GB",
+                static_cast<double>(contact_elements_) * kBytesPerContactPoint / 1e9);
+  throw InputError::at(
+      table.table().source(),
+      table.path() + ": the scene's contacts reach " + std::to_string(contact_elements_) +
+          " contact elements here (points, corners, rim points and body pairs; about " +
+          estimate + " of memory, " +
+          std::to_string(static_cast<int>(kBytesPerContactPoint / 1000)) +
+          " kB each); the limit is " + std::to_string(kMaxSceneContactElements) +
+          " in a scene (docs/limits.md): declare only the pairs that can touch");
+}
 
 void ComponentBuilder::add_contact(TableReader& table, const std::string& name) {
   if (table.has("other")) return add_pair_contact(table, name);  // between two bodies
@@ -243,6 +261,7 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   const double threshold = table.positive("stick_threshold", 1e-3);
   if (rim) reject_for_cylinder(table, moving, settle);
   table.finish();
+  count_contact_elements(table, points.size());
 
   if (moving && clock_ == nullptr) {
     // One clock for every moving surface; its name cannot clash with a component's

@@ -1,5 +1,6 @@
 #include "services/run_support.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -86,12 +87,17 @@ StepSuggestion suggested_dt(scene::Scene& scene, const StepCheck& check) {
 void print_instability(const std::string& scene_name, const core::RunOptions& run,
                        const core::Instability& inst, const StepSuggestion& suggestion) {
   if (core::is_adaptive(run.integrator)) {
+    // The step shrank to nothing without meeting the tolerance: it is below what rounding
+    // lets the state show, and a smaller one would only fail sooner (issue 39).
+    const bool underflow = inst.reason.find("underflow") != std::string::npos;
     std::fprintf(stderr,
                  "error: %s: numerical instability at t = %.6g s in '%s' (%s) with %s, "
-                 "tolerance %s; try a smaller tolerance, e.g. --tolerance %g\n",
+                 "tolerance %s; %s, e.g. --tolerance %g\n",
                  scene_name.c_str(), inst.time, inst.component.c_str(), inst.reason.c_str(),
-                 run.integrator.c_str(),
-                 text::shortest(run.tolerance).c_str(), run.tolerance / 10.0);
+                 run.integrator.c_str(), text::shortest(run.tolerance).c_str(),
+                 underflow ? "no step met that tolerance in double precision: try a larger one"
+                           : "try a smaller tolerance",
+                 underflow ? std::max(100.0 * run.tolerance, 1e-10) : run.tolerance / 10.0);
     return;
   }
   std::fprintf(stderr,

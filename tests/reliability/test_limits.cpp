@@ -3,6 +3,7 @@
 // output is written. Bounds are documented in docs/limits.md.
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,15 @@ TEST_CASE("run options beyond the limits are found in floating point", "[limits]
   CHECK_FALSE(stiction::core::check_run_limits(o));
   o.output_rate = stiction::core::RunLimits::kMaxRows;
   CHECK(stiction::core::check_run_limits(o));
+  // rk4_adaptive: a tolerance below a double's rounding is no step at all (issue 39).
+  o = {};
+  o.integrator = "rk4_adaptive";
+  o.tolerance = stiction::core::RunLimits::kMinTolerance;
+  CHECK_FALSE(stiction::core::check_run_limits(o));
+  o.tolerance = 1e-300;
+  REQUIRE(stiction::core::check_run_limits(o));
+  CHECK(stiction::core::check_run_limits(o)->key == "tolerance");
+  CHECK_THAT(stiction::core::check_run_limits(o)->message, Contains("double precision"));
 }
 
 TEST_CASE("command-line numbers must be finite and positive", "[limits]") {
@@ -226,4 +236,36 @@ TEST_CASE("a write error on standard output is a failure", "[limits]") {
   const int run_status = std::system(run_command.c_str());
   REQUIRE(WIFEXITED(run_status));
   CHECK(WEXITSTATUS(run_status) == 1);
+}
+
+// Issue 39: 500 spheres with a contact for every pair (124750 elements) ended in
+// std::bad_alloc after loading. The scene's contact elements are bounded together: 201
+// spheres make 20100 pairs, and the pair that passes 20000 is the located error, exit 2,
+// before anything is written.
+TEST_CASE("contact elements are bounded over the whole scene", "[limits]") {
+  const fs::path dir = scratch("pairs");
+  std::ostringstream s;
+  s << "gravity = [0.0, 0.0, 0.0]\n[simulation]\ndt = 1e-4\nduration = 0.01\n";
+  const int spheres = 201;
+  for (int i = 0; i < spheres; ++i) {
+    s << "[bodies.s" << i << "]\ntype = \"rigid_body\"\nshape = \"sphere\"\nmass = 1.0\n"
+      << "radius = 0.1\nposition = [" << 0.3 * i << ", 0.0, 0.0]\n";
+  }
+  int pair = 0;
+  std::string crossing;
+  for (int i = 0; i < spheres; ++i) {
+    for (int j = i + 1; j < spheres; ++j, ++pair) {
+      const std::string name = "p_" + std::to_string(pair);
+      if (pair == 20000) crossing = name;  // the 20001st element
+      s << "[impedances." << name << "]\ntype = \"kikuuwe_contact\"\nbody = \"s" << i
+        << "\"\nother = \"s" << j << "\"\n";
+    }
+  }
+  std::ofstream(dir / "pairs.toml") << s.str();
+  const RunResult r =
+      run_child({"run", "pairs.toml", "--no-video", "--no-plots", "--out", "o"}, dir);
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains("impedances." + crossing + ": the scene's contacts reach 20001"));
+  CHECK_THAT(r.err, Contains("the limit is 20000 in a scene"));
+  CHECK_FALSE(fs::exists(dir / "o" / "trajectory.csv"));
 }
