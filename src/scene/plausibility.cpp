@@ -29,6 +29,9 @@ constexpr double kGravityAlongNormal = 0.5;        // cos of 60 degrees
 constexpr double kMaxTilt = std::numbers::pi / 2;  // a plane turned past vertical
 constexpr double kMaxAngle = 2 * std::numbers::pi;
 constexpr double kMinRows = 10.0;
+// A body that starts this fraction of its size inside a surface or another body: its contact
+// spring then holds 0.5 K d^2 of energy and launches it (issue 39).
+constexpr double kMaxStartPenetration = 0.01;
 
 std::string number_text(double x) {
   std::ostringstream out;
@@ -332,6 +335,63 @@ void check_network(const Scene& scene, Collector& out) {
   }
 }
 
+// The size a body's penetration is measured against: a sphere's or cylinder's radius (a coin's
+// half thickness if smaller), a box's smallest half edge; 0 where the body has no shape.
+double body_size(const toml::table& doc, const std::string& name) {
+  const toml::table* t = doc["bodies"][name].as_table();
+  if (t == nullptr) return 0.0;
+  const std::string shape = (*t)["shape"].value_or(std::string{});
+  const double radius = number_of(t->get("radius")).value_or(0.0);
+  if (shape == "sphere" || shape == "hollow_sphere") return radius;
+  if (shape == "cylinder") return std::min(radius, 0.5 * number_of(t->get("length")).value_or(0.0));
+  if (shape == "box") {
+    if (const auto size = vec3_of(t->get("size"))) return 0.5 * size->minCoeff();
+  }
+  return 0.0;
+}
+
+// Bodies that start inside a surface or inside each other. The depth is read off the contact's
+// own normal force at t = 0 (N = K d when the body starts without a normal speed), so it is the
+// penetration the law sees, for every kind of contact point, rim and pair. Warned at the key
+// that places the body (its `position`), once per contact table.
+void check_start_penetration(const Scene& scene, Collector& out) {
+  core::Network& network = *scene.network;
+  const core::Vec x0 = network.initial_state();
+  const toml::table& doc = scene.document;
+  const auto by_table = elements_by_table(network);
+  for (const auto& [path, t] : components(doc, "impedances")) {
+    if (type_of(*t) != "kikuuwe_contact") continue;
+    const auto found = by_table.find(path.substr(path.find('.') + 1));
+    if (found == by_table.end()) continue;
+    double depth = 0.0;
+    for (const int i : found->second) {
+      const core::Capabilities& c = network.capabilities(i);
+      if (c.contact == nullptr || c.stiffness == nullptr || !(c.stiffness->stiffness() > 0.0))
+        continue;
+      depth = std::max(depth, c.contact->contact_normal_force(network.impedance_input(i, x0)) /
+                                  c.stiffness->stiffness());
+    }
+    const std::string body = (*t)["body"].value_or(std::string{});
+    const std::string other = (*t)["other"].value_or(std::string{});
+    double size = body_size(doc, body);
+    if (const double s = body_size(doc, other); s > 0.0) size = size > 0.0 ? std::min(size, s) : s;
+    if (!(size > 0.0)) size = number_of(t->get("radius")).value_or(0.0);
+    if (!(size > 0.0) || !(depth > kMaxStartPenetration * size)) continue;
+    const toml::table* placed = doc["bodies"][body].as_table();
+    const std::string what = other.empty() ? "the surface of " + path : "'" + other + "'";
+    const std::string text = "'" + body + "' starts " + number_text(depth) + " m inside " + what +
+                             ", more than " + number_text(100.0 * kMaxStartPenetration) +
+                             "% of its size (" + number_text(size) +
+                             " m): the contact's spring launches it at t = 0 (place it on the "
+                             "surface, or use settle = true to start at rest)";
+    if (placed != nullptr) {
+      out.warn(placed->get("position"), *placed, "bodies." + body + ".position", text);
+    } else {
+      out.warn(nullptr, *t, path, text);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<Warning> plausibility_warnings(const Scene& scene) {
@@ -341,6 +401,7 @@ std::vector<Warning> plausibility_warnings(const Scene& scene) {
   check_densities(scene.document, out);
   check_angles(scene.document, out);
   check_network(scene, out);
+  check_start_penetration(scene, out);
   return out.take();
 }
 

@@ -64,7 +64,8 @@ enum class Mistake {
   settle_above,
   dt,
   rows,
-  threshold
+  threshold,
+  sunk
 };
 
 struct Generated {
@@ -114,8 +115,11 @@ Generated ball_on_plane(std::mt19937& rng, Mistake mistake) {
   l.add("mass = " + number(m));
   l.add("shape = \"sphere\"");
   mark(Mistake::radius, "bodies.ball.radius", l.add("radius = " + number(radius)));
-  const double lift = mistake == Mistake::settle_above ? uniform(0.01, 1.0) : 0.0;
-  l.add("position = " + vec((offset + radius + lift) * n));
+  const double lift = mistake == Mistake::settle_above ? uniform(0.01, 1.0)
+                     : mistake == Mistake::sunk       ? -uniform(0.03, 0.5) * radius
+                                                      : 0.0;
+  mark(Mistake::sunk, "bodies.ball.position",
+       l.add("position = " + vec((offset + radius + lift) * n)));
   l.add("velocity = " + vec(v0 * t));
   l.add("[impedances.floor]");
   l.add("type = \"kikuuwe_contact\"");
@@ -124,7 +128,10 @@ Generated ball_on_plane(std::mt19937& rng, Mistake mistake) {
   l.add("offset = " + number(offset));
   mark(Mistake::mu, "impedances.floor.mu",
        l.add("mu = " + number(mistake == Mistake::mu ? uniform(2.5, 50.0) : uniform(0.05, 1.0))));
-  mark(Mistake::settle_above, "impedances.floor.settle", l.add("settle = true"));
+  // Sunk: the user did not ask for rest (settle would place it on the surface).
+  if (mistake != Mistake::sunk) {
+    mark(Mistake::settle_above, "impedances.floor.settle", l.add("settle = true"));
+  }
   if (mistake == Mistake::tilt) {
     mark(mistake, "impedances.floor.tilt", l.add("tilt = " + number(uniform(5.0, 45.0))));
   }
@@ -187,7 +194,7 @@ TEST_CASE("plausibility: each mistake warns at its line and key, none without it
   for (int i = 0; i < 4; ++i) {
     for (const Mistake m :
          {Mistake::none, Mistake::gravity_up, Mistake::gravity_units, Mistake::mu, Mistake::tilt,
-          Mistake::radius, Mistake::settle_above, Mistake::rows, Mistake::threshold}) {
+          Mistake::radius, Mistake::settle_above, Mistake::rows, Mistake::threshold, Mistake::sunk}) {
       // Mistake::dt (dt > duration) is an error since issue 25, no longer a warning
       // (tests/reliability/test_input_values.cpp).
       check_generated(ball_on_plane(rng, m));
@@ -195,6 +202,83 @@ TEST_CASE("plausibility: each mistake warns at its line and key, none without it
     check_generated(arm_in_degrees(rng, true));
     check_generated(arm_in_degrees(rng, false));
   }
+}
+
+// Issue 39: bodies that start inside a surface or inside each other were launched at
+// hundreds of m/s with status ok. A box of random orientation sunk by a random fraction of its
+// size, and two spheres overlapping: warned at the body's position beyond 1% of its size, not
+// below; settle = true places a sunk sphere on its surface instead (no warning).
+TEST_CASE("plausibility: a body that starts inside a surface or another body is warned") {
+  std::mt19937 rng(39);
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
+  for (int i = 0; i < 6; ++i) {
+    const bool deep = i % 2 == 0;
+    // A box resting on one corner (random orientation), the corner sunk.
+    const Eigen::Vector3d size(uniform(0.05, 0.5), uniform(0.05, 0.5), uniform(0.05, 0.5));
+    const Eigen::Quaterniond q = Eigen::Quaterniond::UnitRandom();
+    const Eigen::Vector3d half = 0.5 * size;
+    double lowest = 0.0;  // the lowest corner's height below the centre
+    for (int c = 0; c < 8; ++c) {
+      const Eigen::Vector3d corner((c & 1 ? 1 : -1) * half.x(), (c & 2 ? 1 : -1) * half.y(),
+                                   (c & 4 ? 1 : -1) * half.z());
+      lowest = std::max(lowest, -(q * corner).z());
+    }
+    const double sink = (deep ? uniform(0.03, 0.5) : uniform(0.0, 0.005)) * half.minCoeff();
+    Lines l;
+    l.add("[bodies.crate]");
+    l.add("type = \"rigid_body\"");
+    l.add("shape = \"box\"");
+    l.add("mass = " + number(uniform(1.0, 20.0)));
+    l.add("size = " + vec(size));
+    const int line = l.add("position = " + vec(Eigen::Vector3d(0.0, 0.0, lowest - sink)));
+    l.add("orientation = [" + number(q.w()) + ", " + number(q.x()) + ", " + number(q.y()) +
+          ", " + number(q.z()) + "]");
+    l.add("[impedances.floor]");
+    l.add("type = \"kikuuwe_contact\"");
+    l.add("body = \"crate\"");
+    l.add("stiffness = " + number(uniform(1e4, 1e7)));
+    check_generated({l.text(), deep ? line : 0, deep ? "bodies.crate.position" : ""});
+
+    // Two spheres overlapping by a fraction of the smaller one, no gravity.
+    const double r1 = uniform(0.05, 0.3), r2 = uniform(0.05, 0.3);
+    const double overlap = (deep ? uniform(0.03, 0.5) : uniform(0.0, 0.005)) * std::min(r1, r2);
+    Eigen::Vector3d axis(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+    axis.normalize();
+    Lines p;
+    p.add("gravity = [0.0, 0.0, 0.0]");
+    p.add("[bodies.a]");
+    p.add("type = \"rigid_body\"");
+    p.add("shape = \"sphere\"");
+    p.add("mass = " + number(4.0 / 3.0 * 3.14159 * r1 * r1 * r1 * 2000.0));
+    p.add("radius = " + number(r1));
+    const int at = p.add("position = [0.0, 0.0, 0.0]");
+    p.add("[bodies.b]");
+    p.add("type = \"rigid_body\"");
+    p.add("shape = \"sphere\"");
+    p.add("mass = " + number(4.0 / 3.0 * 3.14159 * r2 * r2 * r2 * 2000.0));
+    p.add("radius = " + number(r2));
+    p.add("position = " + vec((r1 + r2 - overlap) * axis));
+    p.add("[impedances.touch]");
+    p.add("type = \"kikuuwe_contact\"");
+    p.add("body = \"a\"");
+    p.add("other = \"b\"");
+    check_generated({p.text(), deep ? at : 0, deep ? "bodies.a.position" : ""});
+  }
+  // A sunk sphere that asks for rest is placed on its surface: nothing to warn.
+  Lines l;
+  l.add("[bodies.ball]");
+  l.add("type = \"rigid_body\"");
+  l.add("shape = \"sphere\"");
+  l.add("mass = 1.0");
+  l.add("radius = 0.1");
+  l.add("position = [0.0, 0.0, 0.07]");
+  l.add("[impedances.floor]");
+  l.add("type = \"kikuuwe_contact\"");
+  l.add("body = \"ball\"");
+  l.add("settle = true");
+  check_generated({l.text(), 0, ""});
 }
 
 TEST_CASE("plausibility: no bundled scene warns") {
