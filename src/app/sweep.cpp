@@ -71,7 +71,8 @@ int sweep_command(const SweepArguments& args) {
 
   const fs::path out =
       args.out.empty() ? fs::path("out") / signals.scene_name / "sweep" : fs::path(args.out);
-  claim_sweep_directory(plan, out, shard, args.overwrite);
+  // Held until the sweep ends: no other sweep writes here meanwhile.
+  const SweepClaim claim = claim_sweep_directory(plan, out, shard, args.overwrite);
 
   const fs::path table_path = shard.sharded()
                                   ? out / ("sweep.shard-" + std::to_string(shard.index) + ".csv")

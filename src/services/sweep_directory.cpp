@@ -4,6 +4,7 @@
 #include <optional>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 #include "io/atomic_file.hpp"
 #include "scene/toml_reader.hpp"
@@ -42,6 +43,24 @@ std::optional<std::size_t> point_index(const std::string& name) {
   return static_cast<std::size_t>(std::stoul(name));
 }
 
+// The sweep's locks (claim_sweep_directory): hidden files that stay, empty, in the directory;
+// a lock is released when its process ends, however it ends.
+constexpr const char* kLockPrefix = ".stiction-sweep.";
+constexpr const char* kClaimLock = ".stiction-sweep.claim";
+constexpr const char* kRunningLock = ".stiction-sweep.running";
+
+std::string shard_lock_name(const Shard& shard) {
+  return kLockPrefix + ("shard-" + std::to_string(shard.index));
+}
+
+sys::FileLock lock(const fs::path& path, sys::FileLock::Mode mode, bool wait) {
+  try {
+    return sys::FileLock::acquire(path, mode, wait);
+  } catch (const std::system_error& e) {
+    throw io::IoError(path.string() + ": cannot lock the sweep directory: " + e.code().message());
+  }
+}
+
 void refuse_special(const fs::path& path, bool directory) {
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(path, ec);
@@ -76,13 +95,25 @@ void remove_sweep_files(const fs::path& out) {
 
 }  // namespace
 
-void claim_sweep_directory(const SweepPlan& plan, const fs::path& out, const Shard& shard,
-                           bool overwrite) {
+SweepClaim claim_sweep_directory(const SweepPlan& plan, const fs::path& out, const Shard& shard,
+                                 bool overwrite) {
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw io::IoError(out.string() + ": cannot create the sweep directory: " + ec.message());
   const fs::path path = out / "sweep.plan.json";
   const std::string text = plan.to_json();
+  for (const char* name : {kClaimLock, kRunningLock}) refuse_special(out / name, false);
+  if (shard.sharded()) refuse_special(out / shard_lock_name(shard), false);
+  // Held while the directory is examined and the plan written: two sweeps never both find
+  // it free.
+  const sys::FileLock claiming = lock(out / kClaimLock, sys::FileLock::Mode::exclusive, true);
+  SweepClaim claim;
+  const auto running_elsewhere = [&](const std::string& what) {
+    return io::IoError(out.string() + ": " + what +
+                       " is writing into this directory (it holds " +
+                       (out / kRunningLock).string() +
+                       "); wait for it to end or choose another --out");
+  };
   refuse_special(path, false);
   refuse_special(out / table_name(shard), false);
   refuse_special(out / "points", true);
@@ -94,13 +125,16 @@ void claim_sweep_directory(const SweepPlan& plan, const fs::path& out, const Sha
                                 "values, records, --set, --dt, --duration, --integrator or "
                                 "--tolerance); use another --out, or --overwrite to replace it");
       }
+      // Never the files of a sweep that is running.
+      if (!lock(out / kRunningLock, sys::FileLock::Mode::exclusive, false).held())
+        throw running_elsewhere("another stiction sweep");
       remove_sweep_files(out);
     }
   } else {
     std::vector<std::string> found;
     for (const auto& entry : fs::directory_iterator(out, ec)) {
       const std::string name = entry.path().filename().string();
-      if (!is_temporary_name(name)) found.push_back(name);
+      if (!is_temporary_name(name) && !name.starts_with(kLockPrefix)) found.push_back(name);
     }
     std::sort(found.begin(), found.end());
     if (!found.empty() && !overwrite) {
@@ -128,8 +162,24 @@ void claim_sweep_directory(const SweepPlan& plan, const fs::path& out, const Sha
       if (index && shard.owns(*index)) remove_temporaries(entry.path());
     }
   }
+  // An unsharded sweep owns every point: it runs alone. Shards share the directory.
+  claim.running = lock(out / kRunningLock,
+                       shard.sharded() ? sys::FileLock::Mode::shared : sys::FileLock::Mode::exclusive,
+                       false);
+  if (!claim.running.held()) {
+    throw running_elsewhere(shard.sharded() ? "an unsharded stiction sweep"
+                                            : "another stiction sweep (or a shard of one)");
+  }
+  if (shard.sharded()) {
+    claim.shard = lock(out / shard_lock_name(shard), sys::FileLock::Mode::exclusive, false);
+    if (!claim.shard.held()) {
+      throw running_elsewhere("shard " + std::to_string(shard.index) +
+                              " of this sweep, started twice,");
+    }
+  }
   if (!fs::exists(fs::symlink_status(path, ec)) || read_text(path) != text)
     io::write_file_atomically(path, text);
+  return claim;
 }
 
 SweepTable resume_sweep_table(const SweepPlan& plan, const fs::path& path, const Shard& shard,
@@ -160,7 +210,7 @@ SweepTable resume_sweep_table(const SweepPlan& plan, const fs::path& path, const
 }
 
 bool write_sweep(const SweepPlan& plan, const SweepTable& table, const fs::path& dir, bool overwrite) {
-  claim_sweep_directory(plan, dir, Shard{}, overwrite);
+  const SweepClaim claim = claim_sweep_directory(plan, dir, Shard{}, overwrite);
   io::write_file_atomically(dir / "sweep.plan.json", plan.to_json());
   write_sweep_table(table, dir / "sweep.csv");
   return write_sweep_report(plan, table, dir);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "services/sweep.hpp"
+#include "sys/file_lock.hpp"
 
 namespace stiction::services {
 
@@ -20,8 +21,21 @@ namespace stiction::services {
 // what a killed run of this shard left: the temporaries of its table (and, unsharded, of the
 // report) and those of its points' directories. A table or `points` that is a link or not a
 // regular file / directory is refused.
-void claim_sweep_directory(const SweepPlan& plan, const std::filesystem::path& out,
-                           const Shard& shard, bool overwrite);
+// The claim holds locks for its lifetime (issue 39: two sweeps started into one --out at the
+// same moment both exited 0 with their points mixed): the directory is examined and its plan
+// written under an exclusive lock (DIR/.stiction-sweep.claim), so of two sweeps the second
+// always sees the first's plan; then an unsharded sweep holds DIR/.stiction-sweep.running
+// exclusively, a shard holds it shared and its own DIR/.stiction-sweep.shard-K exclusively.
+// A sweep that would run beside another in the directory (the same unsharded sweep twice,
+// the same shard twice, an unsharded sweep beside shards, --overwrite of a sweep that runs)
+// is refused with io::IoError (exit 1) naming the directory. The shards of one sweep run
+// side by side as before. Keep the returned claim until the sweep has written everything.
+struct SweepClaim {
+  sys::FileLock running, shard;
+};
+[[nodiscard]] SweepClaim claim_sweep_directory(const SweepPlan& plan,
+                                               const std::filesystem::path& out,
+                                               const Shard& shard, bool overwrite);
 
 // The table at `path` as far as a previous run of this sweep got: the rows `shard` owns
 // whose values are the plan's (with `force_step`, less the points the guard refused before),

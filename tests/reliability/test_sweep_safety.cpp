@@ -4,6 +4,7 @@
 // SIGKILL removes the killed run's temporaries; SIGTERM stops the sweep without running the
 // remaining points.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -160,4 +161,70 @@ TEST_CASE("a sweep's progress in a log is plain lines, never carriage returns", 
   REQUIRE(r.code == 0);
   CHECK(r.err.find('\r') == std::string::npos);
   CHECK_THAT(r.err, Catch::Matchers::Contains("10 / 10 points after"));
+}
+
+// Issue 39: two sweeps started into one --out at the same moment both exited 0 with their
+// points mixed. Now the directory is claimed under a lock: of two sweeps started together
+// exactly one runs and the other is refused, and while a sweep runs, the same sweep again,
+// a shard of it beside it, or --overwrite by another sweep are refused; its plan stays.
+TEST_CASE("two sweeps into one --out: the second is refused, always", "[sweepdir]") {
+  const fs::path dir = scratch("concurrent");
+  SceneSpec spec;
+  spec.bodies = 2;
+  spec.duration = 0.05;
+  const fs::path scene = write_scene(dir, spec);
+  for (int round = 0; round < 5; ++round) {
+    INFO("round " << round);
+    const std::string out = "race_" + std::to_string(round);
+    Child first({"sweep", scene.string(), "--vary", "simulation.duration=0.05,0.06", "-j", "1",
+                 "--quiet", "--out", out},
+                dir, "first");
+    Child second({"sweep", scene.string(), "--vary", "simulation.duration=0.07,0.08", "-j", "1",
+                  "--quiet", "--out", out},
+                 dir, "second");
+    const int a = first.wait(), b = second.wait();
+    INFO("first " << a << ": " << first.err() << "\nsecond " << b << ": " << second.err());
+    CHECK(((a == 0) != (b == 0)));
+    const fs::path table = dir / out / "sweep.csv";
+    const auto rows = steps_by_point(table);
+    CHECK(rows.size() == 2);
+    // The table holds the winner's points only (steps = duration / dt).
+    std::vector<long> steps;
+    for (const auto& [point, n] : rows) steps.push_back(std::stol(n));
+    std::sort(steps.begin(), steps.end());
+    CHECK(steps == (a == 0 ? std::vector<long>{500, 600} : std::vector<long>{700, 800}));
+  }
+
+  // A long sweep that is running: nothing else may write beside it.
+  SceneSpec slow;
+  slow.bodies = 3;
+  const fs::path long_scene = write_scene(dir, slow, "slow.toml");
+  const std::vector<std::string> args{"sweep", long_scene.string(), "--vary",
+                                      "simulation.duration=10,11,12", "-j", "1", "--quiet",
+                                      "--out", "s"};
+  Child running(args, dir, "running");
+  REQUIRE(wait_until(running, [&] { return fs::exists(dir / "s" / "sweep.plan.json"); }));
+  const std::string plan = read_text(dir / "s" / "sweep.plan.json");
+  RunResult r = run_child(args, dir);
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Contains("is writing into this directory"));
+  std::vector<std::string> shard = args;
+  shard.insert(shard.end(), {"--shard", "1/2"});
+  r = run_child(shard, dir);
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Contains("an unsharded stiction sweep"));
+  std::vector<std::string> other = args;
+  other.insert(other.end(), {"--dt", "5e-5", "--overwrite"});
+  r = run_child(other, dir);
+  CHECK(r.code == 1);
+  CHECK_THAT(r.err, Contains("another stiction sweep"));
+  CHECK(read_text(dir / "s" / "sweep.plan.json") == plan);
+  running.signal(SIGTERM);
+  CHECK(running.wait() == 143);
+  // Once it has ended its locks are free: a shard of it (one that owns no point) runs there.
+  std::vector<std::string> idle = args;
+  idle.insert(idle.end(), {"--shard", "5/6"});
+  r = run_child(idle, dir);
+  CHECK(r.code == 0);
+  INFO(r.err);
 }
