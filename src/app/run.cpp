@@ -37,6 +37,22 @@ namespace stiction::app {
 using namespace services;
 namespace fs = std::filesystem;
 
+namespace {
+
+// The signal groups the default figures leave out beyond their cap, named (a few, then the
+// count) with how to draw them.
+void print_not_drawn(const std::vector<std::string>& groups) {
+  if (groups.empty()) return;
+  std::string names;
+  for (std::size_t i = 0; i < groups.size() && i < 8; ++i) names.append(i ? ", " : "").append(groups[i]);
+  if (groups.size() > 8) names.append(" and ").append(std::to_string(groups.size() - 8)).append(" more");
+  std::printf("  not drawn (the default figures stop at %d): %zu signal groups: %s; draw them with "
+              "[[plots]] in the scene or `stiction compare --signals`\n",
+              plot::kMaxDefaultFigures, groups.size(), names.c_str());
+}
+
+}  // namespace
+
 int run_command(const RunArguments& args) {
   RunRequest request;
   request.overrides = {args.integrator, args.dt, args.duration, args.tolerance};
@@ -142,6 +158,7 @@ int run_command(const RunArguments& args) {
       }
       if (!args.quiet) {
         for (const fs::path& p : plots) std::printf("  wrote %s\n", out.final_path(p).c_str());
+        print_not_drawn(prepared.plots_not_drawn);
         std::fflush(stdout);
       }
     } catch (const text::FontError& e) {

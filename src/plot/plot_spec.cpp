@@ -568,7 +568,8 @@ PlotSpec drift_comparison_spec() {
   return spec;
 }
 
-std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& columns) {
+std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& columns,
+                                         std::vector<std::string>* not_drawn) {
   std::vector<std::string> names;
   for (const core::ColumnInfo& c : columns) names.push_back(c.name);
   std::vector<PlotSpec> specs;
@@ -624,7 +625,21 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& co
     }
     panel.legend.clear();
   }
-  // No silent cap: as many figures as the groups need, the panels spread evenly.
+  // At most kMaxDefaultFigures figures (issue 39: 20 spheres with pairwise contacts drew 210
+  // PNGs for a 3-row run); the groups beyond are named in `not_drawn`, never dropped silently.
+  const std::size_t cap = static_cast<std::size_t>(kMaxDefaultFigures * kPanelsPerFigure);
+  if (panels.size() > cap) {
+    for (std::size_t i = cap; i < panels.size(); ++i) {
+      if (not_drawn != nullptr) {
+        const std::string& first = panels[i].signals.front();
+        const std::size_t dot = first.find('.');
+        const std::size_t second = dot == std::string::npos ? dot : first.find('.', dot + 1);
+        not_drawn->push_back(second == std::string::npos ? first : first.substr(0, second));
+      }
+    }
+    panels.resize(cap);
+  }
+  // As many figures as the groups need (up to the cap), the panels spread evenly.
   const std::size_t n = panels.size();
   const std::size_t figures = (n + kPanelsPerFigure - 1) / kPanelsPerFigure;
   for (std::size_t f = 0, next = 0; f < figures; ++f) {
@@ -642,10 +657,11 @@ std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& co
   return specs;
 }
 
-std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns) {
+std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns,
+                                         std::vector<std::string>* not_drawn) {
   std::vector<core::ColumnInfo> infos;
   for (const std::string& c : columns) infos.push_back({c, core::guess_unit(c), "", ""});
-  return default_plot_specs(infos);
+  return default_plot_specs(infos, not_drawn);
 }
 
 double default_height_mm(std::size_t panels) {

@@ -132,11 +132,16 @@ PlotSpec drift_comparison_spec();
 // signals all exist among `columns` (Fig. 4 for sphere_roll, Fig. 7 for two_link and its
 // penalty variant), then figures with a panel per signal group ("<component>.<signal>",
 // labelled with its unit) that together show EVERY signal: "signals" when one figure holds
-// them all, else "signals_1", "signals_2", ... of at most kPanelsPerFigure panels each.
+// them all, else "signals_1", "signals_2", ... of at most kPanelsPerFigure panels each, and
+// at most kMaxDefaultFigures of them: the groups beyond, in column order, are not drawn and
+// their names ("ball.v", "pair_3.f") are appended to `not_drawn` when given.
 inline constexpr int kPanelsPerFigure = 4;
-std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& columns);
+inline constexpr int kMaxDefaultFigures = 12;
+std::vector<PlotSpec> default_plot_specs(const std::vector<core::ColumnInfo>& columns,
+                                         std::vector<std::string>* not_drawn = nullptr);
 // The same with units guessed from the signal names (core::guess_unit).
-std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns);
+std::vector<PlotSpec> default_plot_specs(const std::vector<std::string>& columns,
+                                         std::vector<std::string>* not_drawn = nullptr);
 
 // The figure of one run, its events marked and labelled as the spec says (`only_events`,
 // `labels`; plot/event_selection.hpp): each marker's `labelled` set, its label "stick

@@ -19,7 +19,7 @@ PreparedRun prepare_run(scene::Scene scene, const RunRequest& request) {
   p.columns.insert(p.columns.begin(), "t");
   p.infos = core::column_infos(*p.scene.network);
   p.plot_specs = plot::read_plot_specs(p.scene.document, p.scene.path.string(), p.infos);
-  if (p.plot_specs.empty()) p.plot_specs = plot::default_plot_specs(p.infos);
+  if (p.plot_specs.empty()) p.plot_specs = plot::default_plot_specs(p.infos, &p.plots_not_drawn);
   read_verify_settings(p.scene.document, run.duration);  // [verify]: same errors as check/verify
   p.judge_rule = read_judge_rule(p.scene);                // [accuracy]: likewise
 

@@ -40,6 +40,7 @@ struct PreparedRun {
   std::vector<std::string> columns;  // "t" and every signal column
   std::vector<core::ColumnInfo> infos;
   std::vector<plot::PlotSpec> plot_specs;  // the scene's [[plots]] or the default figures
+  std::vector<std::string> plots_not_drawn;  // signal groups beyond the default figures' cap
   std::vector<scene::Warning> warnings;    // the scene's, then the step guard's
   StepGuard guard;                          // guard.refusal set: do not simulate
   JudgeRule judge_rule;                     // [accuracy]: what the verdict judges

@@ -164,10 +164,25 @@ TEST_CASE("the paper figures come first among the defaults, then every signal", 
     name += ".f";
     many.push_back(name);
   }
-  const auto specs = plot::default_plot_specs(many);
+  std::vector<std::string> not_drawn;
+  const auto specs = plot::default_plot_specs(many, &not_drawn);
   CHECK(specs.size() == 6);
   for (const auto& spec : specs) CHECK(spec.panels.size() <= plot::kPanelsPerFigure);
   CHECK(all_signals(specs).size() == 23);
+  CHECK(not_drawn.empty());
+  // Beyond the cap (issue 39: 20 spheres pairwise drew 210 figures): kMaxDefaultFigures
+  // figures, the first groups in column order drawn, every other one named, none lost.
+  const int cap = plot::kMaxDefaultFigures * plot::kPanelsPerFigure;
+  // Names built by append: GCC 12's -Wrestrict misfires on "c" + std::to_string(i).
+  auto group = [](int i) { return std::string(1, 'c').append(std::to_string(i)).append(".f"); };
+  for (int i = 23; i < cap + 37; ++i) many.push_back(group(i));
+  const auto capped = plot::default_plot_specs(many, &not_drawn);
+  CHECK(capped.size() == static_cast<std::size_t>(plot::kMaxDefaultFigures));
+  CHECK(all_signals(capped).size() == static_cast<std::size_t>(cap));
+  CHECK(all_signals(capped).count("c0.f") == 1);
+  REQUIRE(not_drawn.size() == 37);
+  CHECK(not_drawn.front() == group(cap));
+  CHECK(not_drawn.back() == group(cap + 36));
 }
 
 TEST_CASE("figures from a run: series, events and relative signals", "[plot][spec]") {
