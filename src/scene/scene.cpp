@@ -11,6 +11,7 @@
 #include "core/run_limits.hpp"
 #include "scene/components.hpp"
 #include "scene/overrides.hpp"
+#include "scene/toml_parse_error.hpp"
 #include "scene/toml_shape.hpp"
 #include "sys/data_dirs.hpp"
 #include "sys/read_file.hpp"
@@ -30,7 +31,7 @@ toml::table parse_text(const std::string& text, const std::string& origin) {
   try {
     return toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
-    throw InputError::at(e.source(), std::string(e.description()));
+    throw InputError::at(e.source(), readable_parse_error(e, text));
   }
 }
 

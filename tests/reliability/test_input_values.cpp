@@ -267,3 +267,29 @@ TEST_CASE("hostile TOML structure is refused with exit 2, never a crash", "[inpu
   const RunResult set = run_scene(dir, "sphere_roll", {"--set", "simulation.dt={" + dotted + " = 1}"});
   CHECK(set.code == 2);
 }
+
+// Issue 39: a key or table defined twice was reported with toml++'s garbled name ('"mamass" ',
+// 'bodies."a.a.b"'); now as written, at its line, exit 2.
+TEST_CASE("a key or table defined twice is named as the user wrote it", "[input_values]") {
+  const fs::path dir = scratch("defined_twice");
+  struct Case {
+    std::string text, says;
+    int line;
+  };
+  const std::vector<Case> cases{
+      {"[bodies.ball]\ntype = \"point_mass\"\n\"mass\" = 1.0\n\"mass\" = 2.0\n",
+       "key \"mass\" is defined twice", 4},
+      {"[bodies.ball]\ntype = \"point_mass\"\n'ma = ss' = 1.0\n'ma = ss'   =   2.0\n",
+       "key 'ma = ss' is defined twice", 4},
+      {"[bodies.\"a.b\"]\ntype = \"point_mass\"\n\n[bodies.\"a.b\"]\n",
+       "table [bodies.\"a.b\"] is defined twice", 4},
+      {"[bodies.ball]\nmass = 1.0\nmass = 2.0\n", "key mass is defined twice", 3},
+  };
+  for (const Case& c : cases) {
+    INFO(c.text);
+    write(dir / "twice.toml", c.text);
+    const RunResult r = run_child({"check", "twice.toml"}, dir);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains("twice.toml:" + std::to_string(c.line) + ":") && Contains(c.says));
+  }
+}
