@@ -91,6 +91,12 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
       "\nstiffest elements, each alone against its effective mass (linearized at the "
       "initial state; the whole network's limits are below):\n");
   for (const StiffElement& s : report.stiff) {
+    if (s.over_budget) {
+      std::printf("  %s (%s): K = %s; its effective mass was not computed (bounded work: the "
+                  "elements above took the budget)\n",
+                  s.component.c_str(), s.type.c_str(), text::shortest(s.stiffness).c_str());
+      continue;
+    }
     if (!s.wired) {
       std::printf("  %s (%s): K = %s; no effective mass could be computed for its wiring\n",
                   s.component.c_str(), s.type.c_str(), text::shortest(s.stiffness).c_str());

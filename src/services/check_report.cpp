@@ -47,6 +47,8 @@ CheckReport check_scene(scene::Scene& scene) {
   report.verify = read_verify_settings(scene.document, run.duration);
   read_judge_rule(scene);  // [accuracy]: the same errors as run
 
+  const core::Vec x0 = network.initial_state();
+  double mobility_work = 0.0;
   for (std::size_t i = 0; i < network.impedances().size(); ++i) {
     const core::Impedance& imp = *network.impedances()[i];
     const core::StiffnessHint* hint = network.capabilities(static_cast<int>(i)).stiffness;
@@ -56,7 +58,10 @@ CheckReport check_scene(scene::Scene& scene) {
     if (!(s.stiffness > 0.0)) continue;
     s.component = imp.name();
     s.type = std::string(imp.type());
-    s.mobility = largest_mobility(network, static_cast<int>(i));
+    if (sys::interrupted()) throw sys::Interrupted{};
+    s.over_budget = mobility_work > kMobilityWork;
+    s.mobility = s.over_budget ? std::nan("")
+                               : largest_mobility(network, static_cast<int>(i), x0, &mobility_work);
     s.wired = s.mobility > 0.0;
     if (s.wired) {
       s.omega = std::sqrt(s.stiffness * s.mobility);
@@ -142,6 +147,7 @@ nlohmann::json check_json(const scene::Scene& scene, const CheckReport& report) 
   nlohmann::json stiff = nlohmann::json::array();
   for (const StiffElement& s : report.stiff) {
     nlohmann::json e{{"component", s.component}, {"type", s.type}, {"stiffness", s.stiffness}};
+    if (s.over_budget) e["not_computed"] = "bounded work: the elements before took its budget";
     if (s.wired) {
       e["effective_mass"] = 1.0 / s.mobility;
       e["omega"] = s.omega;

@@ -23,6 +23,7 @@ struct StiffElement {
   std::string component, type;
   double stiffness = 0.0, mobility = 0.0, omega = 0.0, damping_ratio = 0.0;
   bool wired = false;  // an effective mass could be computed
+  bool over_budget = false;  // not computed: the elements before took kMobilityWork
 };
 
 struct IntegratorLimit {

@@ -13,11 +13,10 @@ namespace stiction::services {
 // and read the velocity part of x_hat back. The largest entry gives the stiffest mode, the
 // one that limits the step. Works for every map whose x_hat is [position (n), velocity (n)]
 // with n = force size; NaN otherwise.
-double largest_mobility(core::Network& network, int i) {
+double largest_mobility(core::Network& network, int i, const core::Vec& x0, double* work) {
   const core::CoordinateMap& map = network.map_of(i);
   const int n = map.force_size();
   if (map.motion_size() != 2 * n) return std::nan("");
-  const core::Vec x0 = network.initial_state();
   core::Vec base_hat(map.motion_size()), pushed_hat(map.motion_size());
   map.motion(x0, base_hat);
   double largest = 0.0;
@@ -30,6 +29,10 @@ double largest_mobility(core::Network& network, int i) {
     for (std::size_t a = 0; a < network.admittances().size(); ++a) {
       const core::Admittance& adm = *network.admittances()[a];
       const core::Slot s = network.admittance_slot(static_cast<int>(a));
+      // A body the push does not reach does not move: a tree of n joints is pushed once per
+      // element that acts on it, not once per element of the scene.
+      if (u_hat.segment(s.input_offset, s.input_size).isZero(0.0)) continue;
+      if (work != nullptr) *work += 2.0 * s.state_size;
       core::Vec with(s.state_size), without(s.state_size);
       adm.derivative(x0.segment(s.state_offset, s.state_size),
                      u_hat.segment(s.input_offset, s.input_size), with);
@@ -68,17 +71,21 @@ DynamicsFingerprint dynamics_fingerprint(scene::Scene& scene) {
   f.pilot_dt = std::min(scene.run.dt, scene.authored_dt);
   f.duration = scene.run.duration;
   f.state_dim = network.state_dim();
+  const core::Vec x0 = network.initial_state();
+  double work = 0.0;
   for (std::size_t i = 0; i < network.impedances().size(); ++i) {
     const core::StiffnessHint* hint = network.capabilities(static_cast<int>(i)).stiffness;
     if (hint == nullptr) continue;
     f.numbers.push_back(hint->stiffness());
     f.numbers.push_back(hint->damping());
-    f.numbers.push_back(largest_mobility(network, static_cast<int>(i)));
+    // Past the bound, NaN: the bodies' responses below still tell a change of mass.
+    f.numbers.push_back(work > kMobilityWork
+                            ? std::nan("")
+                            : largest_mobility(network, static_cast<int>(i), x0, &work));
   }
   // Every body's response to a unit input on each of its inputs at the initial state (its
   // inverse mass or inertia, as its derivative sees it), so that a change of mass shows even
   // where no element declares a stiffness (an element supplied in code).
-  const core::Vec x0 = network.initial_state();
   for (std::size_t a = 0; a < network.admittances().size(); ++a) {
     const core::Admittance& adm = *network.admittances()[a];
     const core::Slot s = network.admittance_slot(static_cast<int>(a));
