@@ -24,27 +24,21 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 cmake --build build-asan -j"$(nproc)" >&2
 echo "== sanitizers: built in $((SECONDS - start)) s" >&2
 
-# Tests left out one by one: each is made of whole long trial runs (many seconds in Release,
-# minutes under ASan) over code the other tests of their folder already run instrumented, and
-# each still runs in the Release step: every bundled scene over its full duration (over 15
-# minutes under ASan here), the adaptive-step sphere at every tolerance (169 s), slope_hold
-# over 1000 s (261 s), box_slope's whole slide and hold (96 s; the box-plane contact runs
-# instrumented in box_slope_hold and the box tests beside it) and two_link_lugre at 1e-4 s
-# (98 s; the LuGre element runs instrumented in tests/components). Measured in CI on
-# 2026-12-02 (1369 s for the step's tests), four more: dense output over every bundled scene
-# (639 s; the closed-form dense-output tests stay), the bundled scenes at their own step under
-# the energy monitor (178 s; the generated scenes of every kind stay), and the three-box stack
-# on a slope and the pushed stack (373 s and 119 s; the sphere-on-box and box-on-box rest
-# test runs the same pair contacts instrumented).
-default_exclude='every bundled scene over its full duration|rk4_adaptive: a sliding sphere sticks on time at every tolerance|slope_hold for 1000 s|box_slope: slides at g|two_link_lugre at 1e-4 s: the unstable bristle state'
-default_exclude+="|dense output: every bundled scene's rows|no bundled scene is stopped at its own step"
-# Issue 35: the accuracy calibration is about 150 whole runs with their companions (the
-# estimate and the comparison it calls run instrumented in the accuracy and verdict tests).
-default_exclude+="|accuracy calibration"
+# Tests left out one by one, in the folders still built: each is made of whole long trial runs
+# (many seconds in Release, minutes under ASan) over code the other tests of its folder
+# already run instrumented, and each still runs in the Release step: box_slope's whole slide
+# and hold (96 s; the box-plane contact runs instrumented in box_slope_hold and the box tests
+# beside it), the three-box stack on a slope and the pushed stack (373 s and 119 s measured
+# in CI on 2026-12-02; the sphere-on-box and box-on-box rest test runs the same pair
+# contacts instrumented), the accuracy calibration (issue 35: about 150 whole runs with their
+# companions; the estimate and the comparison it calls run instrumented in the accuracy and
+# verdict tests), and two bounded-work tests of issue 25 whose point is size (40000 springs,
+# 540 MB in Release; a 40-link arm's check up to its work budget; the same code runs
+# instrumented on small scenes). The long tests of events, extremes and physics (every
+# bundled scene over its full duration, slope_hold for 1000 s, dense output over every
+# bundled scene, ...) went with their folders on 2026-12-05 (cmake/sanitizers.cmake).
+default_exclude='box_slope: slides at g|accuracy calibration'
 default_exclude+='|a stack of three boxes held by friction on a slope|a stack pushed at the top tips'
-# Two bounded-work tests of issue 25 whose point is size (40000 springs, 540 MB in Release;
-# a 40-link arm's check up to its work budget); the same code runs instrumented on small
-# scenes (every run's summary; `check on a 10-link arm analyses every integrator`).
 default_exclude+='|40000 springs on one mass|check on a 40-link arm stops at its work budget'
 # intercept_tls_get_addr=0: LeakSanitizer (GCC 12) then leaves out the dynamic TLS blocks of
 # dlopen'ed libraries (the render plugin loads OSMesa and LLVM). Tracking them, its leak check
