@@ -75,8 +75,9 @@ std::vector<std::string> range_values(const std::string& argument, std::size_t c
   const auto stop = parse_double(parts[1]);
   const auto count = parse_count(parts[2]);
   if (!start || !stop) throw bad_vary(argument, column, "range ends must be finite numbers");
-  if (!count || *count < 1 || *count > 10'000'000) {
-    throw bad_vary(argument, column, "range count must be an integer in 1..10000000");
+  if (!count || *count < 1 || *count > kMaxSweepPoints) {
+    throw bad_vary(argument, column,
+                   "range count must be an integer in 1.." + std::to_string(kMaxSweepPoints));
   }
   const bool log = parts.size() == 4;
   if (log && !(*start > 0.0 && *stop > 0.0)) {
@@ -146,7 +147,9 @@ std::vector<SweepPoint> make_points(const std::vector<VaryKey>& keys, bool zip, 
   for (const VaryKey& k : keys) total *= static_cast<double>(k.values.size());
   if (total > static_cast<double>(limit)) {
     throw scene::InputError("error: --vary: the grid has " + number_text(total) +
-                            " points, more than " + std::to_string(limit));
+                            " points, more than " + std::to_string(limit) +
+                            " (a plan holds about 370 bytes a point before the first runs); "
+                            "split it over several sweeps");
   }
   const std::size_t count = static_cast<std::size_t>(total);
   for (std::size_t i = 0; i < count; ++i) {
