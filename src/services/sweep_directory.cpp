@@ -147,6 +147,22 @@ SweepClaim claim_sweep_directory(const SweepPlan& plan, const fs::path& out, con
     }
     if (overwrite) remove_sweep_files(out);
   }
+  // Before anything of a killed run is removed: a running one's temporaries are not a killed
+  // run's. An unsharded sweep owns every point: it runs alone. Shards share the directory.
+  claim.running = lock(out / kRunningLock,
+                       shard.sharded() ? sys::FileLock::Mode::shared : sys::FileLock::Mode::exclusive,
+                       false);
+  if (!claim.running.held()) {
+    throw running_elsewhere(shard.sharded() ? "an unsharded stiction sweep"
+                                            : "another stiction sweep (or a shard of one)");
+  }
+  if (shard.sharded()) {
+    claim.shard = lock(out / shard_lock_name(shard), sys::FileLock::Mode::exclusive, false);
+    if (!claim.shard.held()) {
+      throw running_elsewhere("shard " + std::to_string(shard.index) +
+                              " of this sweep, started twice,");
+    }
+  }
   // What a killed run of this shard left (by its names only: other shards may be running).
   std::string table_prefix(1, '.');  // appended: GCC 12's -Wrestrict misfires on "." + s + "."
   table_prefix.append(table_name(shard)).append(".tmp-");
@@ -160,21 +176,6 @@ SweepClaim claim_sweep_directory(const SweepPlan& plan, const fs::path& out, con
     for (const auto& entry : fs::directory_iterator(out / "points", ec)) {
       const auto index = point_index(entry.path().filename().string());
       if (index && shard.owns(*index)) remove_temporaries(entry.path());
-    }
-  }
-  // An unsharded sweep owns every point: it runs alone. Shards share the directory.
-  claim.running = lock(out / kRunningLock,
-                       shard.sharded() ? sys::FileLock::Mode::shared : sys::FileLock::Mode::exclusive,
-                       false);
-  if (!claim.running.held()) {
-    throw running_elsewhere(shard.sharded() ? "an unsharded stiction sweep"
-                                            : "another stiction sweep (or a shard of one)");
-  }
-  if (shard.sharded()) {
-    claim.shard = lock(out / shard_lock_name(shard), sys::FileLock::Mode::exclusive, false);
-    if (!claim.shard.held()) {
-      throw running_elsewhere("shard " + std::to_string(shard.index) +
-                              " of this sweep, started twice,");
     }
   }
   if (!fs::exists(fs::symlink_status(path, ec)) || read_text(path) != text)
