@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <new>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -285,6 +286,15 @@ int main(int argc, char** argv) {
     return app::kExitBadInput;
   } catch (const io::IoError& e) {
     std::fprintf(stderr, "error: %s\n", stiction::sys::terminal_safe(e.what()).c_str());
+    return app::kExitFailure;
+  } catch (const std::bad_alloc&) {
+    // A bare "std::bad_alloc" said nothing (issue 39): name the cause and what to reduce.
+    std::fprintf(stderr,
+                 "error: out of memory: the run needs more memory than this process may use "
+                 "(ulimit -v, a job's memory limit, or the machine's); each contact point "
+                 "takes about 51 kB, each output row 8 bytes a column, each sweep point about "
+                 "370 bytes before it runs (docs/limits.md): reduce contacts, output_rate or "
+                 "points; the earlier outputs in --out are untouched\n");
     return app::kExitFailure;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", stiction::sys::terminal_safe(e.what()).c_str());
