@@ -20,6 +20,7 @@
 #include "components/maps/surface_point_map.hpp"
 #include "core/safe_normalize.hpp"
 #include "scene/components.hpp"
+#include "scene/friction_keys.hpp"
 #include "scene/expression.hpp"
 
 namespace stiction::scene {
@@ -125,7 +126,11 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   p.offset = table.number("offset", p.offset);
   p.stiffness = table.positive("stiffness", p.stiffness);
   p.damping = table.non_negative("damping", p.damping);
-  p.mu = table.non_negative("mu", p.mu);
+  const FrictionKeys friction = read_contact_friction(table, p.mu);
+  p.mu = friction.kinetic;
+  p.mu_static = friction.static_level;
+  p.stribeck_velocity = friction.stribeck_velocity;
+  p.viscous = friction.viscous;
   if (table.has("tangential_stiffness"))
     p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
   if (table.has("tangential_damping"))
