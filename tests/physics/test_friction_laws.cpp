@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <sstream>
 #include <string>
@@ -101,6 +103,14 @@ double column_at(const core::Trajectory& tr, const std::string& name, double t) 
 // stays constant, to rounding, exactly while the element is stuck (e_dot == v).
 double anchor(const core::Trajectory& tr, int row, bool joint) {
   return tr.at(row, *tr.find("block.p.x")) - tr.at(row, *tr.find(joint ? "ground.e.x" : "ground.e.0"));
+}
+
+// The figures docs/friction_laws.md quotes: with STICTION_FIGURES set in the environment,
+// each test prints the worst value it measured per integrator.
+void figure(const char* test, const char* integrator, const char* what, double value) {
+  if (std::getenv("STICTION_FIGURES") != nullptr) {
+    std::printf("%-10s %-13s %-44s %.3g\n", test, integrator, what, value);
+  }
 }
 
 Block random_block(std::mt19937& rng, bool joint) {
@@ -208,6 +218,7 @@ TEST_CASE("friction laws: a block under a force ramp stays stuck up to F_s and b
   std::mt19937 rng(3801);
   auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
   for (const Integrator& in : kIntegrators) {
+    double worst_low = 1e300, worst_high = -1e300;  // breakaway force - F_s, in steps of the ramp
     for (int k = 0; k < 4; ++k) {
       Block b = random_block(rng, k % 2 == 1);
       if (k == 2) b.stribeck = 0.0;  // the plain static/kinetic drop
@@ -239,7 +250,11 @@ TEST_CASE("friction laws: a block under a force ramp stays stuck up to F_s and b
       CHECK(t_moved - t_stuck == Approx(step).epsilon(1e-6));
       // And above the kinetic level it does slide away.
       CHECK(column_at(tr, "block.v.x", t_break + 0.05) > 1e-4);
+      worst_low = std::min(worst_low, (t_moved - t_break) / step);
+      worst_high = std::max(worst_high, (t_moved - t_break) / step);
     }
+    figure("ramp", in.name, "breakaway row after F_s, steps (min)", worst_low);
+    figure("ramp", in.name, "breakaway row after F_s, steps (max)", worst_high);
   }
 }
 
@@ -249,6 +264,7 @@ TEST_CASE("friction laws: a sliding block follows the kinetic level plus viscous
   std::mt19937 rng(3802);
   auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
   for (const Integrator& in : kIntegrators) {
+    double worst_v = 0.0, worst_f = 0.0;
     for (int k = 0; k < 4; ++k) {
       Block b = random_block(rng, k % 2 == 1);
       if (k == 3) b.viscous = 0.0;
@@ -291,6 +307,7 @@ TEST_CASE("friction laws: a sliding block follows the kinetic level plus viscous
         }
         INFO("t = " << t);
         CHECK(tr.at(row, v_col) == Approx(expected).epsilon(tol));
+        worst_v = std::max(worst_v, std::abs(tr.at(row, v_col) / expected - 1.0));
       }
       if (b.viscous > 0.0) {
         // Steady slide: the friction force on the block is exactly the kinetic level plus the
@@ -300,8 +317,11 @@ TEST_CASE("friction laws: a sliding block follows the kinetic level plus viscous
         const double f = -tr.at(last, *tr.find("ground.f.x"));
         CHECK(f == Approx(b.F_k() + b.viscous * v).epsilon(1e-9));
         CHECK(v == Approx((push - b.F_k()) / b.viscous).epsilon(1e-5));
+        worst_f = std::max(worst_f, std::abs(f / (b.F_k() + b.viscous * v) - 1.0));
       }
     }
+    figure("slide", in.name, "speed vs closed form, relative", worst_v);
+    figure("slide", in.name, "steady force vs F_k + B_v v, relative", worst_f);
   }
 }
 
@@ -311,6 +331,7 @@ TEST_CASE("friction laws: a sliding block decelerates at the kinetic plus viscou
   std::mt19937 rng(3803);
   auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
   for (const Integrator& in : kIntegrators) {
+    double worst_stop = 0.0, worst_creep = 0.0;
     for (int k = 0; k < 2; ++k) {
       Block b = random_block(rng, k == 1);
       b.stribeck = 1e-4;  // its effect on the stop time is of order v_s / (mu g)
@@ -345,7 +366,11 @@ TEST_CASE("friction laws: a sliding block decelerates at the kinetic plus viscou
       CHECK(stopped == Approx(t_stop).margin(2e-3 + 2.0 * in.dt));
       const double held = column_at(tr, "block.p.x", t_stop + 1.0);
       CHECK(std::abs(column_at(tr, "block.p.x", duration) - held) < 1e-12);
+      worst_stop = std::max(worst_stop, std::abs(stopped - t_stop));
+      worst_creep = std::max(worst_creep, std::abs(column_at(tr, "block.p.x", duration) - held));
     }
+    figure("stop", in.name, "stop time vs closed form, s", worst_stop);
+    figure("stop", in.name, "creep from 1 s after the stop to the end, m", worst_creep);
   }
 }
 
@@ -355,6 +380,7 @@ TEST_CASE("friction laws: a block held by a force between the kinetic and the st
   std::mt19937 rng(3804);
   auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
   for (const Integrator& in : kIntegrators) {
+    double worst = 0.0;
     for (int k = 0; k < 2; ++k) {
       const Block b = random_block(rng, k == 1);
       // Ramped up over 0.5 s to a level above kinetic friction, then held for 20 s.
@@ -372,9 +398,11 @@ TEST_CASE("friction laws: a block held by a force between the kinetic and the st
       const double drift = std::abs(column_at(tr, "block.p.x", duration) -
                                     column_at(tr, "block.p.x", 2.0));
       CHECK(drift < 1e-12);
+      worst = std::max(worst, drift);
       // It is held by the friction, not by luck: the spring carries the whole push.
       CHECK(-column_at(tr, "ground.f.x", duration) == Approx(hold).epsilon(1e-6));
     }
+    figure("hold", in.name, "drift from 2 s to 20 s, m", worst);
   }
 }
 
