@@ -7,6 +7,7 @@
 // - sliding, it follows m v' = F - F_k - B_v v: the kinetic level plus viscous friction, and
 //   a steady slide carries exactly F_k + B_v v;
 // - held by a force between F_k and F_s it does not move (the anchor holds to rounding);
+// - on a spring on a belt it sticks and slips with the swing that F_s and F_k give;
 // - without the new keys, or with them at their plain values, the run is the same bit for bit.
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -474,5 +475,65 @@ TEST_CASE("friction laws: the scene keys are checked, with file, line and key in
       CHECK(what.find("generated_friction.toml:" + std::to_string(line) + ":") != std::string::npos);
       CHECK(what.find(bad.key) != std::string::npos);
     }
+  }
+}
+
+TEST_CASE("friction laws: a mass on a spring on a belt sticks and slips between x_k - A and "
+          "x_k + A, A from mu_static and mu",
+          "[friction_laws]") {
+  // The mass rides with the belt (speed v_b) until the spring force k x reaches F_s, then
+  // slips with the kinetic force F_k behind it: m x'' = -k x + F_k, a harmonic motion about
+  // x_k = F_k / k from (x_s = F_s / k, v_b), of amplitude A = sqrt((x_s - x_k)^2 + (v_b/w)^2),
+  // w = sqrt(k / m). It sticks again where the speed is v_b once more, x = 2 x_k - x_s, and
+  // rides back to x_s: the position swings between x_k - A and x_k + A, cycle after cycle.
+  // With mu_static = mu it would be x_k -+ v_b / w: the static level widens the swing.
+  // The mass starts riding with the belt: started at rest it may never catch up with it
+  // (when v_b > x_k w) and slip for ever between 0 and 2 x_k, the other limit cycle.
+  // Integrators that keep an undamped oscillation's amplitude: implicit Euler damps the
+  // harmonic slip by about w dt per radian, explicit Euler grows it.
+  std::mt19937 rng(3806);
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  for (const Integrator& in : {kIntegrators[0], kIntegrators[3]}) {
+    double worst = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double m = uniform(0.5, 2.0), spring = uniform(50.0, 200.0), v_b = uniform(0.1, 0.3);
+      const double mu = uniform(0.2, 0.5), mu_s = mu * uniform(1.2, 1.6);
+      const double x_k = mu * m * kG / spring, x_s = mu_s * m * kG / spring;
+      const double w = std::sqrt(spring / m);
+      const double A = std::hypot(x_s - x_k, v_b / w);
+      std::ostringstream s;
+      s.precision(17);
+      s << "name = \"generated_belt\"\ngravity = [0.0, 0.0, " << -kG << "]\n"
+        << "[simulation]\nintegrator = \"" << in.name << "\"\ndt = " << in.dt
+        << "\nduration = 8.0\noutput_rate = 10000.0\n"
+        << (std::string(in.name) == "rk4_adaptive" ? "tolerance = 1e-9\n" : "")
+        << "[bodies.mass]\ntype = \"point_mass\"\nmass = " << m << "\n"
+        << "position = [0.0, 0.0, " << -m * kG / kK << "]\nvelocity = [" << v_b << ", 0.0, 0.0]\n"
+        << "[impedances.belt]\ntype = \"kikuuwe_contact\"\nbody = \"mass\"\nbelt_speed = " << v_b
+        << "\nstiffness = " << kK << "\ndamping = " << 2.0 * std::sqrt(kK * m) << "\nmu = " << mu
+        << "\nmu_static = " << mu_s << "\n"
+        << "[impedances.spring]\ntype = \"spring_damper\"\nbody = \"mass\"\n"
+        << "other_point = [0.0, 0.0, 0.0]\nstiffness = " << spring << "\ndamping = 0.0\n";
+      const core::RunResult r = run(s.str());
+      INFO(in.name << " case " << k << ": m " << m << ", k " << spring << ", v_b " << v_b << ", mu "
+                   << mu << ", mu_s " << mu_s << ": x_k " << x_k << ", A " << A);
+      REQUIRE_FALSE(r.instability);
+      const auto& tr = r.trajectory;
+      const int x = *tr.find("mass.p.x");
+      double lo = 1e300, hi = -1e300;
+      for (int row = row_at(tr, 4.0); row < tr.row_count(); ++row) {
+        lo = std::min(lo, tr.at(row, x));
+        hi = std::max(hi, tr.at(row, x));
+      }
+      // Breakaway within a step moves x_s by v_b dt at most, A by as much.
+      const double tol = 2.0 * v_b * in.dt + 1e-4 * A;
+      CHECK(hi == Approx(x_k + A).margin(tol));
+      CHECK(lo == Approx(x_k - A).margin(tol));
+      // Not the plain law's swing.
+      CHECK(hi - lo > 2.0 * v_b / w + 0.5 * (A - v_b / w));
+      worst = std::max(worst, std::max(std::abs(hi - x_k - A), std::abs(lo - x_k + A)) /
+                                  (v_b * in.dt));
+    }
+    figure("belt", in.name, "swing ends vs x_k -+ A, in units of v_b dt", worst);
   }
 }
