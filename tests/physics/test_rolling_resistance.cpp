@@ -136,6 +136,9 @@ TEST_CASE("rolling resistance: a ball rolling on a flat floor decelerates at c g
       // The element's signal: the torque on the ball is c N against the roll.
       CHECK(at(tr, "ground.rolling.tau.y", 0.5 * t_stop) ==
             Approx(-b.rolling * b.mass * kG).epsilon(1e-4));
+      // The resistance elements are not contact points of their own: the ball keeps one, and
+      // no body states (stick, partial slip) are made up over three.
+      CHECK(r.body_events.empty());
       // It stops (the rolling element sticks) on time, having rolled v0^2 / (2 a_r).
       CHECK(stick_time(r, "ground.rolling") == Approx(t_stop).margin(1e-8));
       // (Implicit Euler's first-order error on the distance is about v0 dt / 2.)

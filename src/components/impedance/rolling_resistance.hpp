@@ -7,7 +7,10 @@
 // While stuck, e_dot equals the angular velocity exactly (as for every Kikuuwe element), so a
 // ball that has stopped rolling or spinning stays put without creep.
 // N is the sphere's contact's own normal force (kikuuwe_contact.hpp, computed by a copy of
-// that contact from the same parameters, bit for bit): no load, no resistance.
+// that contact from the same parameters, bit for bit): no load, no resistance (regime 0).
+// Not a core::NormalContact on purpose: the run's events would then take it for one more
+// contact point of the sphere and report body states (stick, partial slip) over it; its own
+// stick/slip events are a joint friction's.
 // Input x_hat = [p (3), v (3), w (3)]: the sphere centre's world position and velocity and
 // its world angular velocity (BodyTwistMap). Output u = the torque the body exerts on the
 // element (world): the body receives -u, a free torque.
@@ -17,7 +20,6 @@
 
 #include "components/impedance/friction_capabilities.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
-#include "core/contact.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -35,8 +37,7 @@ struct RollingResistanceParams {
 class RollingResistance final : public core::Impedance,
                                 public FrictionSpring,
                                 public core::ClampedFriction,
-                                public core::SlipElement,
-                                public core::NormalContact {
+                                public core::SlipElement {
  public:
   RollingResistance(std::string name, const KikuuweContactParams& contact,
                     const RollingResistanceParams& params);
@@ -67,7 +68,8 @@ class RollingResistance final : public core::Impedance,
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
   core::Vec3 unloaded_slip(core::ConstVecRef x_hat, core::ConstVecRef y,
                            double tau) const override;
-  double contact_normal_force(core::ConstVecRef x_hat) const override;
+  // N at x_hat, as the sphere's contact computes it.
+  double contact_normal_force(core::ConstVecRef x_hat) const;
   const RollingResistanceParams& params() const { return params_; }
 
  private:
