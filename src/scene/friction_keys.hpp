@@ -13,7 +13,7 @@
 namespace stiction::scene {
 
 struct FrictionKeys {
-  double kinetic = 0.0;    // mu or force_limit
+  double kinetic = 0.0;       // mu or force_limit
   double static_level = 0.0;  // mu_static or static_limit (= kinetic when absent)
   double stribeck_velocity = 0.0;
   double viscous = 0.0;

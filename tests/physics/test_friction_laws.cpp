@@ -36,9 +36,10 @@ struct Integrator {
   double dt;
   bool first_order;
 };
-const Integrator kIntegrators[] = {
-    {"rk4", 1e-4, false}, {"euler", 1e-4, true}, {"implicit", 1e-3, true},
-    {"rk4_adaptive", 1e-4, false}};
+const Integrator kIntegrators[] = {{"rk4", 1e-4, false},
+                                   {"euler", 1e-4, true},
+                                   {"implicit", 1e-3, true},
+                                   {"rk4_adaptive", 1e-4, false}};
 
 // A block of mass m pushed along x by `force` (an expression of t). Friction either from a
 // contact with the floor (levels mu m g, mu_static m g) or, with `joint`, from a point-wired
@@ -68,8 +69,7 @@ std::string block_scene(const Block& b, const std::string& force, const Integrat
     << "velocity = [" << b.v0 << ", 0.0, 0.0]\n";
   if (b.joint) {
     s << "[impedances.ground]\ntype = \"kikuuwe_friction\"\nbody = \"block\"\n"
-      << "stiffness = " << kK << "\ndamping = " << damping << "\nforce_limit = " << b.F_k()
-      << "\n";
+      << "stiffness = " << kK << "\ndamping = " << damping << "\nforce_limit = " << b.F_k() << "\n";
     if (b.write_static) s << "static_limit = " << b.F_s() << "\n";
   } else {
     s << "[impedances.ground]\ntype = \"kikuuwe_contact\"\nbody = \"block\"\nradius = 0.0\n"
@@ -103,7 +103,8 @@ double column_at(const core::Trajectory& tr, const std::string& name, double t) 
 // The anchor of the friction element along x: position less the spring's elongation. It
 // stays constant, to rounding, exactly while the element is stuck (e_dot == v).
 double anchor(const core::Trajectory& tr, int row, bool joint) {
-  return tr.at(row, *tr.find("block.p.x")) - tr.at(row, *tr.find(joint ? "ground.e.x" : "ground.e.0"));
+  return tr.at(row, *tr.find("block.p.x")) -
+         tr.at(row, *tr.find(joint ? "ground.e.x" : "ground.e.0"));
 }
 
 // The figures docs/friction_laws.md quotes: with STICTION_FIGURES set in the environment,
@@ -115,7 +116,9 @@ void figure(const char* test, const char* integrator, const char* what, double v
 }
 
 Block random_block(std::mt19937& rng, bool joint) {
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   Block b;
   b.joint = joint;
   b.mass = uniform(0.3, 5.0);
@@ -128,11 +131,14 @@ Block random_block(std::mt19937& rng, bool joint) {
 
 }  // namespace
 
-TEST_CASE("friction law: the slip speed solves F(s) + c s = |z|, the smallest root when the "
-          "curve weakens faster than the damping",
-          "[friction_laws]") {
+TEST_CASE(
+    "friction law: the slip speed solves F(s) + c s = |z|, the smallest root when the "
+    "curve weakens faster than the damping",
+    "[friction_laws]") {
   std::mt19937 rng(38);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   int non_monotone = 0;
   for (int k = 0; k < 400; ++k) {
     components::FrictionLevels L;
@@ -165,9 +171,10 @@ TEST_CASE("friction law: the slip speed solves F(s) + c s = |z|, the smallest ro
   CHECK(non_monotone > 20);  // the three-root case was exercised
 }
 
-TEST_CASE("friction law: a plain law (one level, no viscous part) is eq. (15)'s gsat, bit for "
-          "bit",
-          "[friction_laws]") {
+TEST_CASE(
+    "friction law: a plain law (one level, no viscous part) is eq. (15)'s gsat, bit for "
+    "bit",
+    "[friction_laws]") {
   components::FrictionLevels L{2.5, 2.5, 0.01, 0.0};
   REQUIRE(L.plain());
   for (double trial : {2.5000001, 3.0, 1e3}) CHECK(L.sliding_force(trial, 17.0) == 2.5);
@@ -213,11 +220,14 @@ TEST_CASE("friction law: a contact between bodies and a contact with a plane app
   CHECK(sliding > 3);
 }
 
-TEST_CASE("friction laws: a block under a force ramp stays stuck up to F_s and breaks away "
-          "within one step of it, under every integrator",
-          "[friction_laws]") {
+TEST_CASE(
+    "friction laws: a block under a force ramp stays stuck up to F_s and breaks away "
+    "within one step of it, under every integrator",
+    "[friction_laws]") {
   std::mt19937 rng(3801);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   for (const Integrator& in : kIntegrators) {
     double worst_low = 1e300, worst_high = -1e300;  // breakaway force - F_s, in steps of the ramp
     for (int k = 0; k < 4; ++k) {
@@ -229,10 +239,9 @@ TEST_CASE("friction laws: a block under a force ramp stays stuck up to F_s and b
       force.precision(17);
       force << rate << " * t";
       const double rows = 1.0 / in.dt;  // a row per step (rk4_adaptive: per 1e-4 s)
-      const core::RunResult r =
-          run(block_scene(b, force.str(), in, t_break + 0.05, rows));
-      INFO(in.name << " case " << k << (b.joint ? " (kikuuwe_friction)" : " (contact)")
-                   << ": m " << b.mass << ", mu " << b.mu << ", mu_s " << b.mu_static << ", v_s "
+      const core::RunResult r = run(block_scene(b, force.str(), in, t_break + 0.05, rows));
+      INFO(in.name << " case " << k << (b.joint ? " (kikuuwe_friction)" : " (contact)") << ": m "
+                   << b.mass << ", mu " << b.mu << ", mu_s " << b.mu_static << ", v_s "
                    << b.stribeck << ", B_v " << b.viscous << ", breakaway due at " << t_break);
       REQUIRE_FALSE(r.instability);
       const auto& tr = r.trajectory;
@@ -259,11 +268,14 @@ TEST_CASE("friction laws: a block under a force ramp stays stuck up to F_s and b
   }
 }
 
-TEST_CASE("friction laws: a sliding block follows the kinetic level plus viscous friction, and "
-          "a steady slide carries exactly F_k + B_v v, under every integrator",
-          "[friction_laws]") {
+TEST_CASE(
+    "friction laws: a sliding block follows the kinetic level plus viscous friction, and "
+    "a steady slide carries exactly F_k + B_v v, under every integrator",
+    "[friction_laws]") {
   std::mt19937 rng(3802);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   for (const Integrator& in : kIntegrators) {
     double worst_v = 0.0, worst_f = 0.0;
     for (int k = 0; k < 4; ++k) {
@@ -278,8 +290,8 @@ TEST_CASE("friction laws: a sliding block follows the kinetic level plus viscous
       force.precision(17);
       force << push;
       const core::RunResult r = run(block_scene(b, force.str(), in, duration, 100.0));
-      INFO(in.name << " case " << k << (b.joint ? " (kikuuwe_friction)" : " (contact)")
-                   << ": m " << b.mass << ", mu " << b.mu << ", mu_s " << b.mu_static << ", v_s "
+      INFO(in.name << " case " << k << (b.joint ? " (kikuuwe_friction)" : " (contact)") << ": m "
+                   << b.mass << ", mu " << b.mu << ", mu_s " << b.mu_static << ", v_s "
                    << b.stribeck << ", B_v " << b.viscous << ", push " << push);
       REQUIRE_FALSE(r.instability);
       const auto& tr = r.trajectory;
@@ -326,11 +338,14 @@ TEST_CASE("friction laws: a sliding block follows the kinetic level plus viscous
   }
 }
 
-TEST_CASE("friction laws: a sliding block decelerates at the kinetic plus viscous rate, stops at "
-          "the closed-form time and then stays put",
-          "[friction_laws]") {
+TEST_CASE(
+    "friction laws: a sliding block decelerates at the kinetic plus viscous rate, stops at "
+    "the closed-form time and then stays put",
+    "[friction_laws]") {
   std::mt19937 rng(3803);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   for (const Integrator& in : kIntegrators) {
     double worst_stop = 0.0, worst_creep = 0.0;
     for (int k = 0; k < 2; ++k) {
@@ -342,9 +357,9 @@ TEST_CASE("friction laws: a sliding block decelerates at the kinetic plus viscou
       const double t_due = b.mass / b.viscous * std::log(1.0 + b.viscous * b.v0 / b.F_k());
       const double duration = t_due + 2.0;
       const core::RunResult r = run(block_scene(b, "0", in, duration, 1000.0));
-      INFO(in.name << " case " << k << (b.joint ? " (kikuuwe_friction)" : " (contact)")
-                   << ": m " << b.mass << ", mu " << b.mu << ", mu_s " << b.mu_static << ", B_v "
-                   << b.viscous << ", v0 " << b.v0 << ", stop due at " << t_due);
+      INFO(in.name << " case " << k << (b.joint ? " (kikuuwe_friction)" : " (contact)") << ": m "
+                   << b.mass << ", mu " << b.mu << ", mu_s " << b.mu_static << ", B_v " << b.viscous
+                   << ", v0 " << b.v0 << ", stop due at " << t_due);
       REQUIRE_FALSE(r.instability);
       const auto& tr = r.trajectory;
       const double tol = 1e-6 + 2.0 * b.viscous * b.viscous / (b.mass * kK) +
@@ -375,11 +390,14 @@ TEST_CASE("friction laws: a sliding block decelerates at the kinetic plus viscou
   }
 }
 
-TEST_CASE("friction laws: a block held by a force between the kinetic and the static level "
-          "does not drift, under every integrator",
-          "[friction_laws]") {
+TEST_CASE(
+    "friction laws: a block held by a force between the kinetic and the static level "
+    "does not drift, under every integrator",
+    "[friction_laws]") {
   std::mt19937 rng(3804);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   for (const Integrator& in : kIntegrators) {
     double worst = 0.0;
     for (int k = 0; k < 2; ++k) {
@@ -391,13 +409,13 @@ TEST_CASE("friction laws: a block held by a force between the kinetic and the st
       force << hold << " * min(1, 2 * t)";
       const double duration = 20.0;
       const core::RunResult r = run(block_scene(b, force.str(), in, duration, 10.0));
-      INFO(in.name << " case " << k << (b.joint ? " (kikuuwe_friction)" : " (contact)")
-                   << ": m " << b.mass << ", mu " << b.mu << ", mu_s " << b.mu_static << ", hold "
-                   << hold << " N, kinetic " << b.F_k() << " N, static " << b.F_s() << " N");
+      INFO(in.name << " case " << k << (b.joint ? " (kikuuwe_friction)" : " (contact)") << ": m "
+                   << b.mass << ", mu " << b.mu << ", mu_s " << b.mu_static << ", hold " << hold
+                   << " N, kinetic " << b.F_k() << " N, static " << b.F_s() << " N");
       REQUIRE_FALSE(r.instability);
       const auto& tr = r.trajectory;
-      const double drift = std::abs(column_at(tr, "block.p.x", duration) -
-                                    column_at(tr, "block.p.x", 2.0));
+      const double drift =
+          std::abs(column_at(tr, "block.p.x", duration) - column_at(tr, "block.p.x", 2.0));
       CHECK(drift < 1e-12);
       worst = std::max(worst, drift);
       // It is held by the friction, not by luck: the spring carries the whole push.
@@ -407,9 +425,10 @@ TEST_CASE("friction laws: a block held by a force between the kinetic and the st
   }
 }
 
-TEST_CASE("friction laws: without the new keys, or with them at their plain values, a run is "
-          "the same bit for bit",
-          "[friction_laws]") {
+TEST_CASE(
+    "friction laws: without the new keys, or with them at their plain values, a run is "
+    "the same bit for bit",
+    "[friction_laws]") {
   std::mt19937 rng(3805);
   for (const Integrator& in : kIntegrators) {
     for (bool joint : {false, true}) {
@@ -464,7 +483,8 @@ TEST_CASE("friction laws: the scene keys are checked, with file, line and key in
     // Appended to the friction table, which the force source's table follows.
     const auto at = text.find("[impedances.push]");
     text.insert(at, bad.key + " = " + bad.value + "\n");
-    const int line = static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')) + 1;
+    const int line =
+        static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')) + 1;
     INFO(bad.key << " = " << bad.value);
     try {
       run(text);
@@ -472,15 +492,17 @@ TEST_CASE("friction laws: the scene keys are checked, with file, line and key in
     } catch (const scene::InputError& e) {
       const std::string what = e.what();
       INFO(what);
-      CHECK(what.find("generated_friction.toml:" + std::to_string(line) + ":") != std::string::npos);
+      CHECK(what.find("generated_friction.toml:" + std::to_string(line) + ":") !=
+            std::string::npos);
       CHECK(what.find(bad.key) != std::string::npos);
     }
   }
 }
 
-TEST_CASE("friction laws: a mass on a spring on a belt sticks and slips between x_k - A and "
-          "x_k + A, A from mu_static and mu",
-          "[friction_laws]") {
+TEST_CASE(
+    "friction laws: a mass on a spring on a belt sticks and slips between x_k - A and "
+    "x_k + A, A from mu_static and mu",
+    "[friction_laws]") {
   // The mass rides with the belt (speed v_b) until the spring force k x reaches F_s, then
   // slips with the kinetic force F_k behind it: m x'' = -k x + F_k, a harmonic motion about
   // x_k = F_k / k from (x_s = F_s / k, v_b), of amplitude A = sqrt((x_s - x_k)^2 + (v_b/w)^2),
@@ -492,7 +514,9 @@ TEST_CASE("friction laws: a mass on a spring on a belt sticks and slips between 
   // Integrators that keep an undamped oscillation's amplitude: implicit Euler damps the
   // harmonic slip by about w dt per radian, explicit Euler grows it.
   std::mt19937 rng(3806);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   for (const Integrator& in : {kIntegrators[0], kIntegrators[3]}) {
     double worst = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -531,8 +555,8 @@ TEST_CASE("friction laws: a mass on a spring on a belt sticks and slips between 
       CHECK(lo == Approx(x_k - A).margin(tol));
       // Not the plain law's swing.
       CHECK(hi - lo > 2.0 * v_b / w + 0.5 * (A - v_b / w));
-      worst = std::max(worst, std::max(std::abs(hi - x_k - A), std::abs(lo - x_k + A)) /
-                                  (v_b * in.dt));
+      worst =
+          std::max(worst, std::max(std::abs(hi - x_k - A), std::abs(lo - x_k + A)) / (v_b * in.dt));
     }
     figure("belt", in.name, "swing ends vs x_k -+ A, in units of v_b dt", worst);
   }

@@ -88,7 +88,9 @@ void figure(const char* test, const char* integrator, const char* what, double v
 }
 
 Ball random_ball(std::mt19937& rng) {
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   Ball b;
   b.mass = uniform(0.2, 3.0);
   b.radius = uniform(0.03, 0.3);
@@ -103,11 +105,14 @@ Ball random_ball(std::mt19937& rng) {
 
 }  // namespace
 
-TEST_CASE("rolling resistance: a ball rolling on a flat floor decelerates at c g / ((1 + k) R), "
-          "stops at v0 / a_r and then stays put",
-          "[rolling]") {
+TEST_CASE(
+    "rolling resistance: a ball rolling on a flat floor decelerates at c g / ((1 + k) R), "
+    "stops at v0 / a_r and then stays put",
+    "[rolling]") {
   std::mt19937 rng(3830);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   struct Integrator {
     const char* name;
     double dt;
@@ -122,8 +127,8 @@ TEST_CASE("rolling resistance: a ball rolling on a flat floor decelerates at c g
       const double hold = 5.0, duration = t_stop + 1.0 + hold;
       const core::RunResult r = run(ball_scene(b, in.name, in.dt, duration));
       INFO(in.name << " case " << k << ": m " << b.mass << ", R " << b.radius << ", J/(mR^2) "
-                   << b.k << ", mu " << b.mu << ", c " << b.rolling << ", v0 " << b.v0
-                   << ", a_r " << a_r << ", stop due at " << t_stop);
+                   << b.k << ", mu " << b.mu << ", c " << b.rolling << ", v0 " << b.v0 << ", a_r "
+                   << a_r << ", stop due at " << t_stop);
       REQUIRE_FALSE(r.instability);
       const auto& tr = r.trajectory;
       // The deceleration between a fifth and four fifths of the way.
@@ -158,11 +163,14 @@ TEST_CASE("rolling resistance: a ball rolling on a flat floor decelerates at c g
   }
 }
 
-TEST_CASE("spinning resistance: a ball spun about the normal stops at k R^2 w0 / (s g) and "
-          "does not creep afterwards",
-          "[rolling]") {
+TEST_CASE(
+    "spinning resistance: a ball spun about the normal stops at k R^2 w0 / (s g) and "
+    "does not creep afterwards",
+    "[rolling]") {
   std::mt19937 rng(3831);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   struct Integrator {
     const char* name;
     double dt;
