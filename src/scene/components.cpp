@@ -21,6 +21,7 @@
 #include "components/maps/joint_map.hpp"
 #include "components/maps/point_map.hpp"
 #include "core/safe_normalize.hpp"
+#include "scene/friction_keys.hpp"
 
 namespace stiction::scene {
 
@@ -368,7 +369,11 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     p.dimension = map->force_size();
     p.stiffness = table.positive("stiffness", p.stiffness);
     p.damping = table.non_negative("damping", p.damping);
-    p.force_limit = table.non_negative("force_limit", p.force_limit);
+    const FrictionKeys levels = read_joint_friction(table, p.force_limit);
+    p.force_limit = levels.kinetic;
+    p.static_limit = levels.static_level;
+    p.stribeck_velocity = levels.stribeck_velocity;
+    p.viscous = levels.viscous;
     core::Vec initial_e;
     if (const toml::node* e = table.node("initial_e")) {
       std::vector<double> v;

@@ -15,11 +15,14 @@
 #include "components/admittance/rigid_body.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
 #include "components/impedance/moving_contact.hpp"
+#include "components/impedance/rolling_resistance.hpp"
+#include "components/maps/body_twist_map.hpp"
 #include "components/maps/contact_point_map.hpp"
 #include "components/maps/cylinder_rim_map.hpp"
 #include "components/maps/surface_point_map.hpp"
 #include "core/safe_normalize.hpp"
 #include "scene/components.hpp"
+#include "scene/friction_keys.hpp"
 #include "scene/expression.hpp"
 
 namespace stiction::scene {
@@ -113,6 +116,55 @@ void reject_for_cylinder(TableReader& table, bool moving, bool settle) {
   if (settle) table.fail("settle", "not supported for a cylinder body (start it at rest on the plane)");
 }
 
+// `rolling_resistance` and `spin_friction` (m, >= 0): Kikuuwe elements on the sphere's
+// angular velocity (components/impedance/rolling_resistance.hpp), for a sphere on a fixed
+// plane only so far (`other_shape` says the contact is anything else), with the angular
+// spring `rolling_stiffness` (default Kt R^2, N m/rad) and damper `rolling_damping` (default
+// Bt R^2, N m s/rad): the contact's own tangential spring seen at the lever R.
+struct RollingElement {
+  const char* suffix;
+  components::RollingResistanceParams params;
+};
+
+std::vector<RollingElement> read_rolling_resistance(TableReader& table, double sphere_radius,
+                                                   const core::Body& body,
+                                                   const components::KikuuweContactParams& p,
+                                                   double radius, bool other_shape) {
+  std::vector<RollingElement> out;
+  const bool any = table.has("rolling_resistance") || table.has("spin_friction");
+  if (!any) {
+    for (const char* key : {"rolling_stiffness", "rolling_damping"}) {
+      if (table.has(key)) table.fail(key, "needs `rolling_resistance` or `spin_friction`");
+    }
+    return out;
+  }
+  const char* key = table.has("rolling_resistance") ? "rolling_resistance" : "spin_friction";
+  if (!(sphere_radius > 0.0) || other_shape || !body.can_rotate() || !(radius > 0.0)) {
+    table.fail(key,
+               "rolling and spinning resistance are supported for a rigid_body sphere on a "
+               "fixed plane only (one contact point, no `points`, `belt_speed` or `tilt`)");
+  }
+  const double kt = p.tangential_stiffness > 0.0 ? p.tangential_stiffness : p.stiffness;
+  const double bt = p.tangential_damping >= 0.0 ? p.tangential_damping : p.damping;
+  components::RollingResistanceParams base;
+  base.radius = radius;
+  base.stiffness = table.positive("rolling_stiffness", kt * radius * radius);
+  base.damping = table.non_negative("rolling_damping", bt * radius * radius);
+  if (table.has("rolling_resistance")) {
+    RollingElement r{"rolling", base};
+    r.params.part = components::RollingPart::rolling;
+    r.params.coefficient = table.non_negative("rolling_resistance", 0.0);
+    out.push_back(r);
+  }
+  if (table.has("spin_friction")) {
+    RollingElement r{"spin", base};
+    r.params.part = components::RollingPart::spin;
+    r.params.coefficient = table.non_negative("spin_friction", 0.0);
+    out.push_back(r);
+  }
+  return out;
+}
+
 }  // namespace
 
 void ComponentBuilder::count_contact_elements(TableReader& table, std::size_t count) {
@@ -143,7 +195,11 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   p.offset = table.number("offset", p.offset);
   p.stiffness = table.positive("stiffness", p.stiffness);
   p.damping = table.non_negative("damping", p.damping);
-  p.mu = table.non_negative("mu", p.mu);
+  const FrictionKeys friction = read_contact_friction(table, p.mu);
+  p.mu = friction.kinetic;
+  p.mu_static = friction.static_level;
+  p.stribeck_velocity = friction.stribeck_velocity;
+  p.viscous = friction.viscous;
   if (table.has("tangential_stiffness"))
     p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
   if (table.has("tangential_damping"))
@@ -260,6 +316,9 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   const bool settle = table.boolean("settle", false);
   const double threshold = table.positive("stick_threshold", 1e-3);
   if (rim) reject_for_cylinder(table, moving, settle);
+  const std::vector<RollingElement> rolling =
+      read_rolling_resistance(table, info.sphere_radius, *b, p, radius,
+                              listed || several || moving || rim);
   table.finish();
   count_contact_elements(table, points.size());
 
@@ -328,6 +387,16 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     stick_thresholds_[element] = threshold;
     impedance_types_.emplace(element, "kikuuwe_contact");
     add_element(std::move(impedance), std::move(map));
+  }
+  // Rolling and spinning resistance (a sphere on a fixed plane): NAME.rolling, NAME.spin.
+  for (const RollingElement& r : rolling) {
+    const std::string element = name + "." + r.suffix;
+    auto resistance = construct_contact(table, [&] {
+      return std::make_unique<components::RollingResistance>(element, p, r.params);
+    });
+    stick_thresholds_[element] = threshold;
+    impedance_types_.emplace(element, "kikuuwe_contact");
+    add_element(std::move(resistance), std::make_unique<components::BodyTwistMap>(*b));
   }
   // The table's own name too, so no other component takes it.
   impedance_types_.emplace(name, "kikuuwe_contact");

@@ -9,6 +9,7 @@
 #include "components/impedance/pair_contact.hpp"
 #include "components/maps/pair_contact_map.hpp"
 #include "scene/components.hpp"
+#include "scene/friction_keys.hpp"
 
 namespace stiction::scene {
 
@@ -40,7 +41,11 @@ void ComponentBuilder::add_pair_contact(TableReader& table, const std::string& n
   components::PairContactParams p;
   p.stiffness = table.positive("stiffness", p.stiffness);
   p.damping = table.non_negative("damping", p.damping);
-  p.mu = table.non_negative("mu", p.mu);
+  const FrictionKeys friction = read_contact_friction(table, p.mu);
+  p.mu = friction.kinetic;
+  p.mu_static = friction.static_level;
+  p.stribeck_velocity = friction.stribeck_velocity;
+  p.viscous = friction.viscous;
   if (table.has("tangential_stiffness"))
     p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
   if (table.has("tangential_damping"))

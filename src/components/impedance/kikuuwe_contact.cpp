@@ -15,7 +15,7 @@ using core::VecRef;
 KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& params)
     : Impedance(std::move(name)),
       ContactCapabilities(
-          params.stiffness, params.damping, params.mu,
+          params.stiffness, params.damping, std::max(params.mu, params.mu_static),
           params.tangential_stiffness >= 0.0 ? params.tangential_stiffness : params.stiffness),
       params_(params) {
   const auto normal = core::safe_normalized(params_.normal);
@@ -31,7 +31,9 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
   kt_ = params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness;
   bt_ = params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
   frame_ = {n_, t1_, t2_};
-  coefficients_ = {params_.stiffness, params_.damping, kt_, bt_, params_.mu};
+  coefficients_ = {params_.stiffness, params_.damping, kt_, bt_,
+                   contact_friction(params_.mu, params_.mu_static, params_.stribeck_velocity,
+                                    params_.viscous)};
   bounded_ = params_.extent.bounded();
 }
 

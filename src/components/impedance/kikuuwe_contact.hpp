@@ -27,7 +27,10 @@ struct KikuuweContactParams {
   double offset = 0.0;        // surface height along the normal (m)
   double stiffness = 1e7;     // K: normal and tangential (N/m)
   double damping = 10.0;      // B (N s/m)
-  double mu = 0.1;
+  double mu = 0.1;                 // kinetic coefficient
+  double mu_static = -1.0;         // static coefficient, >= mu; < 0: equal to mu
+  double stribeck_velocity = 0.0;  // m/s, 0: none (friction_law.hpp)
+  double viscous = 0.0;            // N s/m, while sliding
   // Tangential stiffness/damping of the friction element; default: equal to the normal ones
   // as in the paper.
   double tangential_stiffness = -1.0;

@@ -1,5 +1,6 @@
 #include "components/impedance/kikuuwe_friction.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace stiction::components {
@@ -23,6 +24,16 @@ KikuuweFriction::KikuuweFriction(std::string name, const KikuuweFrictionParams& 
   if (!(params_.stiffness > 0.0) || !(params_.damping >= 0.0) || !(params_.force_limit >= 0.0)) {
     throw std::invalid_argument("kikuuwe friction: need K > 0, B >= 0, F >= 0");
   }
+  levels_ = {params_.force_limit,
+             params_.static_limit < 0.0 ? params_.force_limit : params_.static_limit,
+             params_.stribeck_velocity, params_.viscous};
+  if (!(levels_.breakaway >= levels_.kinetic) || !std::isfinite(levels_.breakaway) ||
+      !(levels_.stribeck_velocity >= 0.0) || !std::isfinite(levels_.stribeck_velocity) ||
+      !(levels_.viscous >= 0.0) || !std::isfinite(levels_.viscous)) {
+    throw std::invalid_argument(
+        "kikuuwe friction: need static_limit >= force_limit, stribeck_velocity >= 0 and "
+        "viscous >= 0, finite");
+  }
 }
 
 std::vector<std::string> KikuuweFriction::state_labels() const {
@@ -41,12 +52,12 @@ void KikuuweFriction::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, d
   // (19b): f = gsat(F, (B + tau K) v + K e).
   u = BtK * v + K * y;
   const double norm = u.norm();
-  if (norm <= params_.force_limit) {
+  if (norm <= levels_.breakaway) {
     // Not saturated: (19c) reduces to eps = v. Written as such so that it holds to the last
     // bit; (f - K e) / (B + tau K) would differ from v by rounding and let a stuck joint creep.
     y_dot = v;
   } else {
-    u *= params_.force_limit / norm;
+    u *= levels_.sliding_force(norm, BtK) / norm;
     y_dot = (u - K * y) / BtK;
   }
 }

@@ -2,12 +2,16 @@
 //   f   = gsat(F, (B + tau K) v + K e)
 //   eps = (f - K e) / (B + tau K)          (the state derivative: e_dot = eps)
 // While not saturated eps == v exactly, so the anchor (position - e) does not drift.
+// gsat is friction_law.hpp's: stuck up to the static level, then the Stribeck level between
+// static_limit and force_limit plus viscous friction (plain gsat when static_limit =
+// force_limit and viscous = 0).
 // Input x_hat = [position (n), velocity (n)] of the moving side; only the velocity is used.
 // Output u = f, the force the moving side exerts on the element: friction on the body is
 // -f (applied by the map). Signals: tau (n = 1) or f (n > 1), and e.
 #pragma once
 
 #include "components/impedance/friction_capabilities.hpp"
+#include "components/impedance/friction_law.hpp"
 #include "core/impedance.hpp"
 
 namespace stiction::components {
@@ -15,8 +19,11 @@ namespace stiction::components {
 struct KikuuweFrictionParams {
   double stiffness = 1e4;   // K
   double damping = 1.0;     // B
-  double force_limit = 1.0; // F, the Coulomb level
+  double force_limit = 1.0; // F, the Coulomb (kinetic) level
   int dimension = 1;
+  double static_limit = -1.0;      // F_s >= F, the breakaway level; < 0: equal to force_limit
+  double stribeck_velocity = 0.0;  // v_s (m/s or rad/s), 0: none
+  double viscous = 0.0;            // B_v (N s/m or N m s/rad), while sliding
 };
 
 // gsat(X, x) of eq. (15): x if |x| <= X, else X x / |x|. Writes the result into x.
@@ -49,7 +56,7 @@ class KikuuweFriction final : public core::Impedance,
     const int n = params_.dimension;
     const double norm = ((params_.damping + tau * params_.stiffness) * x_hat.segment(n, n) +
                          params_.stiffness * y).norm();
-    return norm <= params_.force_limit ? 1 : 2;
+    return norm <= levels_.breakaway ? 1 : 2;
   }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
   // The whole output is friction: held entirely.
@@ -60,7 +67,7 @@ class KikuuweFriction final : public core::Impedance,
     y_dot = y_dot_ref;
   }
   double friction_cap_energy(core::ConstVecRef /*x_hat*/) const override {
-    return params_.force_limit * params_.force_limit / params_.stiffness;
+    return levels_.breakaway * levels_.breakaway / params_.stiffness;
   }
   core::Vec3 unloaded_slip(core::ConstVecRef /*x_hat*/, core::ConstVecRef y,
                            double tau) const override {
@@ -70,9 +77,11 @@ class KikuuweFriction final : public core::Impedance,
     return v;
   }
   const KikuuweFrictionParams& params() const { return params_; }
+  const FrictionLevels& levels() const { return levels_; }
 
  private:
   KikuuweFrictionParams params_;
+  FrictionLevels levels_;
   core::Vec initial_e_;
 };
 

@@ -1,5 +1,6 @@
 #include "components/impedance/pair_contact.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace stiction::components {
@@ -18,7 +19,7 @@ Vec3 tangential(const Vec3& v, const Vec3& n) { return v - n.dot(v) * n; }
 PairContact::PairContact(std::string name, const PairContactParams& params)
     : Impedance(std::move(name)),
       ContactCapabilities(
-          params.stiffness, params.damping, params.mu,
+          params.stiffness, params.damping, std::max(params.mu, params.mu_static),
           params.tangential_stiffness > 0.0 ? params.tangential_stiffness : params.stiffness),
       params_(params) {
   if (!(params_.stiffness > 0.0) || !(params_.damping >= 0.0) || !(params_.mu >= 0.0)) {
@@ -27,7 +28,9 @@ PairContact::PairContact(std::string name, const PairContactParams& params)
   const double kt =
       params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness;
   const double bt = params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
-  coefficients_ = {params_.stiffness, params_.damping, kt, bt, params_.mu};
+  coefficients_ = {params_.stiffness, params_.damping, kt, bt,
+                   contact_friction(params_.mu, params_.mu_static, params_.stribeck_velocity,
+                                    params_.viscous)};
 }
 
 double PairContact::contact_normal_force(ConstVecRef x_hat) const {
@@ -42,12 +45,12 @@ void PairContact::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, doubl
   const Vec3 e = y.head<3>();
   const double BtK = coefficients_.bt + tau * coefficients_.kt;
   Vec3 f = BtK * v_t + coefficients_.kt * tangential(e, n);
-  const double limit = coefficients_.mu * contact_normal_force(x_hat);
+  const FrictionLevels levels = coefficients_.friction.at(contact_normal_force(x_hat));
   const double norm = f.norm();
-  if (norm <= limit) {
+  if (norm <= levels.breakaway) {
     y_dot.head<3>() = v_t;  // exactly v_t while stuck, as for a plane (contact_law.hpp)
   } else {
-    f *= norm > 0.0 ? limit / norm : 0.0;
+    f *= norm > 0.0 ? levels.sliding_force(norm, BtK) / norm : 0.0;
     y_dot.head<3>() = (f - coefficients_.kt * e) / BtK;
   }
   // u is the negative of the force on the first body: N n - f.

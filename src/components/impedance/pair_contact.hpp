@@ -31,7 +31,10 @@ namespace stiction::components {
 struct PairContactParams {
   double stiffness = 1e7;  // K (N/m)
   double damping = 10.0;   // B (N s/m)
-  double mu = 0.1;
+  double mu = 0.1;                 // kinetic coefficient
+  double mu_static = -1.0;         // static coefficient, >= mu; < 0: equal to mu
+  double stribeck_velocity = 0.0;  // m/s, 0: none (friction_law.hpp)
+  double viscous = 0.0;            // N s/m, while sliding
   double tangential_stiffness = -1.0;  // default: K
   double tangential_damping = -1.0;    // default: B
 };

@@ -1,0 +1,86 @@
+// Rolling and spinning resistance of a sphere on a fixed plane (issue 38 item 3): a Kikuuwe
+// element (eq. 19, friction_law.hpp's plain gsat) on the sphere's angular velocity relative
+// to the plane, with the level c N, c a length (the lever arm of the normal force N):
+// - part `rolling`: the tangential part w_t = w - (n.w) n, a 2-D state e along the plane's
+//   tangents t1, t2 (rad), level `rolling_resistance` * N;
+// - part `spin`: the normal part n.w, a 1-D state e (rad), level `spin_friction` * N.
+// While stuck, e_dot equals the angular velocity exactly (as for every Kikuuwe element), so a
+// ball that has stopped rolling or spinning stays put without creep.
+// N is the sphere's contact's own normal force (kikuuwe_contact.hpp, computed by a copy of
+// that contact from the same parameters, bit for bit): no load, no resistance (regime 0).
+// Not a core::NormalContact on purpose: the run's events would then take it for one more
+// contact point of the sphere and report body states (stick, partial slip) over it; its own
+// stick/slip events are a joint friction's.
+// Input x_hat = [p (3), v (3), w (3)]: the sphere centre's world position and velocity and
+// its world angular velocity (BodyTwistMap). Output u = the torque the body exerts on the
+// element (world): the body receives -u, a free torque.
+// Signals: tau (x y z, the torque on the body, world) and e (rolling: axes 0 1 along t1, t2;
+// spin: one entry).
+#pragma once
+
+#include "components/impedance/friction_capabilities.hpp"
+#include "components/impedance/kikuuwe_contact.hpp"
+#include "core/impedance.hpp"
+
+namespace stiction::components {
+
+enum class RollingPart { rolling, spin };
+
+struct RollingResistanceParams {
+  RollingPart part = RollingPart::rolling;
+  double coefficient = 0.0;  // c (m): the level is c N (N m)
+  double stiffness = 1.0;    // K (N m/rad), > 0
+  double damping = 0.0;      // B (N m s/rad), >= 0
+  double radius = 0.0;       // the sphere's radius: its contact point is p - radius n
+};
+
+class RollingResistance final : public core::Impedance,
+                                public FrictionSpring,
+                                public core::ClampedFriction,
+                                public core::SlipElement {
+ public:
+  RollingResistance(std::string name, const KikuuweContactParams& contact,
+                    const RollingResistanceParams& params);
+  std::string_view type() const override { return "kikuuwe_contact"; }
+  int input_size() const override { return 9; }
+  int output_size() const override { return 3; }
+  int state_size() const override { return dimension(); }
+  std::vector<std::string> state_labels() const override;
+  void initial_state(core::VecRef y) const override { y.setZero(); }
+  void evaluate(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau, core::VecRef u,
+                core::VecRef y_dot) const override;
+  std::vector<core::SignalInfo> signals() const override;
+  void write_signals(core::ConstVecRef x_hat, core::ConstVecRef y, core::ConstVecRef u,
+                     core::VecRef out) const override;
+  int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
+  // The whole output is friction: held entirely.
+  void evaluate_friction_held(double /*t*/, core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,
+                              double /*tau*/, core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref,
+                              core::VecRef u, core::VecRef y_dot) const override {
+    u = u_ref;
+    y_dot = y_dot_ref;
+  }
+  double friction_cap_energy(core::ConstVecRef x_hat) const override {
+    const double level = params_.coefficient * contact_normal_force(x_hat);
+    return level * level / params_.stiffness;
+  }
+  // The angular slip (world, rad/s): w_t for rolling, (n.w) n for spin.
+  core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
+  core::Vec3 unloaded_slip(core::ConstVecRef x_hat, core::ConstVecRef y,
+                           double tau) const override;
+  // N at x_hat, as the sphere's contact computes it.
+  double contact_normal_force(core::ConstVecRef x_hat) const;
+  const RollingResistanceParams& params() const { return params_; }
+
+ private:
+  int dimension() const { return params_.part == RollingPart::rolling ? 2 : 1; }
+  // The angular velocity's coordinates the element acts on: (t1.w, t2.w) or (n.w).
+  Eigen::Vector2d coordinates(const core::Vec3& w) const;
+  // A vector of the element's coordinates (u, e) as a world vector.
+  core::Vec3 world(core::ConstVecRef c) const;
+
+  KikuuweContact contact_;  // the sphere's contact, for its normal force
+  RollingResistanceParams params_;
+};
+
+}  // namespace stiction::components
