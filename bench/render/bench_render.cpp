@@ -51,7 +51,7 @@ void render_frames(benchmark::State& state, int msaa, int shadow_map_size, int t
   settings.shadow_map_size = shadow_map_size;
   settings.shadow_taps = taps;
   settings.overlay.enabled = overlay;
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings);
+  FrameRenderer renderer(s.drawing, tr, settings);
   image::Image frame;
   renderer.render(0.0, frame);  // shader JIT happens on the first frame
   double t = 0.0;
@@ -121,7 +121,7 @@ void BM_Render720p_Fastest(benchmark::State& s) { render_frames(s, 1, 0, 1, fals
 image::Image rendered_frame() {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
   const core::Trajectory tr = testing::sphere_roll_trajectory();
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, read_render_settings(s));
+  FrameRenderer renderer(s.drawing, tr, read_render_settings(s));
   return renderer.render(1.0);
 }
 
@@ -210,7 +210,7 @@ void BM_VideoPipeline(benchmark::State& state) {
       sampled.clear();
       const double cpu = process_cpu_seconds();
       const auto start = std::chrono::steady_clock::now();
-      FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings);
+      FrameRenderer renderer(s.drawing, tr, settings);
       image::Image frame;
       for (int i = 0; i < clock.count; ++i) {
         renderer.render(clock.time(i), frame);

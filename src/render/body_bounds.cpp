@@ -12,7 +12,7 @@ std::vector<core::Vec3> arm_joints(const BodyVisual& arm, const PoseTrack& poses
   return arm_pose(arm, poses, index, t).joints;
 }
 
-Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double t) {
+Bounds body_bounds(const Drawing& scene, const PoseTrack& poses, double t) {
   Bounds bounds;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyVisual& b = scene.bodies[i];
@@ -59,7 +59,7 @@ Bounds body_bounds(const SceneDescription& scene, const PoseTrack& poses, double
   return bounds;
 }
 
-Bounds run_bounds(const SceneDescription& scene, const PoseTrack& poses, int samples) {
+Bounds run_bounds(const Drawing& scene, const PoseTrack& poses, int samples) {
   Bounds bounds;
   for (int i = 0; i < samples; ++i) {
     const double t =

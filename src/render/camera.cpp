@@ -50,7 +50,7 @@ namespace {
 
 // The horizontal direction the cameras look along: +y (from the front), or, for a scene
 // with an arm swinging in a vertical plane, along its joint axis so the arm is seen face on.
-glm::vec3 front_direction(const SceneDescription& scene) {
+glm::vec3 front_direction(const Drawing& scene) {
   glm::vec3 forward(0.0f, 1.0f, 0.0f);
   for (const BodyVisual& body : scene.bodies) {
     if (body.kind != BodyVisual::Kind::arm) continue;
@@ -63,7 +63,7 @@ glm::vec3 front_direction(const SceneDescription& scene) {
 }
 
 // The first body with a pose of its own (a planar arm has none to follow).
-int first_followable(const SceneDescription& scene) {
+int first_followable(const Drawing& scene) {
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (!jointed(scene.bodies[i])) return static_cast<int>(i);
   }
@@ -72,7 +72,7 @@ int first_followable(const SceneDescription& scene) {
 
 }  // namespace
 
-glm::vec3 default_view_direction(const SceneDescription& scene) {
+glm::vec3 default_view_direction(const Drawing& scene) {
   // A three-quarter view looking down ~28 degrees, slightly from the side: from the front
   // (-y), or, for a scene with an arm swinging in a vertical plane, from in front of that
   // plane (along its joint axis) so that the arm is seen face on, not edge on.
@@ -81,7 +81,7 @@ glm::vec3 default_view_direction(const SceneDescription& scene) {
   return glm::normalize(forward + 0.30f * side + glm::vec3(0.0f, 0.0f, -0.55f));
 }
 
-glm::vec3 view_direction(CameraView view, const SceneDescription& scene) {
+glm::vec3 view_direction(CameraView view, const Drawing& scene) {
   const glm::vec3 forward = front_direction(scene);
   const glm::vec3 side(-forward.y, forward.x, 0.0f);
   switch (view) {
@@ -98,12 +98,12 @@ glm::vec3 view_direction(CameraView view, const SceneDescription& scene) {
   return default_view_direction(scene);
 }
 
-glm::vec3 view_up(CameraView view, const SceneDescription& scene) {
+glm::vec3 view_up(CameraView view, const Drawing& scene) {
   // Looking straight down, +z cannot be up: the picture's up is the front direction.
   return view == CameraView::top ? front_direction(scene) : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
-CameraRig::CameraRig(const CameraSettings& settings, const SceneDescription& scene,
+CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene,
                      const PoseTrack& poses, float aspect)
     : poses_(poses) {
   const CameraView view = settings.view;

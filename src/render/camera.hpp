@@ -33,17 +33,17 @@ Camera frame_bounds(const Bounds& bounds, glm::vec3 direction, float fov_y_degre
 
 // The automatic camera's viewing direction: a three-quarter view from the front (-y), or
 // from in front of the plane of the first arm that swings in a vertical plane.
-glm::vec3 default_view_direction(const SceneDescription& scene);
+glm::vec3 default_view_direction(const Drawing& scene);
 
 // A preset's viewing direction (`auto` and `follow`: default_view_direction) and the
 // picture's up vector (+z, or the front direction for `top`).
-glm::vec3 view_direction(CameraView view, const SceneDescription& scene);
-glm::vec3 view_up(CameraView view, const SceneDescription& scene);
+glm::vec3 view_direction(CameraView view, const Drawing& scene);
+glm::vec3 view_up(CameraView view, const Drawing& scene);
 
 // The camera at every time of a run.
 class CameraRig {
  public:
-  CameraRig(const CameraSettings& settings, const SceneDescription& scene, const PoseTrack& poses,
+  CameraRig(const CameraSettings& settings, const Drawing& scene, const PoseTrack& poses,
             float aspect);
   Camera at(double t) const;
   // True if the camera follows a body along all three axes.

@@ -6,7 +6,6 @@
 #include <optional>
 #include <utility>
 
-#include "components/impedance/moving_contact.hpp"
 #include "render/cylinder_items.hpp"
 #include "render/mechanism_items.hpp"
 #include "render/scene_geometry.hpp"
@@ -158,7 +157,7 @@ void add_pin(std::vector<DrawItem>& items, const core::Vec3& at, const core::Vec
 
 }  // namespace
 
-std::vector<DrawItem> build_items(const SceneDescription& scene, const PoseTrack& poses, double t,
+std::vector<DrawItem> build_items(const Drawing& scene, const PoseTrack& poses, double t,
                                   const Bounds& focus) {
   std::vector<DrawItem> items;
   const Bounds all = run_bounds(scene, poses, 16);

@@ -46,7 +46,7 @@ double support(const BodyVisual& b, const core::Quat& q, const core::Vec3& d) {
 
 }  // namespace
 
-double arrow_body_size(const SceneDescription& scene) {
+double arrow_body_size(const Drawing& scene) {
   double size = 0.0;
   for (const BodyVisual& b : scene.bodies) {
     switch (b.kind) {
@@ -94,7 +94,7 @@ ContactForce contact_force(const ContactSite& site, const PoseTrack& poses, doub
   return out;
 }
 
-ArrowScales choose_arrow_scales(const SceneDescription& scene, const ContactSites& sites,
+ArrowScales choose_arrow_scales(const Drawing& scene, const ContactSites& sites,
                                 const PoseTrack& poses, const OverlayLayers& layers,
                                 double exposure) {
   ArrowScales scales;
@@ -150,10 +150,17 @@ core::Vec3 force_arrow_tail(const ContactSite& site, const PoseTrack& poses, dou
   core::Vec3 toward = core::Vec3(eye.x, eye.y, eye.z) - tail;
   toward -= n.dot(toward) * n;
   if (toward.norm() > 1e-9) {
-    // Beside a ball; off a box's edge by a shaft's width, so the arrow is not half inside.
-    const double aside = site.radius > 0.0 ? 1.1 * site.radius + 2.0 * scales.shaft_radius
-                                           : 1.5 * scales.shaft_radius;
-    tail += aside * toward.normalized();
+    // Beside a ball; off a box's edge by a shaft's width, so the arrow is not half inside;
+    // clear of a wheel's near face (its normal force points up through the wheel).
+    const core::Vec3 d = toward.normalized();
+    double aside = site.radius > 0.0 ? 1.1 * site.radius + 2.0 * scales.shaft_radius
+                                     : 1.5 * scales.shaft_radius;
+    if (site.rule == ContactSite::Rule::rim) {
+      const core::Vec3 centre = poses.position(site.body, t);
+      aside = site.rim.reach(poses.orientation(site.body, t), d) - d.dot(tail - centre) +
+              2.0 * scales.shaft_radius;
+    }
+    tail += aside * d;
   }
   return tail;
 }
@@ -174,8 +181,8 @@ void add_force_arrows(std::vector<DrawItem>& items, const ContactSites& sites,
   }
 }
 
-void add_velocity_arrows(std::vector<DrawItem>& items, const SceneDescription& scene,
-                         const PoseTrack& poses, double t, const ArrowScales& scales) {
+void add_velocity_arrows(std::vector<DrawItem>& items, const Drawing& scene, const PoseTrack& poses,
+                         double t, const ArrowScales& scales) {
   ArrowStyle style;
   style.shaft_radius = scales.shaft_radius;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {

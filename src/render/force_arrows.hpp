@@ -29,7 +29,7 @@ struct ArrowScales {
 
 // The body size the arrows are measured against: the largest sphere diameter, box side or
 // arm link length of the scene (0.1 m without bodies).
-double arrow_body_size(const SceneDescription& scene);
+double arrow_body_size(const Drawing& scene);
 
 // 1, 2 or 5 times a power of ten, the smallest not below x (x > 0).
 double round_up_125(double x);
@@ -39,7 +39,7 @@ double round_up_125(double x);
 // do not set it) at 0.6 body sizes and the largest body speed at 0.8 (not rounded: the
 // legend shows a round value at this scale). Arrows are cut at 1.5 body sizes.
 // `exposure`: a frame's simulated duration, as for contact_force.
-ArrowScales choose_arrow_scales(const SceneDescription& scene, const ContactSites& sites,
+ArrowScales choose_arrow_scales(const Drawing& scene, const ContactSites& sites,
                                 const PoseTrack& poses, const OverlayLayers& layers,
                                 double exposure = 0.0);
 
@@ -68,7 +68,7 @@ void add_force_arrows(std::vector<DrawItem>& items, const ContactSites& sites,
                       const glm::vec3& eye, double exposure = 0.0);
 
 // One arrow per body with a velocity (`<b>.v.*`), from the body's surface along v.
-void add_velocity_arrows(std::vector<DrawItem>& items, const SceneDescription& scene,
+void add_velocity_arrows(std::vector<DrawItem>& items, const Drawing& scene,
                          const PoseTrack& poses, double t, const ArrowScales& scales);
 
 }  // namespace stiction::render

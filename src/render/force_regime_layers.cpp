@@ -6,7 +6,7 @@
 
 namespace stiction::render {
 
-std::unique_ptr<ForceRegimeLayers> ForceRegimeLayers::create(const SceneDescription& scene,
+std::unique_ptr<ForceRegimeLayers> ForceRegimeLayers::create(const Drawing& scene,
                                                              const ContactSites& sites,
                                                              const PoseTrack& poses,
                                                              const RenderSettings& settings) {
@@ -15,7 +15,7 @@ std::unique_ptr<ForceRegimeLayers> ForceRegimeLayers::create(const SceneDescript
   return std::make_unique<ForceRegimeLayers>(scene, sites, poses, settings);
 }
 
-ForceRegimeLayers::ForceRegimeLayers(const SceneDescription& scene, const ContactSites& sites,
+ForceRegimeLayers::ForceRegimeLayers(const Drawing& scene, const ContactSites& sites,
                                      const PoseTrack& poses, const RenderSettings& settings)
     : scene_(scene),
       sites_(sites),

@@ -21,11 +21,11 @@ namespace stiction::render {
 class ForceRegimeLayers {
  public:
   // Null when forces, velocities and badges are all off.
-  static std::unique_ptr<ForceRegimeLayers> create(const SceneDescription& scene,
+  static std::unique_ptr<ForceRegimeLayers> create(const Drawing& scene,
                                                    const ContactSites& sites,
                                                    const PoseTrack& poses,
                                                    const RenderSettings& settings);
-  ForceRegimeLayers(const SceneDescription& scene, const ContactSites& sites,
+  ForceRegimeLayers(const Drawing& scene, const ContactSites& sites,
                     const PoseTrack& poses, const RenderSettings& settings);
 
   // The arrows at time t; `exposure`: the simulated time the frame stands for (forces and
@@ -38,7 +38,7 @@ class ForceRegimeLayers {
   const ArrowScales& scales() const { return scales_; }
 
  private:
-  const SceneDescription& scene_;
+  const Drawing& scene_;
   ContactSites sites_;
   const PoseTrack& poses_;
   OverlayLayers layers_;

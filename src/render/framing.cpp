@@ -18,7 +18,7 @@ void add_cube(std::vector<glm::vec3>& points, glm::vec3 c, glm::vec3 half) {
 
 }  // namespace
 
-std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrack& poses,
+std::vector<glm::vec3> body_points(const Drawing& scene, const PoseTrack& poses,
                                    double t) {
   std::vector<glm::vec3> points;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -72,7 +72,7 @@ std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrac
 
 // The size of the bodies' pieces: a sphere's diameter, a free box's or block's largest side,
 // a link's width (a chain is framed by its reach, not by its size).
-float piece_size(const SceneDescription& scene) {
+float piece_size(const Drawing& scene) {
   float size = 0.0f;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyVisual& b = scene.bodies[i];
@@ -102,7 +102,7 @@ float piece_size(const SceneDescription& scene) {
   return size;
 }
 
-std::vector<glm::vec3> run_points(const SceneDescription& scene, const PoseTrack& poses,
+std::vector<glm::vec3> run_points(const Drawing& scene, const PoseTrack& poses,
                                   glm::vec3 direction, int samples, glm::vec3 up_hint,
                                   const std::function<glm::vec3(double)>& moving_frame) {
   std::vector<glm::vec3> points;

@@ -13,7 +13,7 @@
 namespace stiction::render {
 
 // Points whose convex hull holds every body (and penalty joint) at time t.
-std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrack& poses, double t);
+std::vector<glm::vec3> body_points(const Drawing& scene, const PoseTrack& poses, double t);
 
 // body_points and the mechanism's points (springs, posts, sources' arrows, rollers, pivots:
 // mechanism_items.hpp) at `samples` times spread over the run, and a square six of the
@@ -21,7 +21,7 @@ std::vector<glm::vec3> body_points(const SceneDescription& scene, const PoseTrac
 // down needs another up than +z), centred on them (ground around a body at rest).
 // `moving_frame`, if given, is subtracted from the points at each time: the points as seen
 // by a camera that moves by it (a follow camera).
-std::vector<glm::vec3> run_points(const SceneDescription& scene, const PoseTrack& poses,
+std::vector<glm::vec3> run_points(const Drawing& scene, const PoseTrack& poses,
                                   glm::vec3 direction, int samples = 96,
                                   glm::vec3 up = glm::vec3(0.0f, 0.0f, 1.0f),
                                   const std::function<glm::vec3(double)>& moving_frame = {});

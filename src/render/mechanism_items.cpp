@@ -5,7 +5,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <numbers>
 
-#include "components/impedance/moving_contact.hpp"
 #include "render/arrow.hpp"
 #include "render/scene_geometry.hpp"
 #include "render/spring_coil.hpp"
@@ -33,7 +32,7 @@ Material plain(const glm::vec3& colour, float specular = 0.25f, float shininess 
 
 // A body's point (in its frame) in the world at time t; a block's is lifted to half its
 // height (what holds a block pulls at its middle, not at its underside).
-glm::vec3 anchor(const SceneDescription& scene, const PoseTrack& poses, int body,
+glm::vec3 anchor(const Drawing& scene, const PoseTrack& poses, int body,
                  const core::Vec3& local, double t) {
   const BodyVisual& b = scene.bodies[static_cast<std::size_t>(body)];
   core::Vec3 p = poses.position(body, t) + poses.orientation(body, t) * local;
@@ -47,7 +46,7 @@ glm::vec3 lift(const BodyVisual& b) {
 
 // Height of what a post under `p` stands on: the highest fixed, roughly horizontal surface
 // below p (a belt or a tilting board moves: not those), else the floor under the scene.
-float floor_under(const SceneDescription& scene, const MechanismFrame& frame, const glm::vec3& p) {
+float floor_under(const Drawing& scene, const MechanismFrame& frame, const glm::vec3& p) {
   if (scene.surfaces.empty()) return static_cast<float>(frame.floor_z);
   float best = -1e30f;
   for (const SurfaceVisual& s : scene.surfaces) {
@@ -73,7 +72,7 @@ void add_box_points(std::vector<glm::vec3>& points, const glm::vec3& c, float h)
 
 }  // namespace
 
-MechanismFrame mechanism_frame(const SceneDescription& scene, const PoseTrack& poses,
+MechanismFrame mechanism_frame(const Drawing& scene, const PoseTrack& poses,
                                const Bounds* run) {
   MechanismFrame f;
   f.run = run ? *run : run_bounds(scene, poses, 16);
@@ -132,7 +131,7 @@ MechanismFrame mechanism_frame(const SceneDescription& scene, const PoseTrack& p
   return f;
 }
 
-SpringEnds spring_ends(const SceneDescription& scene, const PoseTrack& poses,
+SpringEnds spring_ends(const Drawing& scene, const PoseTrack& poses,
                        const MechanismFrame& frame, int spring, double t) {
   const SpringVisual& s = scene.springs[static_cast<std::size_t>(spring)];
   const BodyVisual& body = scene.bodies[static_cast<std::size_t>(s.body)];
@@ -150,7 +149,7 @@ SpringEnds spring_ends(const SceneDescription& scene, const PoseTrack& poses,
   return e;
 }
 
-std::optional<ForceArrow> force_arrow(const SceneDescription& scene, const PoseTrack& poses,
+std::optional<ForceArrow> force_arrow(const Drawing& scene, const PoseTrack& poses,
                                       const MechanismFrame& frame, int source, double t) {
   const SourceVisual& s = scene.sources[static_cast<std::size_t>(source)];
   const auto& columns = frame.source_columns[static_cast<std::size_t>(source)];
@@ -172,7 +171,7 @@ std::optional<ForceArrow> force_arrow(const SceneDescription& scene, const PoseT
   return a;
 }
 
-std::optional<TorqueArc> torque_arc(const SceneDescription& scene, const PoseTrack& poses,
+std::optional<TorqueArc> torque_arc(const Drawing& scene, const PoseTrack& poses,
                                     const MechanismFrame& frame, int source, double t) {
   const SourceVisual& s = scene.sources[static_cast<std::size_t>(source)];
   const auto& columns = frame.source_columns[static_cast<std::size_t>(source)];
@@ -229,7 +228,7 @@ std::optional<TorqueArc> torque_arc(const SceneDescription& scene, const PoseTra
   return arc;
 }
 
-std::optional<BeltRollers> belt_rollers(const SceneDescription& scene, const MechanismFrame& frame,
+std::optional<BeltRollers> belt_rollers(const Drawing& scene, const MechanismFrame& frame,
                                         const SurfaceVisual& s) {
   if (!s.moving || !s.moving->motion().belt_speed) return std::nullopt;
   const core::Vec3 n = s.normal;
@@ -330,7 +329,7 @@ std::optional<PivotAxle> pivot_axle(const MechanismFrame& frame, const SurfaceVi
   return axle;
 }
 
-void add_mechanism_items(std::vector<DrawItem>& items, const SceneDescription& scene,
+void add_mechanism_items(std::vector<DrawItem>& items, const Drawing& scene,
                          const PoseTrack& poses, const MechanismFrame& frame, double t) {
   const Material steel = plain(kSpringColour, 0.6f, 64.0f);
   for (std::size_t i = 0; i < scene.springs.size(); ++i) {
@@ -412,7 +411,7 @@ void add_mechanism_items(std::vector<DrawItem>& items, const SceneDescription& s
   }
 }
 
-std::vector<glm::vec3> mechanism_points(const SceneDescription& scene, const PoseTrack& poses,
+std::vector<glm::vec3> mechanism_points(const Drawing& scene, const PoseTrack& poses,
                                         const MechanismFrame& frame, double t) {
   std::vector<glm::vec3> points;
   for (std::size_t i = 0; i < scene.springs.size(); ++i) {
@@ -450,7 +449,7 @@ std::vector<glm::vec3> mechanism_points(const SceneDescription& scene, const Pos
   return points;
 }
 
-bool has_world_parts(const SceneDescription& scene) {
+bool has_world_parts(const Drawing& scene) {
   for (const SpringVisual& s : scene.springs) {
     if (s.other < 0) return true;
   }

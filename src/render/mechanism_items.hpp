@@ -31,7 +31,7 @@ struct MechanismFrame {
 };
 
 // `run`: the bodies' bounds over the run when the caller has them already (build_items).
-MechanismFrame mechanism_frame(const SceneDescription& scene, const PoseTrack& poses,
+MechanismFrame mechanism_frame(const Drawing& scene, const PoseTrack& poses,
                                const Bounds* run = nullptr);
 
 struct SpringEnds {
@@ -46,7 +46,7 @@ struct SpringEnds {
 // drawn with the anchor set back along the spring's mean direction over the run by what it
 // lacks: the drawn coil then shows the spring's stretch, and its law along that direction is
 // unchanged (K times the displacement from the mean).
-SpringEnds spring_ends(const SceneDescription& scene, const PoseTrack& poses,
+SpringEnds spring_ends(const Drawing& scene, const PoseTrack& poses,
                        const MechanismFrame& frame, int spring, double t);
 
 struct ForceArrow {
@@ -62,9 +62,9 @@ struct TorqueArc {
 };
 // A source's arrow at time t: length (or sweep) in proportion to its value over its largest
 // over the run; nullopt when it is zero or has no column.
-std::optional<ForceArrow> force_arrow(const SceneDescription& scene, const PoseTrack& poses,
+std::optional<ForceArrow> force_arrow(const Drawing& scene, const PoseTrack& poses,
                                       const MechanismFrame& frame, int source, double t);
-std::optional<TorqueArc> torque_arc(const SceneDescription& scene, const PoseTrack& poses,
+std::optional<TorqueArc> torque_arc(const Drawing& scene, const PoseTrack& poses,
                                     const MechanismFrame& frame, int source, double t);
 
 struct BeltRollers {
@@ -77,7 +77,7 @@ struct BeltRollers {
 // A belt's rollers (nullopt for a surface that is not a belt): at the ends of its extent
 // along its direction, or, for an endless one, 2.5 pieces beyond the bodies' run and the
 // springs' anchors.
-std::optional<BeltRollers> belt_rollers(const SceneDescription& scene, const MechanismFrame& frame,
+std::optional<BeltRollers> belt_rollers(const Drawing& scene, const MechanismFrame& frame,
                                         const SurfaceVisual& surface);
 
 struct PivotAxle {
@@ -89,16 +89,16 @@ std::optional<PivotAxle> pivot_axle(const MechanismFrame& frame, const SurfaceVi
                                     double t);
 
 // Draw items of every element above at time t.
-void add_mechanism_items(std::vector<DrawItem>& items, const SceneDescription& scene,
+void add_mechanism_items(std::vector<DrawItem>& items, const Drawing& scene,
                          const PoseTrack& poses, const MechanismFrame& frame, double t);
 
 // Points whose hull holds every element above at time t (coil ends and radius, post feet,
 // arrows, arcs, rollers, axle ends), for the framing.
-std::vector<glm::vec3> mechanism_points(const SceneDescription& scene, const PoseTrack& poses,
+std::vector<glm::vec3> mechanism_points(const Drawing& scene, const PoseTrack& poses,
                                         const MechanismFrame& frame, double t);
 
 // True if the scene has parts held by the world (posts, belt rollers, pivots): a camera
 // following a body would make them move in the picture.
-bool has_world_parts(const SceneDescription& scene);
+bool has_world_parts(const Drawing& scene);
 
 }  // namespace stiction::render

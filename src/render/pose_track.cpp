@@ -7,7 +7,7 @@
 
 namespace stiction::render {
 
-PoseTrack::PoseTrack(const core::Trajectory& trajectory, const SceneDescription& scene)
+PoseTrack::PoseTrack(const core::Trajectory& trajectory, const Drawing& scene)
     : trajectory_(trajectory) {
   const auto t_col = trajectory.find("t");
   if (!t_col || trajectory.row_count() == 0) {

@@ -62,7 +62,7 @@ const char* regime_name(Regime r) {
   return "";
 }
 
-double visible_gap(const SceneDescription& scene, const ContactSite& site) {
+double visible_gap(const Drawing& scene, const ContactSite& site) {
   if (site.body < 0 || site.body >= static_cast<int>(scene.bodies.size())) return 0.0;
   const BodyVisual& b = scene.bodies[static_cast<std::size_t>(site.body)];
   const double size = b.kind == BodyVisual::Kind::sphere ? 2.0 * b.radius : b.size.maxCoeff();
@@ -142,7 +142,7 @@ void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& si
   }
 }
 
-RegimeBadges::RegimeBadges(const SceneDescription& scene, const ContactSites& sites,
+RegimeBadges::RegimeBadges(const Drawing& scene, const ContactSites& sites,
                            const PoseTrack& poses, int image_height)
     : scene_(scene), font_(text::Font::open_default()) {
   style_.pixel_size = std::max(10.0, image_height / 40.0);

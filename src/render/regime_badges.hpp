@@ -34,7 +34,7 @@ const char* regime_name(Regime r);
 Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t,
                       double exposure = 0.0, double visible_gap = 0.0);
 // The gap a viewer cannot see for a contact: a thousandth of its body's size.
-double visible_gap(const SceneDescription& scene, const ContactSite& site);
+double visible_gap(const Drawing& scene, const ContactSite& site);
 // A friction joint: stick while |omega| of the joint is below its threshold.
 Regime joint_regime(const JointSite& site, const PoseTrack& poses, double t);
 
@@ -60,7 +60,7 @@ void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& si
 class RegimeBadges {
  public:
   // Keeps the contact points that carry a normal force at some time of the run.
-  RegimeBadges(const SceneDescription& scene, const ContactSites& sites, const PoseTrack& poses,
+  RegimeBadges(const Drawing& scene, const ContactSites& sites, const PoseTrack& poses,
                int image_height);
   // The badges at time t (one per table and regime, one per joint), laid out.
   // `exposure`: the frame's simulated duration (contact_regime).
@@ -70,7 +70,7 @@ class RegimeBadges {
             double exposure = 0.0);
 
  private:
-  SceneDescription scene_;
+  Drawing scene_;
   ContactSites sites_;
   text::Font font_;
   text::TextStyle style_;

@@ -1,7 +1,11 @@
 #include "render/render_outputs.hpp"
 
+#include "sys/terminal_text.hpp"
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 
 #include "render/camera.hpp"
@@ -22,6 +26,29 @@ namespace stiction::render {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Meshes are not drawn (no mesh import yet): say so once per file.
+void warn_undrawn_meshes(const Drawing& drawing) {
+  for (const BodyVisual& b : drawing.bodies) {
+    std::vector<std::string> told;
+    for (const scene::UrdfVisual& v : b.visuals) {
+      if (v.shape != scene::UrdfVisual::Shape::mesh ||
+          std::find(told.begin(), told.end(), v.mesh) != told.end()) {
+        continue;
+      }
+      told.push_back(v.mesh);
+      // The file name is the URDF's text: escaped for the terminal (issue 39).
+      std::fprintf(stderr, "%s\n",
+                   sys::terminal_safe("warning: " + b.name + ": mesh visual '" + v.mesh +
+                                      "' not drawn (meshes are not supported)")
+                       .c_str());
+    }
+  }
+}
+
+}  // namespace
+
 FrameClock frame_clock(double start, double end, double fps, double slow_motion) {
   FrameClock clock;
   clock.start = start;
@@ -30,11 +57,11 @@ FrameClock frame_clock(double start, double end, double fps, double slow_motion)
   return clock;
 }
 
-FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
+FrameRenderer::FrameRenderer(Drawing scene, const core::Trajectory& trajectory,
                              const RenderSettings& settings, const FrameAnnotations& annotations)
     : scene_(std::move(scene)),
       settings_(settings),
-      joint_rate_thresholds_(joint_rate_thresholds(annotations.sites)),
+      joint_rate_thresholds_(joint_rate_thresholds(scene_.sites)),
       poses_(trajectory, scene_) {
   context_ = create_offscreen_context();
   RendererOptions options;
@@ -61,7 +88,7 @@ FrameRenderer::FrameRenderer(SceneDescription scene, const core::Trajectory& tra
         settings.inset, trajectory, settings.width, settings.height, std::move(events),
         TitleCaption::caption_height(settings.overlay, settings.height));
   }
-  layers_ = ForceRegimeLayers::create(scene_, annotations.sites, poses_, settings);
+  layers_ = ForceRegimeLayers::create(scene_, scene_.sites, poses_, settings);
   titles_ = TitleCaption::create(settings.overlay, settings.height);
 }
 
@@ -70,14 +97,11 @@ std::unique_ptr<FrameRenderer> frame_renderer_for(const scene::Scene& scene,
                                                   const RenderSettings& settings,
                                                   std::vector<double> event_times,
                                                   std::vector<std::string> event_kinds) {
-  SceneDescription description = describe_scene(*scene.network, scene.document, &scene.robot_visuals);
+  warn_undrawn_meshes(scene.drawing);
   FrameAnnotations annotations;
-  annotations.sites = describe_contact_sites(*scene.network, scene.document, description,
-                                             settings.overlay.stick_thresholds,
-                                             settings.overlay.default_stick_threshold);
   annotations.event_times = std::move(event_times);
   annotations.event_kinds = std::move(event_kinds);
-  return std::make_unique<FrameRenderer>(std::move(description), trajectory, settings, annotations);
+  return std::make_unique<FrameRenderer>(scene.drawing, trajectory, settings, annotations);
 }
 
 double FrameRenderer::stuck_below(const std::string& signal) const {

@@ -85,19 +85,17 @@ class TitleCaption;
 
 // Renders single frames of one run (also used by the tests and the benchmark). Creates its
 // own GL context; use it from one thread.
-// What a run adds to its frames beyond its poses: the contact points and friction joints that
-// carry force arrows and badges (describe_contact_sites; without them those layers show
-// nothing), and the run's events, which the inset plot marks (parallel lists; kinds may be
-// empty).
+// What a run adds to its frames beyond its drawing and poses: the run's events, which the
+// inset plot marks (parallel lists; kinds may be empty). The contact points and friction
+// joints that carry force arrows, badges and trails are the drawing's (Drawing::sites).
 struct FrameAnnotations {
-  ContactSites sites;
   std::vector<double> event_times;
   std::vector<std::string> event_kinds;
 };
 
 class FrameRenderer {
  public:
-  FrameRenderer(SceneDescription scene, const core::Trajectory& trajectory,
+  FrameRenderer(Drawing scene, const core::Trajectory& trajectory,
                 const RenderSettings& settings, const FrameAnnotations& annotations = {});
   ~FrameRenderer();
   FrameRenderer(const FrameRenderer&) = delete;
@@ -116,7 +114,7 @@ class FrameRenderer {
   double stuck_below(const std::string& signal) const;
 
  private:
-  SceneDescription scene_;
+  Drawing scene_;
   RenderSettings settings_;
   std::map<std::string, double> joint_rate_thresholds_;
   PoseTrack poses_;

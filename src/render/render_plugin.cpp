@@ -47,7 +47,7 @@ void guarded(Call* call, Work&& work) {
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) void stiction_render_outputs_v3(
+extern "C" __attribute__((visibility("default"))) void stiction_render_outputs_v4(
     stiction::render::PluginCall* call) {
   guarded(call, [call] {
     *call->result = stiction::render::render_outputs(*call->scene, *call->trajectory,
@@ -55,7 +55,7 @@ extern "C" __attribute__((visibility("default"))) void stiction_render_outputs_v
   });
 }
 
-extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v4(
+extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v5(
     stiction::render::FramesCall* call) {
   namespace render = stiction::render;
   guarded(call, [call] {
@@ -74,7 +74,7 @@ extern "C" __attribute__((visibility("default"))) void stiction_render_frames_v4
   });
 }
 
-extern "C" __attribute__((visibility("default"))) void stiction_render_compare_v2(
+extern "C" __attribute__((visibility("default"))) void stiction_render_compare_v3(
     stiction::render::CompareVideoCall* call) {
   guarded(call, [call] {
     *call->result = stiction::render::render_compare_video(*call->runs, *call->request);

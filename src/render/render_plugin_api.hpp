@@ -61,11 +61,11 @@ struct CompareVideoCall {
 };
 
 // Bumped whenever PluginCall, FramesCall, CompareVideoCall or the types they point to change.
-inline constexpr const char* kRenderPluginSymbol = "stiction_render_outputs_v3";
+inline constexpr const char* kRenderPluginSymbol = "stiction_render_outputs_v4";
 using RenderPluginEntry = void (*)(PluginCall*);
-inline constexpr const char* kRenderFramesSymbol = "stiction_render_frames_v4";
+inline constexpr const char* kRenderFramesSymbol = "stiction_render_frames_v5";
 using RenderFramesEntry = void (*)(FramesCall*);
-inline constexpr const char* kRenderCompareSymbol = "stiction_render_compare_v2";
+inline constexpr const char* kRenderCompareSymbol = "stiction_render_compare_v3";
 using RenderCompareEntry = void (*)(CompareVideoCall*);
 
 }  // namespace stiction::render

@@ -40,7 +40,7 @@ ArmPose arm_pose(const BodyVisual& arm, const PoseTrack& poses, int index, doubl
   return pose;
 }
 
-bool is_link(const SceneDescription& scene, int index) {
+bool is_link(const Drawing& scene, int index) {
   return std::any_of(scene.joints.begin(), scene.joints.end(),
                      [&](const JointVisual& j) { return j.child == index || j.parent == index; });
 }
@@ -64,7 +64,7 @@ glm::vec3 box_half_extent(const core::Vec3& size, const core::Quat& q) {
   return {static_cast<float>(e.x()), static_cast<float>(e.y()), static_cast<float>(e.z())};
 }
 
-double body_scale(const SceneDescription& scene) {
+double body_scale(const Drawing& scene) {
   double s = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyVisual& b = scene.bodies[i];
@@ -104,7 +104,7 @@ double piece_size(const BodyVisual& b) {
   return 0.1;
 }
 
-double floor_height(const SceneDescription& scene, const Bounds& all, double scale) {
+double floor_height(const Drawing& scene, const Bounds& all, double scale) {
   double gap = 0.5 * scale;
   // Arms and jointed rigid bodies: three link widths below the lowest joint.
   double link_width = 0.0;

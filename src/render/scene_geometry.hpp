@@ -25,7 +25,7 @@ struct ArmPose {
 ArmPose arm_pose(const BodyVisual& arm, const PoseTrack& poses, int index, double t);
 
 // True if body `index` is a child or a parent of a joint: a link, drawn as an arm's link is.
-bool is_link(const SceneDescription& scene, int index);
+bool is_link(const Drawing& scene, int index);
 
 // Rotation taking the unit shapes' z axis to `axis` (unit).
 glm::mat4 align_z(const core::Vec3& axis);
@@ -39,7 +39,7 @@ core::Vec3 joint_axis(const JointVisual& j, const PoseTrack& poses, double t);
 glm::vec3 box_half_extent(const core::Vec3& size, const core::Quat& q);
 
 // Characteristic size of the scene's bodies: sets the checker square.
-double body_scale(const SceneDescription& scene);
+double body_scale(const Drawing& scene);
 
 // A body's size as drawn: a sphere's diameter, a box's or block's largest side, an arm's
 // widest link. Sets the size of what is drawn on it (coils, arrows).
@@ -47,6 +47,6 @@ double piece_size(const BodyVisual& body);
 
 // Height of the floor drawn under a scene without contact surfaces: below the lowest point
 // of the bodies over the run (`all`), three link widths under an arm, half `scale` else.
-double floor_height(const SceneDescription& scene, const Bounds& all, double scale);
+double floor_height(const Drawing& scene, const Bounds& all, double scale);
 
 }  // namespace stiction::render

@@ -12,16 +12,6 @@ namespace {
 const glm::vec3 kStick{0.05f, 0.55f, 0.15f};
 const glm::vec3 kSlip{0.85f, 0.05f, 0.05f};
 
-// The surface a contact touches when it moves (a tilting board, a belt): the contact's own
-// impedance. Null for a fixed surface.
-const components::MovingContact* moving_surface(const SceneDescription& scene,
-                                                const ContactVisual& c) {
-  for (const SurfaceVisual& s : scene.surfaces) {
-    if (s.moving != nullptr && s.moving->name() == c.contact) return s.moving;
-  }
-  return nullptr;
-}
-
 // Appends a ribbon of at least two vertex pairs to the strip and empties it.
 void flush_ribbon(std::vector<TrailVertex>& strip, std::vector<TrailVertex>& ribbon) {
   if (ribbon.size() >= 4) {
@@ -35,9 +25,8 @@ void flush_ribbon(std::vector<TrailVertex>& strip, std::vector<TrailVertex>& rib
   ribbon.clear();
 }
 
-void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scene,
-                   const PoseTrack& poses, const ContactVisual& c, int body, double t,
-                   double seconds, double threshold) {
+void append_ribbon(std::vector<TrailVertex>& strip, const Drawing& scene, const PoseTrack& poses,
+                   const ContactSite& c, double t, double seconds, double threshold) {
   const double t0 = std::max(poses.start_time(), t - seconds);
   const double half = 0.5 * trail_width(scene, c);
   constexpr int kSteps = 96;
@@ -45,7 +34,7 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
   ribbon.reserve(2 * (kSteps + 1));
   // A moving surface carries its trail: each point is kept in the surface's frame at its time
   // and drawn where that surface point is now (on the board as it tilts, moving with a belt).
-  const components::MovingContact* moving = moving_surface(scene, c);
+  const components::MovingContact* moving = c.moving;
   core::Vec3 normal = c.normal;
   double travel_now = 0.0, travel = 0.0;
   if (moving != nullptr) {
@@ -64,7 +53,7 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
     double height = 0.0;  // of the contact point above the surface at s
     if (moving != nullptr) {
       const components::SurfaceState surface = moving->surface(s);
-      const core::Vec3 p = poses.position(body, s) - c.radius * surface.frame.n;
+      const core::Vec3 p = contact_point(c, poses, s);
       height = surface.frame.n.dot(p - surface.origin);
       // Beyond a bounded board's edge the plane goes on only in the maths: no trail there.
       const components::SurfaceExtent& extent = moving->params().extent;
@@ -80,7 +69,7 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
       }
       on = carry_with_surface(*moving, p, s, travel, t, travel_now) + 1e-3 * normal;
     } else {
-      const core::Vec3 p = poses.position(body, s) - c.radius * c.normal;
+      const core::Vec3 p = contact_point(c, poses, s);
       height = c.normal.dot(p) - fixed_offset;
       // Onto the surface plane (slightly above it) so a bounce does not lift the trail.
       on = p - c.normal * (c.normal.dot(p)) + (fixed_offset + 1e-3) * c.normal;
@@ -100,7 +89,7 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
       flush_ribbon(strip, ribbon);
       continue;
     }
-    const double slip = poses.signal(c.contact + ".slip", s);
+    const double slip = poses.signal(c.name + ".slip", s);
     const glm::vec3 colour = std::isnan(slip) || sticks(slip, threshold) ? kStick : kSlip;
     ribbon.push_back({to_glm(on - side), colour});
     ribbon.push_back({to_glm(on + side), colour});
@@ -110,29 +99,37 @@ void append_ribbon(std::vector<TrailVertex>& strip, const SceneDescription& scen
 
 }  // namespace
 
-float trail_width(const SceneDescription& scene, const ContactVisual& contact) {
-  const int body = body_index(scene, contact.body);
+float trail_width(const Drawing& scene, const ContactSite& contact) {
+  const int body = contact.body;
   if (body < 0) return 0.01f;
   const BodyVisual& b = scene.bodies[static_cast<std::size_t>(body)];
   if (b.kind == BodyVisual::Kind::sphere) return static_cast<float>(0.15 * b.radius);
   if (b.kind == BodyVisual::Kind::block) return static_cast<float>(0.3 * b.size.x());
+  // A wheel's two tracks, each narrower than the wheel is long.
+  if (contact.rule == ContactSite::Rule::rim) {
+    return static_cast<float>(0.15 * std::min(b.radius, b.length));
+  }
   return static_cast<float>(0.15 * std::max(contact.radius, 0.05 * b.size.maxCoeff()));
 }
 
-std::vector<TrailVertex> build_trails(const SceneDescription& scene, const PoseTrack& poses,
-                                      double t, const TrailOptions& options) {
+std::vector<TrailVertex> build_trails(const Drawing& scene, const PoseTrack& poses, double t,
+                                      const TrailOptions& options) {
   std::vector<TrailVertex> strip;
-  for (const ContactVisual& c : scene.contacts) {
-    if (!options.contacts.empty() && std::find(options.contacts.begin(), options.contacts.end(),
-                                               c.contact) == options.contacts.end()) {
+  for (const ContactSite& c : scene.sites.contacts) {
+    if (!c.trail || c.body < 0) continue;
+    // A table names its contact points: "wheel_floor" chooses the tracks of "wheel_floor.0"
+    // and "wheel_floor.3".
+    if (!options.contacts.empty() &&
+        std::find(options.contacts.begin(), options.contacts.end(), c.name) ==
+            options.contacts.end() &&
+        std::find(options.contacts.begin(), options.contacts.end(), c.group) ==
+            options.contacts.end()) {
       continue;
     }
-    const int body = body_index(scene, c.body);
-    if (body < 0) continue;
-    const auto it = options.thresholds.find(c.contact);
+    const auto it = options.thresholds.find(c.name);
     const double threshold =
         it != options.thresholds.end() ? it->second : options.default_threshold;
-    append_ribbon(strip, scene, poses, c, body, t, options.seconds, threshold);
+    append_ribbon(strip, scene, poses, c, t, options.seconds, threshold);
   }
   return strip;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "render/contact_sites.hpp"
 #include "render/scene_view.hpp"
 
 namespace stiction::render {
@@ -26,10 +27,11 @@ inline bool sticks(double slip, double threshold) { return slip < threshold; }
 
 // One triangle strip holding every chosen contact's ribbon (ribbons joined by degenerate
 // triangles). The ribbon of a contact is as wide as a fraction of its body (`trail_width`).
-std::vector<TrailVertex> build_trails(const SceneDescription& scene, const PoseTrack& poses,
+std::vector<TrailVertex> build_trails(const Drawing& scene, const PoseTrack& poses,
                                       double t, const TrailOptions& options);
 
-// Ribbon width for a contact's body: 0.15 radius for a sphere, 0.3 side for a block.
-float trail_width(const SceneDescription& scene, const ContactVisual& contact);
+// Ribbon width for a contact's body: 0.15 radius for a sphere, 0.3 side for a block, 0.15 of
+// the smaller of a wheel's radius and length for each of its tracks.
+float trail_width(const Drawing& scene, const ContactSite& contact);
 
 }  // namespace stiction::render

@@ -95,7 +95,7 @@ void add_tree_items(std::vector<DrawItem>& items, const BodyVisual& b, const Pos
   const std::vector<components::LinkPose> p = tree_poses(b, poses, index, t);
   if (!b.visuals.empty()) {
     for (const auto& v : b.visuals) {
-      if (v.shape == scene::UrdfVisual::Shape::mesh) continue;  // warned at describe_scene
+      if (v.shape == scene::UrdfVisual::Shape::mesh) continue;  // warned by frame_renderer_for
       const components::LinkPose f = visual_frame(b, p, v);
       DrawItem item;
       glm::vec3 half(0.0f);

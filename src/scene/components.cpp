@@ -221,6 +221,8 @@ void ComponentBuilder::add_body(TableReader& table) {
   const std::string type = type_of(table, kBodyTypes);
   BodyInfo info;
   std::unique_ptr<core::Admittance> admittance;
+  BodyVisual visual;  // what is drawn (a urdf or spatial_tree body adds its own)
+  visual.name = name;
 
   if (type == "urdf") {
     admittance = add_urdf_body(table, name);  // urdf_body.cpp
@@ -231,6 +233,7 @@ void ComponentBuilder::add_body(TableReader& table) {
     p.velocity = table.vec3("velocity", p.velocity);
     p.gravity = gravity_;
     admittance = construct(table, [&] { return std::make_unique<components::PointMass>(name, p); });
+    visual.kind = BodyVisual::Kind::block;
   } else if (type == "rigid_body") {
     components::RigidBodyParams p;
     p.mass = table.positive("mass", table.required_number("mass"));
@@ -240,6 +243,7 @@ void ComponentBuilder::add_body(TableReader& table) {
       const double r = table.positive("radius", table.required_number("radius"));
       diagonal.setConstant((shape == "sphere" ? 2.0 / 5.0 : 2.0 / 3.0) * p.mass * r * r);
       info.sphere_radius = r;
+      visual.radius = r;
     } else if (shape == "box") {
       if (!table.has("size")) table.fail("size", "missing (a box needs size = [lx, ly, lz])");
       const Vec3 s = table.vec3("size", Vec3::Zero());
@@ -248,8 +252,12 @@ void ComponentBuilder::add_body(TableReader& table) {
           s.x() * s.x() + s.y() * s.y();
       diagonal *= p.mass / 12.0;
       info.box_size = s;
+      visual.kind = BodyVisual::Kind::box;
+      visual.size = s;
     } else if (shape == "cylinder") {
       info.cylinder = read_cylinder(table);
+      visual = cylinder_visual(name, info.cylinder->radius, info.cylinder->length,
+                               info.cylinder->axis, info.cylinder->hollow);
     } else if (!shape.empty()) {
       table.fail("shape",
                  "unknown shape '" + shape + "' (expected sphere, hollow_sphere, box or cylinder)");
@@ -268,6 +276,7 @@ void ComponentBuilder::add_body(TableReader& table) {
     } else if (shape.empty()) {
       table.fail("inertia", "missing (give `shape` or `inertia = [Jxx, Jyy, Jzz]`)");
     }
+    if (shape.empty()) visual.radius = 0.1;  // no shape of its own: a small ball
     p.position = table.vec3("position", p.position);
     p.velocity = table.vec3("velocity", p.velocity);
     if (table.has("orientation")) {
@@ -280,6 +289,7 @@ void ComponentBuilder::add_body(TableReader& table) {
     admittance = add_spatial_tree(table, name);
   } else {  // planar_arm
     components::PlanarArmParams p;
+    std::vector<double> lengths, widths;  // as drawn
     std::vector<TableReader> links = table.array_of_tables("links");
     if (links.empty()) table.fail("links", "missing (an array of link tables is required)");
     for (TableReader& link : links) {
@@ -291,6 +301,8 @@ void ComponentBuilder::add_body(TableReader& table) {
       l.inertia = link.non_negative("inertia", l.inertia);
       link.finish();
       p.links.push_back(l);
+      lengths.push_back(length);
+      widths.push_back(width);
     }
     p.base = table.vec3("base", p.base);
     const auto n = static_cast<std::size_t>(links.size());
@@ -305,11 +317,15 @@ void ComponentBuilder::add_body(TableReader& table) {
     // any other direction tilts the plane of motion, and gravity's part in it drives the arm.
     p.axis = unit(table, "axis", p.axis);
     p.gravity = gravity_;
-    admittance = construct(table, [&] { return std::make_unique<components::PlanarArm>(name, p); });
+    auto arm = construct(table, [&] { return std::make_unique<components::PlanarArm>(name, p); });
+    visual = arm_visual(name, arm->params().base, arm->plane_x(), arm->plane_y(),
+                        arm->params().axis, lengths, widths);
+    admittance = std::move(arm);
   }
   table.finish();
   info.admittance = admittance.get();
   bodies_.emplace(name, info);
+  if (type != "urdf" && type != "spatial_tree") drawing_.bodies.push_back(std::move(visual));
   network_.add_admittance(std::move(admittance));
 }
 
@@ -320,6 +336,10 @@ void ComponentBuilder::add_impedance(TableReader& table) {
   std::unique_ptr<core::Impedance> impedance;
   std::unique_ptr<core::CoordinateMap> map;
 
+  // What the wiring joins, for the drawing: the joint of an arm, or two points.
+  int wired_joint = -1;
+  std::string wired_other;
+  Vec3 wired_point = Vec3::Zero(), wired_other_point = Vec3::Zero();
   // Wiring of a 1-D element on joint `joint` of an arm; nullptr if `body` is not an arm.
   auto joint_map = [&]() -> std::unique_ptr<core::CoordinateMap> {
     const BodyInfo& info = body(table, "body");
@@ -333,6 +353,7 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     if (joint < 0 || joint >= arm->joint_count()) {
       table.fail("joint", "must be in 0.." + std::to_string(arm->joint_count() - 1));
     }
+    wired_joint = static_cast<int>(joint);
     return std::make_unique<components::JointMap>(*arm, static_cast<int>(joint));
   };
   // Wiring of a 3-D element between a point of `body` and a point of `other` (or the world).
@@ -342,6 +363,9 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     const core::Body* b = table.has("other") ? pose_body(table, "other") : nullptr;
     if (b == a) table.fail("other", "must differ from `body`");
     const Vec3 other_point = table.vec3("other_point", Vec3::Zero());
+    wired_point = point;
+    wired_other = b != nullptr ? b->name() : "";
+    wired_other_point = other_point;
     return std::make_unique<components::PointMap>(*a, point, b, other_point);
   };
   auto joint_only = [&]() {
@@ -391,6 +415,7 @@ void ComponentBuilder::add_impedance(TableReader& table) {
         construct(table, [&] { return std::make_unique<components::KikuuweFriction>(name, p); });
     friction->set_initial_e(initial_e);
     impedance = std::move(friction);
+    add_joint_site(table, name, wired_joint);
   } else if (type == "lugre") {
     components::LuGreParams p;
     map = joint_only();
@@ -405,6 +430,7 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     }
     p.initial_e = table.number("initial_e", p.initial_e);
     impedance = construct(table, [&] { return std::make_unique<components::LuGre>(name, p); });
+    add_joint_site(table, name, wired_joint);
   } else if (type == "dahl") {
     components::DahlParams p;
     map = joint_only();
@@ -412,6 +438,7 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     p.force_limit = table.positive("force_limit", p.force_limit);
     p.initial_e = table.number("initial_e", p.initial_e);
     impedance = construct(table, [&] { return std::make_unique<components::Dahl>(name, p); });
+    add_joint_site(table, name, wired_joint);
   } else if (type == "spring_damper") {
     components::SpringDamperParams p;
     map = joint_map();
@@ -444,6 +471,17 @@ void ComponentBuilder::add_impedance(TableReader& table) {
       impedance =
           construct(table, [&] { return std::make_unique<components::SpringDamper>(name, p); });
     }
+    if (wired_joint < 0) {  // between two points (a joint spring has no coil to draw)
+      SpringVisual spring;
+      spring.name = name;
+      spring.body = body_index(drawing_, table.required_string("body"));
+      spring.point = wired_point;
+      spring.other = wired_other.empty() ? -1 : body_index(drawing_, wired_other);
+      spring.other_point = wired_other_point;
+      spring.damping = p.damping;
+      spring.free_length = table.has("length") ? table.non_negative("length", 0.0) : 0.0;
+      drawing_.springs.push_back(spring);
+    }
   } else if (type == "penalty_joint") {
     components::PenaltyJointParams p;
     const core::Body* child = pose_body(table, "body");
@@ -470,8 +508,32 @@ void ComponentBuilder::add_impedance(TableReader& table) {
     p.initial_e = table.number("initial_e", p.initial_e);
     impedance = construct(table, [&] { return std::make_unique<components::PenaltyJoint>(name, p); });
     map = std::make_unique<components::FramePairMap>(parent, parent_point, *child, point);
+    JointVisual joint;
+    joint.name = name;
+    joint.child = body_index(drawing_, child->name());
+    joint.parent = parent != nullptr ? body_index(drawing_, parent->name()) : -1;
+    joint.point = point;
+    joint.parent_point = parent_point;
+    joint.axis = p.axis_child.normalized();
+    const BodyVisual& drawn = drawing_.bodies[static_cast<std::size_t>(joint.child)];
+    if (drawn.kind == BodyVisual::Kind::box) joint.width = drawn.size.minCoeff();
+    if (drawn.kind == BodyVisual::Kind::sphere) joint.width = drawn.radius;
+    drawing_.joints.push_back(joint);
   } else {  // torque_source, force_source: built in finish() (sources.cpp)
     add_source(table, type, type == "torque_source" ? joint_map() : nullptr);
+    SourceVisual source;
+    source.name = name;
+    source.body = body_index(drawing_, table.required_string("body"));
+    if (type == "force_source") {
+      source.kind = SourceVisual::Kind::force;
+      source.point = table.vec3("point", Vec3::Zero());
+      source.body_frame = table.string("frame", "world") == "body";
+    } else {
+      source.kind = SourceVisual::Kind::torque;
+      source.joint = wired_joint;
+      if (wired_joint < 0) source.axis = unit(table, "axis", Vec3::UnitZ());
+    }
+    drawing_.sources.push_back(source);
     table.finish();
     impedance_types_.emplace(name, type);
     return;
@@ -483,6 +545,16 @@ void ComponentBuilder::add_impedance(TableReader& table) {
   table.finish();
   impedance_types_.emplace(name, type);
   add_element(std::move(impedance), std::move(map));
+}
+
+void ComponentBuilder::add_joint_site(TableReader& table, const std::string& name, int joint) {
+  const int arm = body_index(drawing_, table.required_string("body"));
+  if (joint < 0 || arm < 0 ||
+      drawing_.bodies[static_cast<std::size_t>(arm)].kind != BodyVisual::Kind::arm) {
+    return;  // on a point (no joint), or a tree's joint (no badge there yet)
+  }
+  drawing_.sites.joints.push_back(
+      {name, drawing_.bodies[static_cast<std::size_t>(arm)].name, arm, joint});
 }
 
 void ComponentBuilder::add_element(std::unique_ptr<core::Impedance> impedance,

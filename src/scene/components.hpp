@@ -14,6 +14,7 @@
 #include "components/maps/observing_map.hpp"
 #include "core/body.hpp"
 #include "core/network.hpp"
+#include "scene/drawing.hpp"
 #include "scene/expression.hpp"
 #include "scene/external_elements.hpp"
 #include "scene/settle.hpp"
@@ -74,8 +75,8 @@ class ComponentBuilder {
   const std::map<std::string, double>& stick_thresholds() const { return stick_thresholds_; }
   // The directory a urdf body's relative `file` is found from (the scene file's).
   void set_directory(std::filesystem::path directory) { directory_ = std::move(directory); }
-  // The visuals of each urdf body, by body name, for drawing.
-  std::map<std::string, std::vector<UrdfVisual>>& robot_visuals() { return robot_visuals_; }
+  // What is drawn, filled as each element is built (scene/drawing.hpp).
+  Drawing& drawing() { return drawing_; }
   // The sources' expressions, for the check over the run's time span (Scene::expressions).
   const std::vector<std::shared_ptr<const Expression>>& expressions() const { return expressions_; }
 
@@ -111,6 +112,9 @@ class ComponentBuilder {
   };
   void add_element(std::unique_ptr<core::Impedance> impedance,
                    std::unique_ptr<core::CoordinateMap> map);
+  // A friction element on joint `joint` of a planar arm (`body`): a joint site of the drawing
+  // (its stick/slip badge). Nothing for an element on points (joint < 0).
+  void add_joint_site(TableReader& table, const std::string& name, int joint);
   // torque_source and force_source (sources.cpp).
   // `joint`: the joint wiring when `body` is an arm (torque_source), else nullptr.
   void add_source(TableReader& table, const std::string& type,
@@ -139,7 +143,7 @@ class ComponentBuilder {
   // whole scene (count_contact_elements).
   std::size_t contact_elements_ = 0;
   std::filesystem::path directory_;
-  std::map<std::string, std::vector<UrdfVisual>> robot_visuals_;
+  Drawing drawing_;
   core::Admittance* clock_ = nullptr;  // time for moving surfaces, made on first use
   std::vector<SettleBody> settle_;     // bodies to start in equilibrium (settle.cpp)
   std::vector<Pending> pending_;       // impedances not yet in the network

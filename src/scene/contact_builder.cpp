@@ -329,6 +329,13 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     clock_ = clock.get();
     network_.add_admittance(std::move(clock));
   }
+  // What is drawn: the surface (once per table), and where each element acts.
+  const int drawn = body_index(drawing_, info.admittance->name());
+  SurfaceVisual surface{p.normal.normalized(), p.offset, p.extent, nullptr};
+  if (drawn >= 0 &&
+      drawing_.bodies[static_cast<std::size_t>(drawn)].kind == BodyVisual::Kind::block) {
+    drawing_.bodies[static_cast<std::size_t>(drawn)].up = surface.normal;
+  }
   SettleBody* settling = nullptr;
   if (settle) {
     for (auto& s : settle_) {
@@ -342,6 +349,23 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     std::unique_ptr<core::Impedance> impedance;
     std::unique_ptr<core::CoordinateMap> map;
     SettlePoint sp;
+    ContactSite site;
+    site.name = element;
+    site.group = name;
+    site.body = drawn;
+    site.normal = surface.normal;
+    site.offset = p.offset;
+    if (rim) {
+      site.rule = ContactSite::Rule::rim;
+      site.rim =
+          core::RimPoint::leg(info.cylinder->radius, info.cylinder->length, info.cylinder->axis,
+                              info.cylinder->radial(), static_cast<int>(i));
+    } else {
+      site.local = points[i];
+      site.radius = radius;
+    }
+    // A trail under a single point, and under a wheel's nearest rim point on each cap.
+    site.trail = !several || (rim && i % 3 == 0);
     if (moving) {
       auto contact = construct_contact(table, [&] {
         return std::make_unique<components::MovingContact>(element, p, motion, radius);
@@ -357,6 +381,8 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
                c->params().extent.contains(at_rest - c->params().extent.centre);
       };
       sp.set_e = [c = contact.get()](const Eigen::Vector2d& e) { c->set_initial_e(e); };
+      site.moving = contact.get();
+      if (surface.moving == nullptr) surface.moving = contact.get();  // the table's first
       impedance = std::move(contact);
       map = std::make_unique<components::SurfacePointMap>(*b, points[i], *clock_);
     } else {
@@ -387,6 +413,7 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     stick_thresholds_[element] = threshold;
     impedance_types_.emplace(element, "kikuuwe_contact");
     add_element(std::move(impedance), std::move(map));
+    drawing_.sites.contacts.push_back(std::move(site));
   }
   // Rolling and spinning resistance (a sphere on a fixed plane): NAME.rolling, NAME.spin.
   for (const RollingElement& r : rolling) {
@@ -398,6 +425,7 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     impedance_types_.emplace(element, "kikuuwe_contact");
     add_element(std::move(resistance), std::make_unique<components::BodyTwistMap>(*b));
   }
+  add_surface(drawing_, surface);
   // The table's own name too, so no other component takes it.
   impedance_types_.emplace(name, "kikuuwe_contact");
 }

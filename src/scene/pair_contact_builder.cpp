@@ -77,6 +77,14 @@ void ComponentBuilder::add_pair_contact(TableReader& table, const std::string& n
     impedance_types_.emplace(element, "kikuuwe_contact");
     add_element(std::move(contact),
                 std::make_unique<components::PairContactMap>(*body_a, *body_b, shape));
+    ContactSite site;  // drawn where probe_pair puts the contact point
+    site.rule = ContactSite::Rule::pair;
+    site.name = element;
+    site.group = name;
+    site.body = body_index(drawing_, body_a->name());
+    site.other = body_index(drawing_, body_b->name());
+    site.pair = shape;
+    drawing_.sites.contacts.push_back(std::move(site));
   }
   impedance_types_.emplace(name, "kikuuwe_contact");
 }

@@ -226,8 +226,16 @@ Scene build_scene(toml::table document, const fs::path& path,
   if (scene.network->admittances().empty()) {
     throw InputError::at(scene.document.source(), "the scene has no [bodies]");
   }
-  scene.robot_visuals = std::move(builder.robot_visuals());
   scene.run.stick_thresholds = builder.stick_thresholds();  // per contact or joint
+  scene.drawing = std::move(builder.drawing());
+  // The overlays judge stick and slip with the thresholds the events use.
+  const auto threshold_of = [&run = scene.run](const std::string& element) {
+    const auto it = run.stick_thresholds.find(element);
+    return it != run.stick_thresholds.end() ? it->second : run.default_stick_threshold;
+  };
+  for (ContactSite& site : scene.drawing.sites.contacts)
+    site.stick_threshold = threshold_of(site.name);
+  for (JointSite& site : scene.drawing.sites.joints) site.stick_threshold = threshold_of(site.name);
   scene.network->finalize();
   builder.locate_observed();                      // sources reading other elements' signals
   scene.expressions = builder.expressions();

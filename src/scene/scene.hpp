@@ -16,6 +16,7 @@
 
 #include "core/network.hpp"
 #include "core/simulation.hpp"
+#include "scene/drawing.hpp"
 #include "scene/expression.hpp"
 #include "scene/plausibility.hpp"
 #include "scene/toml_reader.hpp"
@@ -56,8 +57,9 @@ struct Scene {
   double authored_dt = 0.0;
   // Plausibility warnings (scene/plausibility.hpp): valid values that look like a mistake.
   std::vector<Warning> warnings;
-  // The visual primitives of each urdf body, by body name (drawing).
-  std::map<std::string, std::vector<UrdfVisual>> robot_visuals;
+  // What is drawn (scene/drawing.hpp): the renderer and the figures read this and the
+  // signals, never `document` or the network's component classes.
+  Drawing drawing;
   // The sources' expressions (scene/expression.hpp), checked over the run's time span by
   // check_expressions().
   std::vector<std::shared_ptr<const Expression>> expressions;

@@ -117,11 +117,14 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_spatial_tree(TableReader
         Eigen::Map<const core::Vec>(v.data(), static_cast<Eigen::Index>(n));
   }
   p.gravity = gravity_;
+  std::unique_ptr<components::SpatialTree> tree;
   try {
-    return std::make_unique<components::SpatialTree>(name, p);
+    tree = std::make_unique<components::SpatialTree>(name, p);
   } catch (const std::invalid_argument& e) {
     throw InputError::at(table.table().source(), table.path() + ": " + e.what());
   }
+  drawing_.bodies.push_back(tree_visual(*tree, {}));  // a stick figure
+  return tree;
 }
 
 }  // namespace stiction::scene

@@ -137,7 +137,7 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_urdf_body(TableReader& t
               "joint_limit");
     }
   }
-  robot_visuals_[name] = std::move(robot.visuals);
+  drawing_.bodies.push_back(tree_visual(t, std::move(robot.visuals)));
   return tree;
 }
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "components/admittance/spatial_tree.hpp"
+#include "scene/drawing.hpp"  // UrdfVisual
 
 namespace stiction::scene {
 
@@ -26,18 +27,6 @@ namespace stiction::scene {
 class UrdfError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-};
-
-struct UrdfVisual {
-  enum class Shape { box, cylinder, sphere, mesh };
-  Shape shape = Shape::box;
-  int link = -1;                  // index into the tree's links, -1: the fixed base
-  core::Vec3 size = core::Vec3::Zero();  // box: sides; cylinder: (radius, radius, length)
-                                         // along its z axis; sphere: (r, r, r)
-  core::Vec3 origin = core::Vec3::Zero();        // in the link frame
-  core::Quat rotation = core::Quat::Identity();  // in the link frame
-  Eigen::Vector4d rgba{0.6, 0.6, 0.62, 1.0};     // <material><color>, grey if none
-  std::string mesh;                              // mesh: its file name as written
 };
 
 struct UrdfJointDynamics {

@@ -25,7 +25,7 @@ RenderSettings read(const std::string& text) {
 }
 
 // Every point drawn at time t: the bodies' and the mechanism's.
-std::vector<glm::vec3> drawn_points(const SceneDescription& scene, const PoseTrack& poses,
+std::vector<glm::vec3> drawn_points(const Drawing& scene, const PoseTrack& poses,
                                     const MechanismFrame& frame, double t) {
   std::vector<glm::vec3> points = body_points(scene, poses, t);
   const std::vector<glm::vec3> parts = mechanism_points(scene, poses, frame, t);
@@ -69,7 +69,7 @@ TEST_CASE("every preset keeps every element of generated mechanisms in the pictu
   for (int trial = 0; trial < 10; ++trial) {
     const testing::Generated g = testing::generated_mechanism(rng);
     const scene::Scene s = testing::make_scene(g.toml, "generated");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
+    const Drawing scene = s.drawing;
     const PoseTrack poses(g.trajectory, scene);
     const MechanismFrame frame = mechanism_frame(scene, poses);
     for (CameraView view : {CameraView::automatic, CameraView::side, CameraView::top,
@@ -94,7 +94,7 @@ TEST_CASE("belt_oscillator: spring, post, block and rollers in view, the camera 
   std::stringstream text;
   text << file.rdbuf();
   const scene::Scene s = testing::make_scene(text.str(), "belt_oscillator");
-  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const Drawing scene = s.drawing;
   REQUIRE(scene.springs.size() == 1);
   // The stick-slip oscillation about F/k = 0.0294 m, amplitude 0.02 m, period 0.628 s.
   core::Trajectory tr({"t", "mass.p.x", "mass.p.y", "mass.p.z"});

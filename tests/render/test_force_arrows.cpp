@@ -104,9 +104,8 @@ TEST_CASE("contact sites: every corner of a generated box and a sphere's lowest 
   for (int trial = 0; trial < 8; ++trial) {
     const Generated g = generate(rng);
     const scene::Scene s = testing::make_scene(g.toml, "generated");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
-    const ContactSites sites =
-        describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+    const Drawing scene = s.drawing;
+    const ContactSites sites = s.drawing.sites;
     REQUIRE(sites.contacts.size() == 9);
     const core::Trajectory tr = trajectory_of(g);
     const PoseTrack poses(tr, scene);
@@ -137,9 +136,8 @@ TEST_CASE("force arrows: normal along the surface normal, friction in the plane,
   for (int trial = 0; trial < 8; ++trial) {
     const Generated g = generate(rng);
     const scene::Scene s = testing::make_scene(g.toml, "generated");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
-    const ContactSites sites =
-        describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+    const Drawing scene = s.drawing;
+    const ContactSites sites = s.drawing.sites;
     const core::Trajectory tr = trajectory_of(g);
     const PoseTrack poses(tr, scene);
     ArrowScales scales;
@@ -191,9 +189,8 @@ TEST_CASE("force arrows: the automatic scale shows the largest force at 0.6 body
   for (int trial = 0; trial < 8; ++trial) {
     const Generated g = generate(rng);
     const scene::Scene s = testing::make_scene(g.toml, "generated");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
-    const ContactSites sites =
-        describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+    const Drawing scene = s.drawing;
+    const ContactSites sites = s.drawing.sites;
     const core::Trajectory tr = trajectory_of(g);
     const PoseTrack poses(tr, scene);
     OverlayLayers layers;
@@ -224,7 +221,7 @@ TEST_CASE("velocity arrows start on the body's surface and have the velocity sca
   for (int trial = 0; trial < 6; ++trial) {
     const Generated g = generate(rng);
     const scene::Scene s = testing::make_scene(g.toml, "generated");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
+    const Drawing scene = s.drawing;
     const core::Trajectory tr = trajectory_of(g);
     const PoseTrack poses(tr, scene);
     ArrowScales scales;
@@ -256,9 +253,8 @@ TEST_CASE("arrow legend: a round value whose bar is 0.4 to 1 times the target le
 TEST_CASE("force arrows: impact spikes neither set the scale nor cross the picture",
           "[render][forces]") {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
-  const SceneDescription scene = describe_scene(*s.network, s.document);
-  const ContactSites sites =
-      describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+  const Drawing scene = s.drawing;
+  const ContactSites sites = s.drawing.sites;
   core::Trajectory tr({"t", "sphere.p.x", "sphere.p.y", "sphere.p.z", "sphere.q.w", "sphere.q.x",
                        "sphere.q.y", "sphere.q.z", "contact.f.x", "contact.f.y", "contact.f.z"});
   std::mt19937 rng(2);
@@ -287,9 +283,8 @@ TEST_CASE("force arrows: impact spikes neither set the scale nor cross the pictu
 TEST_CASE("force arrows: a bouncing contact shows its mean force over the frame's exposure",
           "[render][forces]") {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
-  const SceneDescription scene = describe_scene(*s.network, s.document);
-  const ContactSites sites =
-      describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+  const Drawing scene = s.drawing;
+  const ContactSites sites = s.drawing.sites;
   core::Trajectory tr({"t", "sphere.p.x", "sphere.p.y", "sphere.p.z", "sphere.q.w", "sphere.q.x",
                        "sphere.q.y", "sphere.q.z", "contact.f.x", "contact.f.y", "contact.f.z",
                        "contact.slip.x", "contact.slip.y", "contact.slip.z", "contact.n_force"});

@@ -103,10 +103,7 @@ TEST_CASE("golden: force arrows, legend and stick/open badges on a tipping box",
   RenderSettings settings = read_render_settings(s);
   settings.width = 640;
   settings.height = 360;
-  SceneDescription scene = describe_scene(*s.network, s.document);
-  const ContactSites sites = describe_contact_sites(
-      *s.network, s.document, scene, s.run.stick_thresholds, s.run.default_stick_threshold);
-  FrameRenderer renderer(std::move(scene), tr, settings, FrameAnnotations{sites, {}, {}});
+  FrameRenderer renderer(s.drawing, tr, settings);
   check_golden("render_box_tip_forces_badges", renderer.render(1.7));
 }
 
@@ -123,6 +120,6 @@ TEST_CASE("golden: several overlay values with a title and a caption",
   RenderSettings settings = read_render_settings(s);
   settings.width = 640;
   settings.height = 360;
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings);
+  FrameRenderer renderer(s.drawing, tr, settings);
   check_golden("render_sphere_roll_values", renderer.render(0.35));
 }

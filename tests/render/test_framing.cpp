@@ -63,7 +63,7 @@ TEST_CASE("automatic framing keeps every joint of a generated arm in view, in an
     const bool vertical_axis = trial % 3 == 0;
     const GeneratedArm arm = generated_arm(rng, vertical_axis);
     const scene::Scene s = testing::make_scene(arm.toml, "framing");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
+    const Drawing scene = s.drawing;
     const PoseTrack poses(arm.trajectory, scene);
     const float aspect = 16.0f / 9.0f;
     const CameraRig rig(CameraSettings{}, scene, poses, aspect);

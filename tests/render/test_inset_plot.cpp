@@ -245,8 +245,8 @@ TEST_CASE("golden: sphere_roll with the slip speed inset after the stick",
   settings.inset.width = 0.45;
   settings.inset.height = 0.6;
   const double stick = 2.0 * 2.0 / (7.0 * 0.1 * 9.8);
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings,
-                         FrameAnnotations{{}, {stick}, {"stick"}});
+  FrameRenderer renderer(s.drawing, tr, settings,
+                         FrameAnnotations{{stick}, {"stick"}});
   const image::CompareResult r = image::compare_to_golden(
       kGoldenDir / "render_inset_sphere_roll.png", renderer.render(1.2), kFailureDir);
   INFO(r.message);

@@ -61,7 +61,7 @@ TEST_CASE("springs, posts and source arrows sit where generated scenes put them"
   for (int trial = 0; trial < 25; ++trial) {
     const Generated g = generated_mechanism(rng);
     const scene::Scene s = testing::make_scene(g.toml, "generated");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
+    const Drawing scene = s.drawing;
     const PoseTrack poses(g.trajectory, scene);
     const MechanismFrame frame = mechanism_frame(scene, poses);
     INFO("trial " << trial << ":\n" << g.toml);
@@ -173,7 +173,7 @@ TEST_CASE("belts get rollers at their ends and tilting planes an axle through th
         "\nextent = { axis = [1.0, 0.0, 0.0], min = [-1.0, -0.7], max = [1.0, 0.7] }\n";
     INFO("trial " << trial << ":\n" << toml);
     const scene::Scene s = testing::make_scene(toml, "surfaces");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
+    const Drawing scene = s.drawing;
     core::Trajectory tr(
         {"t", "ball.p.x", "ball.p.y", "ball.p.z", "ball.q.w", "ball.q.x", "ball.q.y", "ball.q.z"});
     for (int i = 0; i <= 20; ++i) {

@@ -35,8 +35,8 @@ core::Trajectory resting_sphere(double slip, double spin) {
   return tr;
 }
 
-SceneDescription sphere_scene() {
-  SceneDescription scene;
+Drawing sphere_scene() {
+  Drawing scene;
   BodyVisual b;
   b.name = "sphere";
   b.radius = 0.2;
@@ -125,7 +125,7 @@ TEST_CASE("overlay: a slip speed below the contact's stick threshold prints as z
   // Random slips on either side of a random threshold, printed as the overlay prints them.
   std::mt19937 rng(22);
   std::uniform_real_distribution<double> log_threshold(-5.0, -1.0), factor(0.01, 0.98);
-  const SceneDescription scene = sphere_scene();
+  const Drawing scene = sphere_scene();
   for (int i = 0; i < 6; ++i) {
     const double threshold = std::pow(10.0, log_threshold(rng));
     const double below = factor(rng) * threshold, above = threshold / factor(rng);
@@ -157,7 +157,7 @@ TEST_CASE("overlay: a slip speed below the contact's stick threshold prints as z
 
 TEST_CASE("overlay: several values, each with its unit and SI prefix, and the 1e-9 rule",
           "[render][overlay_values]") {
-  const SceneDescription scene = sphere_scene();
+  const Drawing scene = sphere_scene();
   OverlaySettings o;
   o.signal = "contact.slip";
   o.label = "slip";
@@ -196,7 +196,7 @@ TEST_CASE("overlay: a friction joint's rate below the joint's stick threshold pr
       const double row[] = {t, 0.0, 0.0, moving, stuck};
       tr.append(row);
     }
-    SceneDescription scene;
+    Drawing scene;
     BodyVisual arm;
     arm.kind = BodyVisual::Kind::arm;
     arm.name = "arm";

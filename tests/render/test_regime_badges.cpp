@@ -67,7 +67,7 @@ TEST_CASE("badges: the regime against each element's own stick threshold", "[ren
       const double row[] = {t, slip * 0.6, slip * 0.8, 0.0, normal};
       tr.append(row);
     }
-    const PoseTrack poses(tr, SceneDescription{});
+    const PoseTrack poses(tr, Drawing{});
     const Regime expected = normal == 0.0                 ? Regime::open
                             : slip < site.stick_threshold ? Regime::stick
                                                           : Regime::slip;
@@ -79,7 +79,7 @@ TEST_CASE("badges: the regime against each element's own stick threshold", "[ren
       const double row[] = {t, 0.0, -slip};  // a negative rate slips as a positive one
       jt.append(row);
     }
-    CHECK(joint_regime(joint, PoseTrack(jt, SceneDescription{}), 0.5) ==
+    CHECK(joint_regime(joint, PoseTrack(jt, Drawing{}), 0.5) ==
           (slip < site.stick_threshold ? Regime::stick : Regime::slip));
   }
 }
@@ -91,9 +91,8 @@ TEST_CASE("badges: a box's corners share one badge per regime, none for corners 
   for (int trial = 0; trial < 6; ++trial) {
     const core::Vec3 size{0.1 + u(rng), 0.1 + u(rng), 0.1 + u(rng)};
     const scene::Scene s = testing::make_scene(box_toml(size), "box");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
-    const ContactSites sites =
-        describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, 1e-3);
+    const Drawing scene = s.drawing;
+    const ContactSites sites = s.drawing.sites;
     REQUIRE(sites.contacts.size() == 8);
     CHECK(sites.contacts[0].stick_threshold == 0.01);
     // Bottom corners: random regimes (open, stick below 0.01 m/s, slip above).
@@ -150,9 +149,8 @@ TEST_CASE("badges: a contact without force is open only where its gap can be see
             std::to_string(radius) +
             "\n[impedances.ground]\ntype = \"kikuuwe_contact\"\nbody = \"ball\"\n",
         "ball");
-    const SceneDescription scene = describe_scene(*s.network, s.document);
-    const ContactSites sites =
-        describe_contact_sites(*s.network, s.document, scene, s.run.stick_thresholds, threshold);
+    const Drawing scene = s.drawing;
+    const ContactSites sites = s.drawing.sites;
     REQUIRE(sites.contacts.size() == 1);
     const double gap_limit = visible_gap(scene, sites.contacts[0]);
     CHECK(gap_limit == Approx(2e-3 * radius));

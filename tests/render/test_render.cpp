@@ -50,7 +50,7 @@ TEST_CASE("the OSMesa context gives OpenGL 3.3 core or later with 4x MSAA", "[re
 TEST_CASE("golden: sphere_roll while slipping and after it rolls", "[render][golden]") {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
   const core::Trajectory tr = testing::sphere_roll_trajectory();
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, golden_settings(s));
+  FrameRenderer renderer(s.drawing, tr, golden_settings(s));
   check_golden("render_sphere_roll_slip", renderer.render(0.35));
   check_golden("render_sphere_roll_roll", renderer.render(1.5));
 }
@@ -58,14 +58,14 @@ TEST_CASE("golden: sphere_roll while slipping and after it rolls", "[render][gol
 TEST_CASE("golden: two_link arm", "[render][golden]") {
   const scene::Scene s = testing::make_scene(testing::two_link_toml(), "two_link");
   const core::Trajectory tr = testing::two_link_trajectory();
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, golden_settings(s));
+  FrameRenderer renderer(s.drawing, tr, golden_settings(s));
   check_golden("render_two_link", renderer.render(0.5));
 }
 
 TEST_CASE("golden: two_link_penalty arm of rigid bodies and penalty joints", "[render][golden]") {
   const scene::Scene s = testing::make_scene(testing::two_link_penalty_toml(), "two_link_penalty");
   const core::Trajectory tr = testing::two_link_penalty_trajectory();
-  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const Drawing scene = s.drawing;
   // Both joints, with their articulation points and axes from the scene.
   REQUIRE(scene.joints.size() == 2);
   CHECK(scene.joints[0].parent == -1);
@@ -82,7 +82,7 @@ TEST_CASE("golden: two_link_penalty arm of rigid bodies and penalty joints", "[r
 TEST_CASE("golden: slope_hold block on its slope", "[render][golden]") {
   const scene::Scene s = testing::make_scene(testing::slope_hold_toml(), "slope_hold");
   const core::Trajectory tr = testing::slope_hold_trajectory();
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, golden_settings(s));
+  FrameRenderer renderer(s.drawing, tr, golden_settings(s));
   check_golden("render_slope_hold", renderer.render(0.5));
 }
 
@@ -98,7 +98,7 @@ TEST_CASE(
     const double row[] = {t, d * std::cos(a), 0.0, -d * std::sin(a)};
     tr.append(row);
   }
-  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const Drawing scene = s.drawing;
   const PoseTrack poses(tr, scene);
   CameraSettings settings;
   settings.follow = "block";
@@ -141,7 +141,7 @@ TEST_CASE("rendering is repeatable frame to frame", "[render]") {
   RenderSettings settings = golden_settings(s);
   settings.width = 320;
   settings.height = 180;
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings);
+  FrameRenderer renderer(s.drawing, tr, settings);
   const image::Image a = renderer.render(0.2);
   const image::Image other = renderer.render(0.8);
   const image::Image b = renderer.render(0.2);

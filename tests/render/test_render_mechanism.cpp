@@ -23,7 +23,7 @@ void check_mechanism_golden(const std::string& toml, const std::string& name,
   RenderSettings settings = read_render_settings(s);
   settings.width = 640;
   settings.height = 360;
-  FrameRenderer renderer(describe_scene(*s.network, s.document), tr, settings);
+  FrameRenderer renderer(s.drawing, tr, settings);
   const image::CompareResult r =
       image::compare_to_golden(fs::path(STICTION_SOURCE_DIR) / "tests" / "golden" / (name + ".png"),
                                renderer.render(t), fs::path(STICTION_TEST_OUTPUT_DIR) / "failures");

@@ -47,7 +47,7 @@ RenderSettings small(const scene::Scene& s, int shadow_map_size) {
 TEST_CASE("shadows look the same on a 1 m and a 13 m run, and with a 4x smaller map",
           "[render][shadow]") {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
-  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const Drawing scene = s.drawing;
   // The sphere at x = 1 m and at x = 13 m (six checker periods of 2 m apart, six turns
   // apart), with the camera following it: the ground, the sphere and its shadow are the same.
   const core::Trajectory short_run = rolling(1.0), long_run = rolling(13.0);

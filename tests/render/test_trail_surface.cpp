@@ -101,7 +101,7 @@ core::Trajectory ball_on_board(const Board& b) {
 
 void check_trail_on_board(const Board& b) {
   const scene::Scene s = testing::make_scene(board_toml(b), "board");
-  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const Drawing scene = s.drawing;
   const core::Trajectory tr = ball_on_board(b);
   const PoseTrack poses(tr, scene);
   TrailOptions options;
@@ -154,7 +154,7 @@ TEST_CASE("trail: on generated tilting belts both at once", "[render][trail]") {
 
 TEST_CASE("trail: none where the contact point is off its surface", "[render][trail]") {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
-  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const Drawing scene = s.drawing;
   core::Trajectory tr({"t", "sphere.p.x", "sphere.p.y", "sphere.p.z", "sphere.q.w", "sphere.q.x",
                        "sphere.q.y", "sphere.q.z", "contact.slip.x", "contact.slip.y",
                        "contact.slip.z", "contact.n_force"});
@@ -194,7 +194,7 @@ TEST_CASE(
       << "[impedances.platform]\ntype = \"kikuuwe_contact\"\nbody = \"ball\"\noffset = " << height
       << "\nextent = { min = [-10.0, -10.0], max = [10.0, 10.0] }\n";
     const scene::Scene sc = testing::make_scene(s.str(), "platform");
-    const SceneDescription scene = describe_scene(*sc.network, sc.document);
+    const Drawing scene = sc.drawing;
     core::Trajectory tr(
         {"t", "ball.p.x", "ball.p.y", "ball.p.z", "ball.q.w", "ball.q.x", "ball.q.y", "ball.q.z"});
     for (int r = 0; r <= 100; ++r) {

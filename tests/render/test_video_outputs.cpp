@@ -145,7 +145,7 @@ TEST_CASE("overlay numbers: four digits with an SI prefix, never e-notation", "[
 TEST_CASE("the overlay box has the same width in every frame of a run", "[render][overlay]") {
   const scene::Scene s = testing::make_scene(testing::sphere_roll_toml(), "sphere_roll");
   const core::Trajectory tr = testing::sphere_roll_trajectory(2.0);
-  const SceneDescription scene = describe_scene(*s.network, s.document);
+  const Drawing scene = s.drawing;
   const PoseTrack poses(tr, scene);
   RenderSettings settings = read_render_settings(s);
   for (bool warp : {false, true}) {
@@ -170,8 +170,8 @@ TEST_CASE("a trail per contact, coloured by each contact's own stick threshold",
           "[render][trail]") {
   const ManySpheres m = many_spheres(5, 1.0, 7);
   const scene::Scene s = testing::make_scene(m.toml, "many");
-  const SceneDescription scene = describe_scene(*s.network, s.document);
-  REQUIRE(scene.contacts.size() == 5);
+  const Drawing scene = s.drawing;
+  REQUIRE(scene.sites.contacts.size() == 5);
   const PoseTrack poses(m.trajectory, scene);
   const RenderSettings settings = read_render_settings(s);
   REQUIRE(settings.overlay.stick_thresholds.size() == 5);

@@ -20,7 +20,7 @@ render::Bounds arm_bounds(const std::string& axis, double theta) {
     const double row[] = {t, theta, 0.0};
     trajectory.append(row);
   }
-  const render::SceneDescription scene = render::describe_scene(*s.network, s.document);
+  const render::Drawing scene = s.drawing;
   const render::PoseTrack poses(trajectory, scene);
   return render::body_bounds(scene, poses, 0.5);
 }

@@ -19,6 +19,7 @@
 
 #include "core/body.hpp"
 #include "core/coordinate_map.hpp"
+#include "core/rim_point.hpp"
 
 namespace stiction::components {
 
@@ -35,8 +36,8 @@ struct CylinderShape {
 
 class CylinderRimMap final : public core::CoordinateMap {
  public:
-  static constexpr int kPoints = 6;  // three per cap: 0-2 on the +axis cap, 3-5 on the -axis cap
-  static constexpr double kBlend = 1e-3;
+  static constexpr int kPoints = core::RimPoint::kPoints;  // 0-2 on the +axis cap, 3-5 on the -axis cap
+  static constexpr double kBlend = core::RimPoint::kBlend;
 
   // `index` in 0..kPoints-1.
   CylinderRimMap(const core::Body& body, const CylinderShape& shape, const core::Vec3& normal,
@@ -55,14 +56,12 @@ class CylinderRimMap final : public core::CoordinateMap {
   void apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const override;
 
   // The rim point minus the body origin, world frame, for a body at orientation q.
-  core::Vec3 lever(const core::Quat& q) const;
+  core::Vec3 lever(const core::Quat& q) const { return rim_.lever(q, normal_); }
 
  private:
   const core::Body& body_;
   core::Vec3 normal_;
-  core::Vec3 axis_, radial_;   // body frame
-  double radius_, half_length_;
-  double cos_, sin_;           // the leg's angle from phi*
+  core::RimPoint rim_;  // the geometry, shared with the drawing (core/rim_point.hpp)
   core::Slot slot_;
 };
 
