@@ -44,6 +44,16 @@ default_exclude+='|40000 springs on one mass|check on a 40-link arm stops at its
 # same in every build (26 s in Release, over the 600 s hang guard instrumented, 2026-12-05);
 # the bounded pilot runs instrumented in the 1000-link arm's and the box's bounded-work tests.
 default_exclude+='|check bounds its pilot run whatever the duration'
+# The longest instrumented tests of stop 41 (CI 4701 s): each 200-500 s under ASan against
+# 0.3-13 s in Release (check's trials run about 20x slower at -O1 with ASan, measured
+# 2026-12-05: 260 s against 12.8 s, the same with detect_stack_use_after_return=0). Each
+# still runs in the Release step; shorter tests of the same code (check on small scenes,
+# sweeps, signals, expressions) stay instrumented.
+default_exclude+='|check prints the state layout and dt advice|check on a 10-link arm analyses every integrator'
+default_exclude+='|a sweep resumed after SIGKILL|SIGTERM stops a sweep without running'
+default_exclude+='|expressions are one expression without assignment|an unstable run exits 3'
+default_exclude+='|a second SIGTERM within the grace period|an energy that overflows while the state is finite'
+default_exclude+='|two sweeps into one --out'
 # intercept_tls_get_addr=0: LeakSanitizer (GCC 12) then leaves out the dynamic TLS blocks of
 # dlopen'ed libraries (the render plugin loads OSMesa and LLVM). Tracking them, its leak check
 # at exit crashed in ScanRangeForPointers on a bogus block near address 0 ("Tracer caught
