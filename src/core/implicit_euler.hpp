@@ -49,6 +49,18 @@ class ImplicitEulerStepper final : public Stepper {
   // first step.
   std::size_t blocks() const { return groups_.size(); }
 
+  // One backward Euler stage, for the implicit Runge-Kutta methods built on this one
+  // (each SDIRK stage is a backward Euler step of gamma h from its own start): solves
+  // x(end) = x + h F(t + h, x*(end); tau = h) from (t, x) into x, without splitting;
+  // false if Newton did not converge (x unchanged then). The network is first evaluated at
+  // (t + h, x) itself.
+  bool solve_stage(Network& network, double t, double h, Vec& x) {
+    if (!prepared_) prepare(network);
+    return solve(network, t, h, x);
+  }
+  // F at the solution of the last stage that converged (x(end) = x + h slope()).
+  const Vec& slope() const { return f_; }
+
  private:
   static constexpr int kMaxIterations = 16;
   static constexpr int kMaxSplits = 6;
