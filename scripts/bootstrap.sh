@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages stiction needs (only those missing), then configures and
 # builds it in ./build (Release). Usage: scripts/bootstrap.sh [--peers] [--slurm] [extra cmake args...]
 # --peers: also installs the peer engines bench/peers measures stiction against (ODE, Bullet,
-# MuJoCo, DART) and builds bench_peers with them.
+# MuJoCo, DART, Siconos) and builds bench_peers with them.
 # --slurm: also installs Slurm and munge (slurm-wlm, munge), which tests/cluster uses to run
 # docs/sweeps.md's job array on a single-node cluster it starts itself (CI does).
 set -euo pipefail
@@ -33,7 +33,7 @@ packages=(
   liburdfdom-dev libtinyxml-dev libassimp-dev
 )
 if [ "$peers" -eq 1 ]; then
-  packages+=(libode-dev libbullet-dev libmujoco-dev libdart-dev)
+  packages+=(libode-dev libbullet-dev libmujoco-dev libdart-dev libsiconos-mechanics-dev)
   cmake_args+=(-DSTICTION_BUILD_BENCH=ON -DSTICTION_PEERS=ON)
 fi
 if [ "$slurm" -eq 1 ]; then

@@ -4,9 +4,14 @@
 // multiplies the two bodies' coefficients, so the ground has 1 and the body mu; restitution
 // 0. A third row at 1/60 s turns sleeping off, to show what holds the box when it is awake.
 // Shapes: btStaticPlaneShape, btSphereShape, btBoxShape (its margin lies inside the box).
+// The N spheres share one btSphereShape. The pendulum: a box body on a btHingeConstraint to
+// the world whose angular motor has target velocity 0 and a largest impulse of F dt per step,
+// Bullet's way to model joint friction (no ground: nothing touches the bar).
 #include <btBulletDynamicsCommon.h>
 
+#include <cmath>
 #include <memory>
+#include <vector>
 
 #include "peer.hpp"
 
@@ -21,10 +26,13 @@ struct BulletWorld {
   btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
   btStaticPlaneShape plane{btVector3(0, 0, 1), 0};
   std::unique_ptr<btCollisionShape> shape;
-  std::unique_ptr<btRigidBody> ground, body;
+  std::unique_ptr<btRigidBody> ground;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::unique_ptr<btHingeConstraint> hinge;
 
   ~BulletWorld() {
-    if (body) world.removeRigidBody(body.get());
+    if (hinge) world.removeConstraint(hinge.get());
+    for (auto& body : bodies) world.removeRigidBody(body.get());
     if (ground) world.removeRigidBody(ground.get());
   }
 };
@@ -38,19 +46,24 @@ class BulletPeer final : public Peer {
   }
   double dt() const override { return dt_; }
 
-  void reset(Problem problem) override {
+  void reset(const Case& c) override {
     w_.reset();
     w_ = std::make_unique<BulletWorld>();
     double g[3];
-    gravity_of(problem, g);
+    gravity_of(c.problem, g);
     w_->world.setGravity(btVector3(g[0], g[1], g[2]));
+    if (c.problem == Problem::pendulum) {
+      add_pendulum();
+      return;
+    }
     w_->ground = std::make_unique<btRigidBody>(0.0, nullptr, &w_->plane);
     w_->ground->setFriction(1.0);
     w_->ground->setRestitution(0.0);
     w_->world.addRigidBody(w_->ground.get());
 
     double mass = 0, z = 0;
-    if (problem == Problem::sphere) {
+    const bool spheres = c.problem == Problem::sphere || c.problem == Problem::spheres;
+    if (spheres) {
       w_->shape = std::make_unique<btSphereShape>(kSphere.radius);
       mass = kSphere.mass;
       z = kSphere.radius;
@@ -62,26 +75,52 @@ class BulletPeer final : public Peer {
     }
     btVector3 inertia;
     w_->shape->calculateLocalInertia(mass, inertia);
-    btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, w_->shape.get(), inertia);
-    info.m_startWorldTransform.setOrigin(btVector3(0, 0, z));
-    info.m_friction = mu_of(problem);
-    info.m_restitution = 0.0;
-    w_->body = std::make_unique<btRigidBody>(info);
-    if (problem == Problem::sphere) w_->body->setLinearVelocity(btVector3(kSphere.v0, 0, 0));
-    if (!sleeping_) w_->body->setActivationState(DISABLE_DEACTIVATION);
-    w_->world.addRigidBody(w_->body.get());
+    for (int i = 0; i < c.count; ++i) {
+      btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, w_->shape.get(), inertia);
+      info.m_startWorldTransform.setOrigin(btVector3(0, spheres ? spheres_lane(i) : 0.0, z));
+      info.m_friction = mu_of(c.problem);
+      info.m_restitution = 0.0;
+      auto body = std::make_unique<btRigidBody>(info);
+      if (spheres) body->setLinearVelocity(btVector3(spheres_v0(i, c.count), 0, 0));
+      add_body(std::move(body));
+    }
   }
 
   void step() override { w_->world.stepSimulation(dt_, 1, dt_); }
 
-  void read(Sample& s) const override {
-    const btVector3& p = w_->body->getCenterOfMassPosition();
-    const btVector3& v = w_->body->getLinearVelocity();
-    const btVector3& w = w_->body->getAngularVelocity();
+  void read(int i, Sample& s) const override {
+    const btRigidBody& body = *w_->bodies[i];
+    const btVector3& p = body.getCenterOfMassPosition();
+    const btVector3& v = body.getLinearVelocity();
+    const btVector3& w = body.getAngularVelocity();
     fill_sample(s, p, v, w);
   }
 
  private:
+  void add_body(std::unique_ptr<btRigidBody> body) {
+    if (!sleeping_) body->setActivationState(DISABLE_DEACTIVATION);
+    w_->world.addRigidBody(body.get());
+    w_->bodies.push_back(std::move(body));
+  }
+
+  // The bar along its z axis, turned by angle0 about the hinge axis -y at the origin; the
+  // hinge at the bar's top end (local z = +l_c).
+  void add_pendulum() {
+    const PendulumParams& k = kPendulum;
+    w_->shape = std::make_unique<btBoxShape>(btVector3(k.width / 2, k.width / 2, k.length / 2));
+    btVector3 inertia;
+    w_->shape->calculateLocalInertia(k.mass, inertia);
+    btRigidBody::btRigidBodyConstructionInfo info(k.mass, nullptr, w_->shape.get(), inertia);
+    info.m_startWorldTransform.setRotation(btQuaternion(btVector3(0, -1, 0), k.angle0));
+    info.m_startWorldTransform.setOrigin(
+        btVector3(k.com() * std::sin(k.angle0), 0, -k.com() * std::cos(k.angle0)));
+    add_body(std::make_unique<btRigidBody>(info));
+    w_->hinge = std::make_unique<btHingeConstraint>(*w_->bodies[0], btVector3(0, 0, k.com()),
+                                                    btVector3(0, -1, 0));
+    w_->hinge->enableAngularMotor(true, 0.0, k.friction * dt_);
+    w_->world.addConstraint(w_->hinge.get());
+  }
+
   double dt_;
   bool sleeping_;
   std::unique_ptr<BulletWorld> w_;

@@ -1,16 +1,22 @@
 // DART 6.12: its default world (boxed LCP constraint solver with Dantzig, its default contact
 // ERP and CFM) at 1/60 and 1/240 s, with DART's own collision detector instead of the default
 // FCL (see reset()). The ground is a welded 100 x 100 x 1 m box whose top face is z = 0;
-// friction mu and restitution 0 on both shape nodes.
+// friction mu and restitution 0 on both shape nodes. The N spheres are a skeleton each. The
+// pendulum: a bar on a RevoluteJoint to the world with Coulomb joint friction F
+// (setCoulombFriction, which DART's constraint solver bounds like a contact's friction).
 // Not <dart/dart.hpp>: Debian's package lacks the ikfast header it includes.
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/constraint/ConstraintSolver.hpp>
 #include <dart/dynamics/BoxShape.hpp>
 #include <dart/dynamics/FreeJoint.hpp>
+#include <dart/dynamics/RevoluteJoint.hpp>
 #include <dart/dynamics/Skeleton.hpp>
 #include <dart/dynamics/SphereShape.hpp>
 #include <dart/dynamics/WeldJoint.hpp>
 #include <dart/simulation/World.hpp>
+
+#include <string>
+#include <vector>
 
 #include "peer.hpp"
 
@@ -35,16 +41,21 @@ class DartPeer final : public Peer {
   std::string settings() const override { return "Dantzig LCP, DART collision"; }
   double dt() const override { return dt_; }
 
-  void reset(Problem problem) override {
+  void reset(const Case& c) override {
     world_ = simulation::World::create();
     double g[3];
-    gravity_of(problem, g);
+    gravity_of(c.problem, g);
     world_->setGravity(Eigen::Vector3d(g[0], g[1], g[2]));
     world_->setTimeStep(dt_);
+    bodies_.clear();
+    if (c.problem == Problem::pendulum) {
+      add_pendulum();
+      return;
+    }
     // DART's own collision detector (exact spheres and boxes): the default FCL meshes the
     // sphere, which then sinks 16 mm and bumps along its facets (stick time off by 0.2 s).
     world_->getConstraintSolver()->setCollisionDetector(collision::DARTCollisionDetector::create());
-    const double mu = mu_of(problem);
+    const double mu = mu_of(c.problem);
 
     auto ground = dynamics::Skeleton::create("ground");
     auto [weld, floor] = ground->createJointAndBodyNodePair<dynamics::WeldJoint>();
@@ -54,46 +65,70 @@ class DartPeer final : public Peer {
     add_shape(floor, std::make_shared<dynamics::BoxShape>(Eigen::Vector3d(100, 100, 1)), mu);
     world_->addSkeleton(ground);
 
-    auto skeleton = dynamics::Skeleton::create("body");
-    auto [free, body] = skeleton->createJointAndBodyNodePair<dynamics::FreeJoint>();
-    dynamics::ShapePtr shape;
-    double mass = 0, z = 0;
-    if (problem == Problem::sphere) {
-      shape = std::make_shared<dynamics::SphereShape>(kSphere.radius);
-      mass = kSphere.mass;
-      z = kSphere.radius;
-    } else {
-      shape = std::make_shared<dynamics::BoxShape>(
-          Eigen::Vector3d(kBox.size[0], kBox.size[1], kBox.size[2]));
-      mass = kBox.mass;
-      z = kBox.size[2] / 2;
+    const bool spheres = c.problem == Problem::sphere || c.problem == Problem::spheres;
+    for (int i = 0; i < c.count; ++i) {
+      auto skeleton = dynamics::Skeleton::create("body" + std::to_string(i));
+      auto [free, body] = skeleton->createJointAndBodyNodePair<dynamics::FreeJoint>();
+      dynamics::ShapePtr shape;
+      double mass = 0, z = 0;
+      if (spheres) {
+        shape = std::make_shared<dynamics::SphereShape>(kSphere.radius);
+        mass = kSphere.mass;
+        z = kSphere.radius;
+      } else {
+        shape = std::make_shared<dynamics::BoxShape>(
+            Eigen::Vector3d(kBox.size[0], kBox.size[1], kBox.size[2]));
+        mass = kBox.mass;
+        z = kBox.size[2] / 2;
+      }
+      add_shape(body, shape, mu);
+      dynamics::Inertia inertia;
+      inertia.setMass(mass);
+      inertia.setMoment(shape->computeInertia(mass));
+      body->setInertia(inertia);
+      Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+      start.translation() = Eigen::Vector3d(0, spheres ? spheres_lane(i) : 0.0, z);
+      free->setPositions(dynamics::FreeJoint::convertToPositions(start));
+      if (spheres) free->setLinearVelocity(Eigen::Vector3d(spheres_v0(i, c.count), 0, 0));
+      world_->addSkeleton(skeleton);
+      bodies_.push_back(body);
     }
-    add_shape(body, shape, mu);
-    dynamics::Inertia inertia;
-    inertia.setMass(mass);
-    inertia.setMoment(shape->computeInertia(mass));
-    body->setInertia(inertia);
-    Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
-    start.translation() = Eigen::Vector3d(0, 0, z);
-    free->setPositions(dynamics::FreeJoint::convertToPositions(start));
-    if (problem == Problem::sphere) free->setLinearVelocity(Eigen::Vector3d(kSphere.v0, 0, 0));
-    world_->addSkeleton(skeleton);
-    body_ = body;
   }
 
   void step() override { world_->step(); }
 
-  void read(Sample& s) const override {
-    const Eigen::Vector3d p = body_->getCOM();
-    const Eigen::Vector3d v = body_->getCOMLinearVelocity();
-    const Eigen::Vector3d w = body_->getAngularVelocity();
+  void read(int i, Sample& s) const override {
+    const Eigen::Vector3d p = bodies_[i]->getCOM();
+    const Eigen::Vector3d v = bodies_[i]->getCOMLinearVelocity();
+    const Eigen::Vector3d w = bodies_[i]->getAngularVelocity();
     fill_sample(s, p, v, w);
   }
 
  private:
+  // The bar's frame at its centre, the hinge (axis -y) at its top end (local z = +l_c) and
+  // at the world origin; no shape (nothing touches it), the box's inertia set directly.
+  void add_pendulum() {
+    const PendulumParams& k = kPendulum;
+    auto skeleton = dynamics::Skeleton::create("pendulum");
+    dynamics::RevoluteJoint::Properties joint;
+    joint.mAxis = Eigen::Vector3d(0, -1, 0);
+    joint.mT_ChildBodyToJoint.translation() = Eigen::Vector3d(0, 0, k.com());
+    auto [hinge, bar] = skeleton->createJointAndBodyNodePair<dynamics::RevoluteJoint>(
+        nullptr, joint);
+    dynamics::Inertia inertia;
+    inertia.setMass(k.mass);
+    inertia.setMoment(
+        dynamics::BoxShape::computeInertia(Eigen::Vector3d(k.width, k.width, k.length), k.mass));
+    bar->setInertia(inertia);
+    hinge->setCoulombFriction(0, k.friction);
+    hinge->setPosition(0, k.angle0);
+    world_->addSkeleton(skeleton);
+    bodies_.push_back(bar);
+  }
+
   double dt_;
   simulation::WorldPtr world_;
-  dynamics::BodyNode* body_ = nullptr;
+  std::vector<dynamics::BodyNode*> bodies_;
 };
 
 }  // namespace

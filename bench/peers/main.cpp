@@ -1,20 +1,28 @@
 // bench_peers: the problems of problems.hpp in stiction and in every peer engine this build
 // found, interleaved (each round runs every engine and setting once), the thread CPU time of
-// the stepping taken as the median over the rounds. Prints one work-precision table
-// (Markdown), optionally also as CSV. Usage:
-//   bench_peers [--rounds N] [--quick] [--csv FILE]
-// --quick: short runs (a smoke test; its errors are not the problems' measures).
+// the stepping taken as the median over the rounds. Prints three work-precision tables
+// (Markdown): the sphere, the hold and the slide; the N spheres; the pendulum. Optionally
+// also every row as CSV. Usage:
+//   bench_peers [--rounds N] [--quick] [--csv FILE] [--problems LIST] [--spheres LIST]
+// --quick: short runs and N = 1, 10 (a smoke test; its errors are not the problems' measures).
+// --problems: a comma-separated subset of sphere,slope_hold,slope_slide,spheres,pendulum.
+// --spheres: the sizes N of the spheres problem (default 1,10,100,1000).
+// --engines: a comma-separated list of engine names to keep (stiction,ode,bullet,mujoco,
+//   dart,siconos; the start of the name, any case). Ratios are to the rows kept.
 #include <time.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "peer.hpp"
+#include "pendulum.hpp"
 
 using namespace stiction::peers;
 
@@ -27,6 +35,7 @@ double thread_cpu_seconds() {
 }
 
 struct Result {
+  bool expressed = true;
   Errors errors;
   std::vector<double> cpu;  // seconds of stepping, one per round
   long steps = 0;
@@ -34,34 +43,91 @@ struct Result {
   std::string failure;
 };
 
-// One run: set-up untimed; the timed loop steps and copies the body's state into a buffer
-// reserved beforehand (every step for the sphere, every sample interval for the slopes), the
-// same for every engine.
-void run(Peer& peer, Problem problem, bool quick, Result& result) {
-  const Plan plan = plan_of(problem, quick);
+// Sets the case up (untimed); false with the failure recorded if the engine refused it.
+bool set_up(Peer& peer, const Case& c, Result& result) {
+  try {
+    peer.reset(c);
+    return true;
+  } catch (const std::exception& e) {
+    result.failure = e.what();
+    return false;
+  }
+}
+
+// One run of a one-body problem: the timed loop steps and copies the body's state into a
+// buffer reserved beforehand (every step for the sphere and the pendulum, every sample
+// interval for the slopes), the same for every engine.
+void run_recorded(Peer& peer, const Case& c, bool quick, Result& result) {
+  const Plan plan = plan_of(c.problem, quick);
   const long n = std::lround(plan.duration / peer.dt());
   const long stride =
       plan.sample_interval > 0 ? std::max(1L, std::lround(plan.sample_interval / peer.dt())) : 1;
   std::vector<Sample> samples(static_cast<std::size_t>(n / stride + 1));
-  try {
-    peer.reset(problem);
-  } catch (const std::exception& e) {
-    result.failure = e.what();
-    return;
-  }
-  peer.read(samples[0]);
+  if (!set_up(peer, c, result)) return;
+  peer.read(0, samples[0]);
   std::size_t next = 1;
   const double start = thread_cpu_seconds();
   for (long k = 1; k <= n; ++k) {
     peer.step();
-    if (k % stride == 0) peer.read(samples[next++]);
+    if (k % stride == 0) peer.read(0, samples[next++]);
   }
   result.cpu.push_back(thread_cpu_seconds() - start);
   for (std::size_t i = 0; i < next; ++i) samples[i].t = static_cast<double>(i * stride) * peer.dt();
   samples.resize(next);
-  result.errors = measure(problem, samples, quick);
+  result.errors = measure(c.problem, samples, quick);
   result.steps = n;
   result.simulated = static_cast<double>(n) * peer.dt();
+}
+
+// One run of the N spheres: the timed loop steps and reads every sphere after every step
+// into its StickWatch (no recording: a thousand spheres at 1e-4 s would need 10^7 samples).
+void run_spheres(Peer& peer, const Case& c, bool quick, Result& result) {
+  const Plan plan = plan_of(c.problem, quick);
+  const long n = std::lround(plan.duration / peer.dt());
+  std::vector<StickWatch> watches(static_cast<std::size_t>(c.count), StickWatch(peer.dt()));
+  if (!set_up(peer, c, result)) return;
+  Sample s;
+  for (int i = 0; i < c.count; ++i) {
+    peer.read(i, s);
+    watches[i].add(0.0, slip_of(s));
+  }
+  const double start = thread_cpu_seconds();
+  for (long k = 1; k <= n; ++k) {
+    peer.step();
+    const double t = static_cast<double>(k) * peer.dt();
+    for (int i = 0; i < c.count; ++i) {
+      peer.read(i, s);
+      watches[i].add(t, slip_of(s));
+    }
+  }
+  result.cpu.push_back(thread_cpu_seconds() - start);
+  double worst = 0.0, sum = 0.0;
+  int stuck = 0;
+  for (int i = 0; i < c.count; ++i) {
+    const double exact = stick_time_of(spheres_v0(i, c.count));
+    const double error = std::abs(watches[i].stick_time() - exact) / exact;
+    if (!std::isfinite(error)) continue;
+    worst = std::max(worst, error);
+    sum += error;
+    ++stuck;
+  }
+  const double nan = std::nan("");
+  result.errors = {stuck > 0 ? worst : nan, stuck > 0 ? sum / stuck : nan,
+                   static_cast<double>(c.count - stuck), {}};
+  result.steps = n;
+  result.simulated = static_cast<double>(n) * peer.dt();
+}
+
+void run(Peer& peer, const Case& c, bool quick, Result& result) {
+  if (!peer.expresses(c.problem)) {
+    result.expressed = false;
+    return;
+  }
+  if (c.problem == Problem::spheres) {
+    run_spheres(peer, c, quick, result);
+  } else {
+    run_recorded(peer, c, quick, result);
+  }
 }
 
 double median(std::vector<double> v) {
@@ -69,6 +135,12 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t m = v.size() / 2;
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// CPU per simulated second of a result (NaN where it did not run).
+double per_second(const Result& r) {
+  if (!r.expressed || !r.failure.empty() || r.cpu.empty()) return std::nan("");
+  return median(r.cpu) / r.simulated;
 }
 
 std::string step_text(double dt) {
@@ -86,11 +158,36 @@ std::string step_text(double dt) {
   return text;
 }
 
+std::string number(double x, const char* format = "%.3g") {
+  if (!std::isfinite(x)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, format, x);
+  return text;
+}
+
 struct Options {
   int rounds = 5;
   bool quick = false;
   std::string csv;
+  std::vector<Problem> problems{Problem::sphere, Problem::slope_hold, Problem::slope_slide,
+                                Problem::spheres, Problem::pendulum};
+  std::vector<int> sizes;  // N of the spheres problem
+  std::vector<std::string> engines;  // engine name prefixes to keep (empty: all)
 };
+
+[[noreturn]] void usage() {
+  std::fprintf(stderr,
+               "usage: bench_peers [--rounds N] [--quick] [--csv FILE] [--problems LIST] "
+               "[--spheres LIST] [--engines LIST]\n");
+  std::exit(2);
+}
+
+std::vector<std::string> split(const std::string& list) {
+  std::vector<std::string> items;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+  return items;
+}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -102,12 +199,71 @@ Options parse(int argc, char** argv) {
       o.rounds = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--csv" && i + 1 < argc) {
       o.csv = argv[++i];
+    } else if (a == "--problems" && i + 1 < argc) {
+      o.problems.clear();
+      for (const std::string& name : split(argv[++i])) {
+        bool known = false;
+        for (Problem p : {Problem::sphere, Problem::slope_hold, Problem::slope_slide,
+                          Problem::spheres, Problem::pendulum}) {
+          if (problem_name(p) == name) {
+            o.problems.push_back(p);
+            known = true;
+          }
+        }
+        if (!known) usage();
+      }
+    } else if (a == "--engines" && i + 1 < argc) {
+      o.engines = split(argv[++i]);
+    } else if (a == "--spheres" && i + 1 < argc) {
+      for (const std::string& n : split(argv[++i])) o.sizes.push_back(std::max(1, std::atoi(n.c_str())));
     } else {
-      std::fprintf(stderr, "usage: bench_peers [--rounds N] [--quick] [--csv FILE]\n");
-      std::exit(2);
+      usage();
     }
   }
+  if (o.sizes.empty()) o.sizes = o.quick ? std::vector<int>{1, 10} : std::vector<int>{1, 10, 100, 1000};
   return o;
+}
+
+std::vector<Case> cases_of(const Options& o) {
+  std::vector<Case> cases;
+  for (Problem p : o.problems) {
+    if (p == Problem::spheres) {
+      for (int n : o.sizes) cases.push_back({p, n});
+    } else {
+      cases.push_back({p, 1});
+    }
+  }
+  return cases;
+}
+
+std::string row_head(const Peer& peer) {
+  return "| " + peer.engine() + " | " + peer.settings() + " | " + step_text(peer.dt()) + " |";
+}
+
+// The least-squares slope of log(cpu) over log(N): cost ~ N^slope.
+double exponent(const std::vector<int>& sizes, const std::vector<double>& cpu) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int m = 0;
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    if (!std::isfinite(cpu[k]) || cpu[k] <= 0) continue;
+    const double x = std::log(sizes[k]), y = std::log(cpu[k]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+    ++m;
+  }
+  if (m < 2) return std::nan("");
+  return (m * sxy - sx * sy) / (m * sxx - sx * sx);
+}
+
+// The row bench_peers compares the goals of issue 36 against: ODE at 1/60 s (-1: none).
+int ode_row(const Peers& peers) {
+  for (std::size_t p = 0; p < peers.size(); ++p) {
+    if (peers[p]->engine().rfind("ODE", 0) == 0 && std::abs(peers[p]->dt() - 1.0 / 60) < 1e-12)
+      return static_cast<int>(p);
+  }
+  return -1;
 }
 
 }  // namespace
@@ -128,19 +284,46 @@ int main(int argc, char** argv) {
 #ifdef STICTION_PEERS_DART
   add_dart_peers(peers);
 #endif
+#ifdef STICTION_PEERS_SICONOS
+  add_siconos_peers(peers);
+#endif
 
-  constexpr int kCount = static_cast<int>(std::size(kProblems));
-  std::vector<Result> results(peers.size() * kCount);
+  if (!options.engines.empty()) {
+    // Keep the engines named (by the start of their name, any case); the first row stays
+    // stiction rk4 whenever stiction is kept.
+    auto lower = [](std::string text) {
+      for (char& ch : text) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+      return text;
+    };
+    Peers kept;
+    for (auto& peer : peers) {
+      for (const std::string& name : options.engines) {
+        if (lower(peer->engine()).rfind(lower(name), 0) == 0) {
+          kept.push_back(std::move(peer));
+          break;
+        }
+      }
+    }
+    peers = std::move(kept);
+    if (peers.empty()) usage();
+  }
+  const std::vector<Case> cases = cases_of(options);
+  const std::size_t count = cases.size();
+  std::vector<Result> results(peers.size() * count);
+  auto result = [&](std::size_t p, std::size_t q) -> Result& { return results[p * count + q]; };
   for (int round = 0; round < options.rounds; ++round) {
     for (std::size_t p = 0; p < peers.size(); ++p) {
-      for (int q = 0; q < kCount; ++q)
-        run(*peers[p], kProblems[q], options.quick, results[p * kCount + q]);
+      for (std::size_t q = 0; q < count; ++q) run(*peers[p], cases[q], options.quick, result(p, q));
     }
   }
 
-  // The reference: stiction's paper method (the first row, rk4 at 1e-4 s), per problem.
-  std::vector<double> reference(kCount);
-  for (int q = 0; q < kCount; ++q) reference[q] = median(results[q].cpu) / results[q].simulated;
+  // Ratios: to stiction's paper method (the first row, rk4 at 1e-4 s) and to ODE at 1/60 s.
+  const int ode = ode_row(peers);
+  auto ratio = [&](std::size_t p, std::size_t q, int reference) {
+    if (reference < 0) return std::nan("");
+    return per_second(result(p, q)) / per_second(result(static_cast<std::size_t>(reference), q));
+  };
+  const std::string first = peers[0]->engine() + " " + peers[0]->settings();
 
   std::FILE* csv = options.csv.empty() ? nullptr : std::fopen(options.csv.c_str(), "w");
   if (!options.csv.empty() && !csv) {
@@ -149,38 +332,110 @@ int main(int argc, char** argv) {
   }
   if (csv)
     std::fprintf(csv,
-                 "engine,settings,dt,problem,error1,error2,cpu_per_simulated_s,cpu_per_step,ratio_"
-                 "to_reference\n");
-  std::printf(
-      "\n| engine | settings | step | problem | error | CPU per simulated s | CPU per step | x %s "
-      "%s |\n",
-      peers[0]->engine().c_str(), peers[0]->settings().c_str());
-  std::printf("|---|---|---|---|---|---|---|---|\n");
+                 "engine,settings,dt,problem,count,error1,error2,error3,note,cpu_per_simulated_s,"
+                 "cpu_per_step,ratio_to_reference,ratio_to_ode_60\n");
+
+  // Table 1: the one-body problems, one row per engine, setting and problem.
+  bool header = false;
   for (std::size_t p = 0; p < peers.size(); ++p) {
-    for (int q = 0; q < kCount; ++q) {
-      const Result& r = results[p * kCount + q];
-      const Peer& peer = *peers[p];
-      const std::string name = problem_name(kProblems[q]);
+    for (std::size_t q = 0; q < count; ++q) {
+      const Problem problem = cases[q].problem;
+      if (problem == Problem::spheres || problem == Problem::pendulum) continue;
+      const Result& r = result(p, q);
+      if (!r.expressed) continue;
+      if (!header) {
+        std::printf("\n| engine | settings | step | problem | error | CPU per simulated s | CPU "
+                    "per step | x %s |\n|---|---|---|---|---|---|---|---|\n",
+                    first.c_str());
+        header = true;
+      }
+      const std::string head = row_head(*peers[p]) + " " + problem_name(problem) + " |";
       if (!r.failure.empty() || r.cpu.empty()) {
-        std::printf("| %s | %s | %s | %s | failed: %s | | | |\n", peer.engine().c_str(),
-                    peer.settings().c_str(), step_text(peer.dt()).c_str(), name.c_str(),
-                    r.failure.c_str());
+        std::printf("%s failed: %s | | | |\n", head.c_str(), r.failure.c_str());
         continue;
       }
-      const double cpu = median(r.cpu);
-      const double per_second = cpu / r.simulated, per_step = cpu / static_cast<double>(r.steps);
-      std::printf("| %s | %s | %s | %s | %s | %.3g ms | %.3g us | %.2g |\n", peer.engine().c_str(),
-                  peer.settings().c_str(), step_text(peer.dt()).c_str(), name.c_str(),
-                  describe(kProblems[q], r.errors).c_str(), 1e3 * per_second, 1e6 * per_step,
-                  per_second / reference[q]);
-      if (csv) {
-        std::fprintf(csv, "\"%s\",\"%s\",%.17g,%s,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-                     peer.engine().c_str(), peer.settings().c_str(), peer.dt(), name.c_str(),
-                     r.errors.first, r.errors.second, per_second, per_step,
-                     per_second / reference[q]);
-      }
+      std::printf("%s %s | %.3g ms | %.3g us | %.2g |\n", head.c_str(),
+                  describe(problem, r.errors).c_str(), 1e3 * per_second(r),
+                  1e6 * median(r.cpu) / static_cast<double>(r.steps), ratio(p, q, 0));
     }
   }
-  if (csv) std::fclose(csv);
+
+  // Table 2: the N spheres, one row per engine and setting, one column per N.
+  std::vector<std::size_t> sphere_cases;
+  for (std::size_t q = 0; q < count; ++q)
+    if (cases[q].problem == Problem::spheres) sphere_cases.push_back(q);
+  if (!sphere_cases.empty()) {
+    std::printf("\nN spheres: CPU per simulated s (ms) | largest relative stick time error "
+                "over the spheres\n\n| engine | settings | step |");
+    for (std::size_t q : sphere_cases) std::printf(" N = %d |", cases[q].count);
+    std::printf(" exponent |");
+    for (std::size_t q : sphere_cases) std::printf(" error N = %d |", cases[q].count);
+    std::printf(" x %s (N = %d) | x ODE 1/60 (N = %d) |\n|---|---|---|", first.c_str(),
+                cases[sphere_cases.back()].count, cases[sphere_cases.back()].count);
+    for (std::size_t k = 0; k < 2 * sphere_cases.size() + 3; ++k) std::printf("---|");
+    std::printf("\n");
+    for (std::size_t p = 0; p < peers.size(); ++p) {
+      if (!result(p, sphere_cases[0]).expressed) continue;
+      std::vector<int> sizes;
+      std::vector<double> cpu;
+      std::string line = row_head(*peers[p]);
+      for (std::size_t q : sphere_cases) {
+        sizes.push_back(cases[q].count);
+        cpu.push_back(per_second(result(p, q)));
+        const std::string& failure = result(p, q).failure;
+        line += " " + (failure.empty() ? number(1e3 * cpu.back()) : "failed: " + failure) + " |";
+      }
+      line += " " + number(exponent(sizes, cpu), "%.2f") + " |";
+      for (std::size_t q : sphere_cases) {
+        const Errors& e = result(p, q).errors;
+        line += " " + number(e.first, "%.2g");
+        if (e.third > 0) line += " (" + number(e.third, "%.0f") + " never stuck)";
+        line += " |";
+      }
+      line += " " + number(ratio(p, sphere_cases.back(), 0), "%.2g") + " | " +
+              number(ratio(p, sphere_cases.back(), ode), "%.2g") + " |";
+      std::printf("%s\n", line.c_str());
+    }
+  }
+
+  // Table 3: the pendulum.
+  for (std::size_t q = 0; q < count; ++q) {
+    if (cases[q].problem != Problem::pendulum) continue;
+    const Swings& reference = pendulum_reference(plan_of(Problem::pendulum, options.quick).duration);
+    std::printf("\nPendulum with joint friction: reference (ideal Coulomb, rk4 1e-5 s) turns %zu "
+                "times, stops at %.9g s at %.6g rad\n\n| engine | settings | step | phase | "
+                "amplitude | stop | note | CPU per simulated s | x %s | x ODE 1/60 |\n"
+                "|---|---|---|---|---|---|---|---|---|---|\n",
+                reference.turns.size(), reference.stop_time, reference.rest_angle, first.c_str());
+    for (std::size_t p = 0; p < peers.size(); ++p) {
+      const Result& r = result(p, q);
+      if (!r.expressed) continue;
+      if (!r.failure.empty() || r.cpu.empty()) {
+        std::printf("%s failed: %s | | | | | | |\n", row_head(*peers[p]).c_str(), r.failure.c_str());
+        continue;
+      }
+      std::printf("%s %s s | %s rad | %s s | %s | %.3g ms | %s | %s |\n", row_head(*peers[p]).c_str(),
+                  number(r.errors.first, "%.2g").c_str(), number(r.errors.second, "%.2g").c_str(),
+                  number(r.errors.third, "%+.2g").c_str(), r.errors.note.c_str(), 1e3 * per_second(r),
+                  number(ratio(p, q, 0), "%.2g").c_str(), number(ratio(p, q, ode), "%.2g").c_str());
+    }
+  }
+
+  if (csv) {
+    for (std::size_t p = 0; p < peers.size(); ++p) {
+      for (std::size_t q = 0; q < count; ++q) {
+        const Result& r = result(p, q);
+        if (!r.expressed || !r.failure.empty() || r.cpu.empty()) continue;
+        const Peer& peer = *peers[p];
+        std::fprintf(csv, "\"%s\",\"%s\",%.17g,%s,%d,%.6g,%.6g,%.6g,\"%s\",%.6g,%.6g,%.6g,%.6g\n",
+                     peer.engine().c_str(), peer.settings().c_str(), peer.dt(),
+                     problem_name(cases[q].problem).c_str(), cases[q].count, r.errors.first,
+                     r.errors.second, r.errors.third, r.errors.note.c_str(), per_second(r),
+                     median(r.cpu) / static_cast<double>(r.steps), ratio(p, q, 0),
+                     ratio(p, q, ode));
+      }
+    }
+    std::fclose(csv);
+  }
   return 0;
 }

@@ -2,9 +2,11 @@
 // contacts) with the Euler integrator (semi-implicit, the default) and with `implicit`
 // (implicit in velocity; 2.2.2 has no implicitfast), each at MuJoCo's default step 2 ms and
 // at 1/60 s. condim 3 and friction mu on both geoms (MuJoCo takes the larger of the two).
-// The model is built from an XML text through a virtual file.
+// The model is built from an XML text through a virtual file. The pendulum: a hinge joint with
+// frictionloss F (MuJoCo's joint dry friction, a soft constraint like its contacts).
 #include <mujoco/mujoco.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -15,30 +17,53 @@
 namespace stiction::peers {
 namespace {
 
-std::string model_xml(Problem problem, double dt, const char* integrator) {
+// The N spheres collide with the plane only (contype 1 against the plane's conaffinity 1;
+// sphere pairs match no bit), as in the other engines where the lanes keep them apart.
+std::string model_xml(const Case& c, double dt, const char* integrator) {
   double g[3];
-  gravity_of(problem, g);
-  const double mu = mu_of(problem);
-  char geom[200];
-  if (problem == Problem::sphere) {
-    std::snprintf(geom, sizeof geom,
-                  "pos='0 0 %.17g'><freejoint/><geom type='sphere' size='%.17g' mass='%.17g'",
-                  kSphere.radius, kSphere.radius, kSphere.mass);
-  } else {
-    const double* s = kBox.size;
-    std::snprintf(
-        geom, sizeof geom,
-        "pos='0 0 %.17g'><freejoint/><geom type='box' size='%.17g %.17g %.17g' mass='%.17g'",
-        s[2] / 2, s[0] / 2, s[1] / 2, s[2] / 2, kBox.mass);
+  gravity_of(c.problem, g);
+  const double mu = mu_of(c.problem);
+  char text[600];
+  std::snprintf(text, sizeof text,
+                "<mujoco><option timestep='%.17g' gravity='%.17g %.17g %.17g' integrator='%s'/>"
+                "<worldbody>",
+                dt, g[0], g[1], g[2], integrator);
+  std::string xml = text;
+  if (c.problem == Problem::pendulum) {
+    // The hinge at the body's origin, the bar below it; frictionloss: MuJoCo's dry friction.
+    const PendulumParams& k = kPendulum;
+    std::snprintf(text, sizeof text,
+                  "<body><joint type='hinge' axis='0 -1 0' frictionloss='%.17g'/>"
+                  "<geom type='box' size='%.17g %.17g %.17g' pos='0 0 %.17g' mass='%.17g' "
+                  "contype='0' conaffinity='0'/></body>",
+                  k.friction, k.width / 2, k.width / 2, k.length / 2, -k.com(), k.mass);
+    return xml + text + "</worldbody></mujoco>";
   }
-  char xml[1000];
-  std::snprintf(
-      xml, sizeof xml,
-      "<mujoco><option timestep='%.17g' gravity='%.17g %.17g %.17g' integrator='%s'/>"
-      "<worldbody><geom type='plane' size='0 0 1' condim='3' friction='%.17g 0.005 0.0001'/>"
-      "<body %s condim='3' friction='%.17g 0.005 0.0001'/></body></worldbody></mujoco>",
-      dt, g[0], g[1], g[2], integrator, mu, geom, mu);
-  return xml;
+  std::snprintf(text, sizeof text,
+                "<geom type='plane' size='0 0 1' condim='3' friction='%.17g 0.005 0.0001' "
+                "contype='0' conaffinity='1'/>",
+                mu);
+  xml += text;
+  for (int i = 0; i < c.count; ++i) {
+    if (c.problem == Problem::slope_hold || c.problem == Problem::slope_slide) {
+      const double* s = kBox.size;
+      std::snprintf(text, sizeof text,
+                    "<body pos='0 0 %.17g'><freejoint/><geom type='box' size='%.17g %.17g %.17g' "
+                    "mass='%.17g'",
+                    s[2] / 2, s[0] / 2, s[1] / 2, s[2] / 2, kBox.mass);
+    } else {
+      std::snprintf(text, sizeof text,
+                    "<body pos='0 %.17g %.17g'><freejoint/><geom type='sphere' size='%.17g' "
+                    "mass='%.17g'",
+                    spheres_lane(i), kSphere.radius, kSphere.radius, kSphere.mass);
+    }
+    xml += text;
+    std::snprintf(text, sizeof text,
+                  " condim='3' friction='%.17g 0.005 0.0001' contype='1' conaffinity='0'/></body>",
+                  mu);
+    xml += text;
+  }
+  return xml + "</worldbody></mujoco>";
 }
 
 class MujocoPeer final : public Peer {
@@ -49,9 +74,10 @@ class MujocoPeer final : public Peer {
   std::string settings() const override { return integrator_ + std::string(", default contact"); }
   double dt() const override { return dt_; }
 
-  void reset(Problem problem) override {
+  void reset(const Case& c) override {
     destroy();
-    const std::string xml = model_xml(problem, dt_, integrator_);
+    problem_ = c.problem;
+    const std::string xml = model_xml(c, dt_, integrator_);
     auto vfs = std::make_unique<mjVFS>();
     mj_defaultVFS(vfs.get());
     mj_makeEmptyFileVFS(vfs.get(), "peer.xml", static_cast<int>(xml.size()));
@@ -61,16 +87,31 @@ class MujocoPeer final : public Peer {
     mj_deleteVFS(vfs.get());
     if (!model_) throw std::runtime_error(std::string("MuJoCo: ") + error);
     data_ = mj_makeData(model_);
-    if (problem == Problem::sphere) data_->qvel[0] = kSphere.v0;
+    if (c.problem == Problem::pendulum) {
+      data_->qpos[0] = kPendulum.angle0;
+    } else if (c.problem == Problem::sphere || c.problem == Problem::spheres) {
+      for (int i = 0; i < c.count; ++i) data_->qvel[6 * i] = spheres_v0(i, c.count);
+    }
   }
 
   void step() override { mj_step(model_, data_); }
 
-  void read(Sample& s) const override {
-    // Free joint: qpos = position, quaternion; qvel = world linear velocity, local angular.
+  void read(int i, Sample& s) const override {
+    if (problem_ == Problem::pendulum) {
+      // From the joint (mj_step leaves the body positions one step behind qpos).
+      const double phi = data_->qpos[0], rate = data_->qvel[0], l = kPendulum.com();
+      const double p[3] = {l * std::sin(phi), 0.0, -l * std::cos(phi)};
+      const double v[3] = {l * rate * std::cos(phi), 0.0, l * rate * std::sin(phi)};
+      const double w[3] = {0.0, -rate, 0.0};
+      fill_sample(s, p, v, w);
+      return;
+    }
+    // Free joint i: qpos = position, quaternion; qvel = world linear velocity, local angular.
+    const mjtNum* q = data_->qpos + 7 * i;
+    const mjtNum* v = data_->qvel + 6 * i;
     mjtNum w[3];
-    mju_rotVecQuat(w, data_->qvel + 3, data_->qpos + 3);
-    fill_sample(s, data_->qpos, data_->qvel, w);
+    mju_rotVecQuat(w, v + 3, q + 3);
+    fill_sample(s, q, v, w);
   }
 
  private:
@@ -83,6 +124,7 @@ class MujocoPeer final : public Peer {
 
   const char* integrator_;
   double dt_;
+  Problem problem_ = Problem::sphere;
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
 };

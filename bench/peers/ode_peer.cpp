@@ -3,8 +3,14 @@
 // is a coefficient on the normal force, not a force bound) and a soft contact whose
 // dContactSoftERP/CFM are the manual's spring-damper equivalents ERP = h K / (h K + B),
 // CFM = 1 / (h K + B) with each contact point's K and B of problems.hpp, so ODE's contacts
-// have stiction's stiffness. Auto-disable (sleeping) is off, its default.
+// have stiction's stiffness. Auto-disable (sleeping) is off, its default. The N spheres share
+// a hash space (ODE's choice for many objects: the simple space would test all N^2 pairs).
+// The pendulum: a box body on a hinge joint to the world whose motor has target velocity 0
+// and maximum torque F, the ODE manual's way to model joint friction.
 #include <ode/ode.h>
+
+#include <cmath>
+#include <vector>
 
 #include "peer.hpp"
 
@@ -19,34 +25,45 @@ class OdePeer final : public Peer {
   std::string settings() const override { return "dWorldStep, soft contact"; }
   double dt() const override { return dt_; }
 
-  void reset(Problem problem) override {
+  void reset(const Case& c) override {
     destroy();
     world_ = dWorldCreate();
-    space_ = dSimpleSpaceCreate(nullptr);
+    space_ = c.problem == Problem::spheres ? dHashSpaceCreate(nullptr) : dSimpleSpaceCreate(nullptr);
     contacts_ = dJointGroupCreate(0);
     double g[3];
-    gravity_of(problem, g);
+    gravity_of(c.problem, g);
     dWorldSetGravity(world_, g[0], g[1], g[2]);
+    bodies_.clear();
+    if (c.problem == Problem::pendulum) {
+      add_pendulum();
+      return;
+    }
     dCreatePlane(space_, 0, 0, 1, 0);
-    body_ = dBodyCreate(world_);
+    mu_ = mu_of(c.problem);
     dMass mass;
-    mu_ = mu_of(problem);
-    if (problem == Problem::sphere) {
-      dMassSetSphereTotal(&mass, kSphere.mass, kSphere.radius);
-      dGeomSetBody(dCreateSphere(space_, kSphere.radius), body_);
-      dBodySetPosition(body_, 0, 0, kSphere.radius);
-      dBodySetLinearVel(body_, kSphere.v0, 0, 0);
+    if (c.problem == Problem::sphere || c.problem == Problem::spheres) {
+      for (int i = 0; i < c.count; ++i) {
+        dBodyID body = dBodyCreate(world_);
+        dMassSetSphereTotal(&mass, kSphere.mass, kSphere.radius);
+        dGeomSetBody(dCreateSphere(space_, kSphere.radius), body);
+        dBodySetPosition(body, 0, spheres_lane(i), kSphere.radius);
+        dBodySetLinearVel(body, spheres_v0(i, c.count), 0, 0);
+        dBodySetMass(body, &mass);
+        bodies_.push_back(body);
+      }
       stiffness_ = kSphere.stiffness;
       damping_ = kSphere.damping;
     } else {
+      dBodyID body = dBodyCreate(world_);
       const double* s = kBox.size;
       dMassSetBoxTotal(&mass, kBox.mass, s[0], s[1], s[2]);
-      dGeomSetBody(dCreateBox(space_, s[0], s[1], s[2]), body_);
-      dBodySetPosition(body_, 0, 0, s[2] / 2);
+      dGeomSetBody(dCreateBox(space_, s[0], s[1], s[2]), body);
+      dBodySetPosition(body, 0, 0, s[2] / 2);
+      dBodySetMass(body, &mass);
+      bodies_.push_back(body);
       stiffness_ = kBox.stiffness;
       damping_ = kBox.damping;
     }
-    dBodySetMass(body_, &mass);
   }
 
   void step() override {
@@ -55,14 +72,34 @@ class OdePeer final : public Peer {
     dJointGroupEmpty(contacts_);
   }
 
-  void read(Sample& s) const override {
-    const dReal* p = dBodyGetPosition(body_);
-    const dReal* v = dBodyGetLinearVel(body_);
-    const dReal* w = dBodyGetAngularVel(body_);
+  void read(int i, Sample& s) const override {
+    const dReal* p = dBodyGetPosition(bodies_[i]);
+    const dReal* v = dBodyGetLinearVel(bodies_[i]);
+    const dReal* w = dBodyGetAngularVel(bodies_[i]);
     fill_sample(s, p, v, w);
   }
 
  private:
+  // The bar along its z axis, turned by angle0 about the hinge axis -y at the origin.
+  void add_pendulum() {
+    const PendulumParams& k = kPendulum;
+    dBodyID body = dBodyCreate(world_);
+    dMass mass;
+    dMassSetBoxTotal(&mass, k.mass, k.width, k.width, k.length);
+    dBodySetMass(body, &mass);
+    dMatrix3 rotation;
+    dRFromAxisAndAngle(rotation, 0, -1, 0, k.angle0);
+    dBodySetRotation(body, rotation);
+    dBodySetPosition(body, k.com() * std::sin(k.angle0), 0, -k.com() * std::cos(k.angle0));
+    dJointID hinge = dJointCreateHinge(world_, nullptr);
+    dJointAttach(hinge, body, nullptr);
+    dJointSetHingeAnchor(hinge, 0, 0, 0);
+    dJointSetHingeAxis(hinge, 0, -1, 0);
+    dJointSetHingeParam(hinge, dParamVel, 0.0);
+    dJointSetHingeParam(hinge, dParamFMax, k.friction);
+    bodies_.push_back(body);
+  }
+
   static void near(void* data, dGeomID a, dGeomID b) {
     auto* self = static_cast<OdePeer*>(data);
     dContact contact[8];
@@ -90,7 +127,7 @@ class OdePeer final : public Peer {
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;
   dJointGroupID contacts_ = nullptr;
-  dBodyID body_ = nullptr;
+  std::vector<dBodyID> bodies_;
   double mu_ = 0, stiffness_ = 0, damping_ = 0;
 };
 

@@ -1,5 +1,6 @@
 // One engine at one setting (integrator, step) behind the interface bench_peers drives: set
-// up a problem at rest, step, read the body. Set-up and reading are not timed; step() is.
+// up a problem at rest, step, read the bodies. Set-up is not timed; step() and the reading
+// bench_peers does after every step (or every sample interval) are.
 #pragma once
 
 #include <memory>
@@ -16,12 +17,15 @@ class Peer {
   virtual std::string engine() const = 0;
   virtual std::string settings() const = 0;
   virtual double dt() const = 0;
-  // Builds the problem's world at rest at t = 0 (discarding any previous one).
-  virtual void reset(Problem problem) = 0;
+  // Whether this engine at this setting can express the problem (no row where it cannot).
+  virtual bool expresses(Problem /*problem*/) const { return true; }
+  // Builds the case's world at rest at t = 0 (discarding any previous one).
+  virtual void reset(const Case& c) = 0;
   // One step of dt().
   virtual void step() = 0;
-  // The body's centre position, velocity and angular velocity, world frame.
-  virtual void read(Sample& sample) const = 0;
+  // Body i's centre position, velocity and angular velocity, world frame: i < c.count, the
+  // spheres in the order of spheres_v0(i, n); the pendulum's bar is body 0.
+  virtual void read(int body, Sample& sample) const = 0;
 };
 
 using Peers = std::vector<std::unique_ptr<Peer>>;
@@ -44,5 +48,6 @@ void add_ode_peers(Peers& peers);
 void add_bullet_peers(Peers& peers);
 void add_mujoco_peers(Peers& peers);
 void add_dart_peers(Peers& peers);
+void add_siconos_peers(Peers& peers);
 
 }  // namespace stiction::peers

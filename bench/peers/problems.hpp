@@ -13,20 +13,41 @@
 // 2. slope hold: a box 0.2 x 0.2 x 0.1 m, 1 kg, on its large face, mu 0.5 > tan 20 = 0.364:
 //    it must stay. Creep = displacement along the slope over the run and after settling.
 // 3. slope slide: the same box, mu 0.2: it slides at a = g (sin 20 - mu cos 20).
+// 4. N spheres (issue 36): N copies of the sphere of problem 1, each on its own lane of the
+//    plane (0.5 m apart: they never touch each other, so every sphere has its own contact
+//    and nothing else), launched at v0 spread evenly over 1..3 m/s, so that their stick
+//    times 2 v0 / (7 mu g) spread over 0.29..0.87 s and the spheres switch regime one at a
+//    time. N = 1 is problem 1's sphere (v0 = 2 m/s). What scales with N is measured: CPU per
+//    simulated second, and each sphere's stick time against its closed form (relative).
+// 5. pendulum: a 0.5 x 0.03 x 0.03 m, 1 kg bar hanging from a horizontal hinge (axis -y at
+//    the origin, so the angle phi from hanging straight down grows towards +x) with Coulomb
+//    joint friction F = 0.02 N m, released at rest 0.2 rad from the bottom: it swings, each
+//    half swing F / (m g l_c) smaller, and stops for good at a turning point inside the
+//    friction band |m g l_c sin phi| <= F (scenes/pendulum_friction.toml's pendulum). The
+//    reference is the ideal Coulomb pendulum integrated here by rk4 at 1e-5 s, landing on
+//    every turning point (pendulum_reference.cpp); the measures are the turning points'
+//    times (phase) and angles (amplitude), the rest angle and the stop time.
 //
 // Contact stiffness where an engine takes one (stiction; ODE's soft ERP/CFM): the sphere
 // K = 1e7 N/m, B = 10 N s/m (scenes/sphere_roll.toml); the box K = 1e6 N/m, B = 1000 N s/m per
 // corner (scenes/box_slope.toml).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace stiction::peers {
 
-enum class Problem { sphere, slope_hold, slope_slide };
-inline constexpr Problem kProblems[] = {Problem::sphere, Problem::slope_hold, Problem::slope_slide};
+enum class Problem { sphere, slope_hold, slope_slide, spheres, pendulum };
 std::string problem_name(Problem problem);
+
+// A problem and its size: the number of spheres of Problem::spheres (1 for every other).
+struct Case {
+  Problem problem = Problem::sphere;
+  int count = 1;
+};
+std::string case_name(const Case& c);
 
 inline constexpr double kG = 9.81;
 inline constexpr double kSlopeDeg = 20.0;
@@ -42,17 +63,38 @@ struct BoxParams {
   double mass = 1.0, size[3] = {0.2, 0.2, 0.1};
   double stiffness = 1e6, damping = 1000.0;  // per corner
 };
+struct PendulumParams {
+  double mass = 1.0, length = 0.5, width = 0.03;  // a bar of square section
+  double friction = 0.02;                           // N m: Coulomb joint friction F
+  double angle0 = 0.2;                              // rad from hanging straight down
+  // stiction's Kikuuwe joint friction element (scenes/pendulum.toml): its stick stiffness
+  // and damping (the other engines take F alone).
+  double stiffness = 5000.0, damping = 1.0;
+  double com() const { return 0.5 * length; }
+  // Moment of inertia about the hinge: the bar's own about its centre plus m l_c^2.
+  double inertia() const {
+    return mass * (length * length + width * width) / 12.0 + mass * com() * com();
+  }
+};
 inline constexpr SphereParams kSphere{};
 inline constexpr BoxParams kBox{};
+inline constexpr PendulumParams kPendulum{};
+inline constexpr double kLaneSpacing = 0.5;  // m between the lanes of the N spheres
 double mu_of(Problem problem);  // the friction coefficient of the problem's contact
+
+// Sphere i of n (problem 4): launch speed along x and lane (y of its centre).
+double spheres_v0(int i, int n);
+double spheres_lane(int i);
 
 // Closed forms.
 double sphere_stick_time();
+double stick_time_of(double v0);  // 2 v0 / (7 mu g), the sphere's mu
 double sphere_final_speed();
 double slide_acceleration();
 
-// What the driver records of the body (world frame): at every step for the sphere, every
-// sample_interval for the slopes.
+// What the driver records of a body (world frame): at every step for the sphere and the
+// pendulum (its bar), every sample_interval for the slopes; the N spheres are watched every
+// step by a StickWatch each instead of being recorded.
 struct Sample {
   double t = 0, p[3] = {}, v[3] = {}, w[3] = {};
 };
@@ -64,15 +106,42 @@ struct Plan {
 };
 Plan plan_of(Problem problem, bool quick);
 
-// Errors of a trajectory: two numbers per problem (NaN where the run failed).
+// Errors of a run: up to three numbers per problem (NaN where the run failed).
 // sphere: stick time error (s), relative final speed error at the end of the run;
 // slope_hold: |creep| over the whole run and after settling (from 20 s, or 1 s when quick);
-// slope_slide: relative acceleration error from v at two times, and 0.
+// slope_slide: relative acceleration error from v at two times, and 0;
+// spheres: the largest |relative stick time error| over the spheres, the mean of them, and
+//   the number of spheres that never stuck (their error is not in the first two);
+// pendulum: the largest |time error| over the turning points (phase), the largest |angle
+//   error| over the turning points and the rest angle (amplitude), the stop time error;
+//   `note` says when the engine turned a different number of times than the reference.
 struct Errors {
-  double first = 0, second = 0;
+  double first = 0, second = 0, third = 0;
+  std::string note = {};
 };
 Errors measure(Problem problem, const std::vector<Sample>& samples, bool quick);
-// Labels of the two numbers for the table.
+// Labels of the numbers for the table.
 std::string describe(Problem problem, const Errors& errors);
+
+// The slip of the sphere at a sample, v_x - R w_y.
+double slip_of(const Sample& s);
+
+// Follows one sphere's slip sample by sample, as stick_time() reads a recorded trajectory:
+// sliding while the slip exceeds half of one step's fall; the stick time is where the line
+// through the last two sliding samples crosses zero. O(1) per sample, so a thousand spheres
+// at 1e-4 s need no recording.
+class StickWatch {
+ public:
+  explicit StickWatch(double dt) : threshold_(0.5 * 3.5 * kSphere.mu * kG * dt) {}
+  void add(double t, double slip);
+  double stick_time() const { return stick_time_; }  // NaN until it sticks
+
+ private:
+  double threshold_;
+  double t0_ = 0, s0_ = 0, t1_ = 0, s1_ = 0;
+  int sliding_ = 0;  // sliding samples seen (0, 1, 2 = enough for the line)
+  bool done_ = false;
+  double stick_time_ = std::numeric_limits<double>::quiet_NaN();
+};
 
 }  // namespace stiction::peers
