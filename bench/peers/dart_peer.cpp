@@ -1,6 +1,7 @@
 // DART 6.12: its default world (boxed LCP constraint solver with Dantzig, its default contact
 // ERP and CFM) at 1/60 and 1/240 s, with DART's own collision detector instead of the default
-// FCL (see reset()). The ground is a welded 100 x 100 x 1 m box whose top face is z = 0;
+// FCL (see reset()). The ground is a welded 100 x 100 x 1 m box (wider for the N spheres'
+// lanes) whose top face is z = 0;
 // friction mu and restitution 0 on both shape nodes. The N spheres are a skeleton each. The
 // pendulum: a bar on a RevoluteJoint to the world with Coulomb joint friction F
 // (setCoulombFriction, which DART's constraint solver bounds like a contact's friction).
@@ -15,6 +16,7 @@
 #include <dart/dynamics/WeldJoint.hpp>
 #include <dart/simulation/World.hpp>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,9 @@ class DartPeer final : public Peer {
     // DART's own collision detector (exact spheres and boxes): the default FCL meshes the
     // sphere, which then sinks 16 mm and bumps along its facets (stick time off by 0.2 s).
     world_->getConstraintSolver()->setCollisionDetector(collision::DARTCollisionDetector::create());
+    // DART keeps at most 1000 contacts per step by default: room for every sphere's.
+    world_->getConstraintSolver()->getCollisionOption().maxNumContacts =
+        std::max<std::size_t>(1000u, 4u * static_cast<std::size_t>(c.count));
     const double mu = mu_of(c.problem);
 
     auto ground = dynamics::Skeleton::create("ground");
@@ -62,7 +67,9 @@ class DartPeer final : public Peer {
     Eigen::Isometry3d below = Eigen::Isometry3d::Identity();
     below.translation() = Eigen::Vector3d(0, 0, -0.5);
     weld->setTransformFromParentBodyNode(below);
-    add_shape(floor, std::make_shared<dynamics::BoxShape>(Eigen::Vector3d(100, 100, 1)), mu);
+    // Wide enough for every lane (1000 spheres reach y = 500 m).
+    const double width = 100.0 + 2.0 * spheres_lane(c.count);
+    add_shape(floor, std::make_shared<dynamics::BoxShape>(Eigen::Vector3d(width, width, 1)), mu);
     world_->addSkeleton(ground);
 
     const bool spheres = c.problem == Problem::sphere || c.problem == Problem::spheres;

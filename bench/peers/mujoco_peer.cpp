@@ -17,8 +17,11 @@
 namespace stiction::peers {
 namespace {
 
-// The N spheres collide with the plane only (contype 1 against the plane's conaffinity 1;
-// sphere pairs match no bit), as in the other engines where the lanes keep them apart.
+// Room for contacts and constraint rows grows with N (2.2.2's defaults, 100 contacts and
+// 500 rows, leave all but a tenth of 1000 spheres without contact; a sphere's contact takes
+// 4 rows, a pyramid's edges). The N spheres collide
+// with the plane only (contype 1 against the plane's conaffinity 1; sphere pairs match no
+// bit), as in the other engines where the lanes keep them apart.
 std::string model_xml(const Case& c, double dt, const char* integrator) {
   double g[3];
   gravity_of(c.problem, g);
@@ -26,8 +29,8 @@ std::string model_xml(const Case& c, double dt, const char* integrator) {
   char text[600];
   std::snprintf(text, sizeof text,
                 "<mujoco><option timestep='%.17g' gravity='%.17g %.17g %.17g' integrator='%s'/>"
-                "<worldbody>",
-                dt, g[0], g[1], g[2], integrator);
+                "<size nconmax='%d' njmax='%d'/><worldbody>",
+                dt, g[0], g[1], g[2], integrator, 100 + 2 * c.count, 500 + 4 * c.count);
   std::string xml = text;
   if (c.problem == Problem::pendulum) {
     // The hinge at the body's origin, the bar below it; frictionloss: MuJoCo's dry friction.
