@@ -4,6 +4,8 @@
 // always closed. A capability of its own rather than one more virtual of Impedance.
 #pragma once
 
+#include <limits>
+
 #include "core/types.hpp"
 
 namespace stiction::core {
@@ -13,6 +15,15 @@ class NormalContact {
   virtual ~NormalContact() = default;
   // Normal force (>= 0) the element exerts at input x_hat; 0 while the contact is open.
   virtual double contact_normal_force(ConstVecRef x_hat) const = 0;
+  // For a contact between two bodies: how far apart their surfaces are at x_hat (m; > 0:
+  // apart, so the element exerts no force and its state evolves on its own), and a bound on
+  // how fast they approach (m/s). A step of h with gap > 2 h speed leaves the two bodies in
+  // separate islands of the implicit step (core/islands.hpp). NaN where the element cannot
+  // say: it then always joins its bodies.
+  virtual double gap(ConstVecRef /*x_hat*/) const { return std::numeric_limits<double>::quiet_NaN(); }
+  virtual double approach_speed(ConstVecRef /*x_hat*/) const {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 }  // namespace stiction::core

@@ -12,18 +12,26 @@
 // drift, as under the paper's RK4. The other elements' states (LuGre, Dahl) are solved
 // implicitly with the bodies.
 //
-// Newton: the first evaluation is at x(k) itself (the run loop reads the state's slips from
-// it), each later one at the current iterate. The iteration matrix I - h dF/dx* is built
-// from forward differences over the solved entries only (a contact's friction state is not
-// one), block diagonal over the groups of entries that no element couples (the network's
-// coupling graph: separate bodies; one evaluation perturbs an entry of every group),
-// LU-factored block by block, and reused across iterations and steps until the iteration
-// contracts too slowly (a change of regime: an element sticks, slides, touches or lifts off;
-// at most kMaxMatricesPerStep times a step) or the step size changes. A correction that
-// grows is halved (damped Newton). Once the correction is below the tolerance the state is
-// set to x(k) + h F at the last iterate, so positions and friction states move by the same
-// velocities. A step whose iteration does not converge is split in two (at most
-// kMaxSplits deep), then reported as an instability.
+// Newton runs per island (core/islands.hpp: the bodies no element couples, with their
+// elements): each island iterates, forms and factors its own matrix, halves and splits its
+// own step, so a sphere switching from slip to roll costs the other 999 nothing, and the
+// step costs O(N) in the number of separate bodies. A contact between two bodies that the
+// step cannot close (NormalContact::gap > 2 h approach_speed at the step's start) is
+// detached: the two bodies step as separate islands. If one closes after all, the step is
+// taken again with it attached. The step starts with one evaluation of
+// the whole network at x(k) (the run loop reads the state's slips from it; it is every
+// island's first residual); each later one is of the island's part only
+// (Network::derivative_part), counted in evaluations() by its share of the state.
+//
+// An island's iteration matrix I - h dF/dx* is built from forward differences over its
+// solved entries (a contact's friction state is not one), LU-factored, and reused across
+// iterations and steps until its iteration contracts too slowly (a change of regime: an
+// element sticks, slides, touches or lifts off; at most kMaxMatricesPerStep times a step)
+// or the step size changes. A correction that grows is halved (damped Newton). Once the
+// correction is below the tolerance the island's state is set to x(k) + h F at the last
+// iterate, so positions and friction states move by the same velocities. An island whose
+// iteration does not converge is stepped in halves (at most kMaxSplits deep, the other
+// islands keep their full step), then reported as an instability naming its first body.
 #pragma once
 
 #include <Eigen/LU>
@@ -31,6 +39,7 @@
 #include <vector>
 
 #include "core/integrator.hpp"
+#include "core/islands.hpp"
 
 namespace stiction::core {
 
@@ -45,19 +54,20 @@ class ImplicitEulerStepper final : public Stepper {
   int order() const override { return 1; }
   double advance(Network& network, double t, double limit, Vec& x) override;
   bool evaluates_start_first() const override { return true; }
-  // Blocks of the iteration matrix (groups of unknowns no element couples); 0 before the
-  // first step.
-  std::size_t blocks() const { return groups_.size(); }
+  // Islands (each with its own matrix); 0 before the first step.
+  std::size_t blocks() const { return islands_.size(); }
+  // Whether contacts between bodies that are apart detach (true, the default); false keeps
+  // the islands structural (for comparison). Call before the first step.
+  void set_detach_contacts(bool on) { detach_contacts_ = on; }
+  // Iteration matrices formed so far, over all islands.
+  long matrices_formed() const { return matrices_formed_; }
 
   // One backward Euler stage, for the implicit Runge-Kutta methods built on this one
   // (each SDIRK stage is a backward Euler step of gamma h from its own start): solves
   // x(end) = x + h F(t + h, x*(end); tau = h) from (t, x) into x, without splitting;
-  // false if Newton did not converge (x unchanged then). The network is first evaluated at
-  // (t + h, x) itself.
-  bool solve_stage(Network& network, double t, double h, Vec& x) {
-    if (!prepared_) prepare(network);
-    return solve(network, t, h, x);
-  }
+  // false if Newton did not converge in some island (x unchanged then). The network is
+  // first evaluated at (t + h, x) itself.
+  bool solve_stage(Network& network, double t, double h, Vec& x);
   // F at the solution of the last stage that converged (x(end) = x + h slope()).
   const Vec& slope() const { return f_; }
 
@@ -73,46 +83,69 @@ class ImplicitEulerStepper final : public Stepper {
   // Corrections that stall below this many tolerances are taken as converged (rounding).
   static constexpr double kRoundingFloor = 100.0;
 
+  // One island's Newton solver: what it solves, its matrix and its scratch.
+  struct IslandSolve {
+    Island island;                             // its part of the network
+    std::vector<int> solved;                   // the state entries Newton solves for
+    std::vector<int> friction_elements;        // clamped friction with a slip
+    double share = 0.0;                        // states / state_dim: its evaluation's cost
+    Eigen::MatrixXd matrix;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    Vec residual, delta, probe_delta;
+    bool lu_valid = false;
+    double lu_h = 0.0;
+  };
+
   void prepare(Network& network);
-  // One backward Euler step of h from (t, x) into x; false if Newton did not converge
-  // (x unchanged then).
-  bool solve(Network& network, double t, double h, Vec& x);
-  // Steps of h / 2^depth until h is covered; false if one still fails at kMaxSplits.
-  bool split(Network& network, double t, double h, Vec& x, int depth);
-  // F at the merged iterate into f_, and the residual of the solved entries.
-  void evaluate_iterate(Network& network, double t_end, double h);
+  // (Re)builds islands_ for the current detached_ set, keeping the matrices of the islands
+  // that are unchanged.
+  void build_islands(Network& network);
+  // Detaches the contacts between bodies that a step of h from x cannot close, attaches the
+  // others; rebuilds the islands if that changed anything.
+  void update_detached(Network& network, const Vec& x, double h);
+  // Attaches the detached contacts that are closed at x; true if there were any (the step
+  // that led to x is then taken again).
+  bool attach_closed(Network& network, const Vec& x);
+  // Every island from (t, x) by h: with splits (a step) or without (a stage); false if an
+  // island failed (the failing one in failed_).
+  bool solve_islands(Network& network, double t, double h, Vec& x, bool may_split);
+  // One backward Euler step of h from (t, x) for island `s`'s entries of x; false if Newton
+  // did not converge (x unchanged then). With start_known, f_ already holds F at
+  // (t + h, x) on the island's entries.
+  bool solve(Network& network, IslandSolve& s, double t, double h, Vec& x, bool start_known);
+  // Island steps of h / 2^depth until h is covered; false if one still fails at kMaxSplits.
+  bool split(Network& network, IslandSolve& s, double t, double h, Vec& x, int depth);
+  // The island's part of F at (t, y) into out.
+  void evaluate_part(Network& network, IslandSolve& s, double t, const Vec& y, double h, Vec& out);
+  // F at the merged iterate into f_, and the island's residual.
+  void evaluate_iterate(Network& network, IslandSolve& s, double t_end, double h);
   // Moves the iterate back along the last Newton step to where a sliding clamped-friction
   // element whose slip that step reversed reaches the middle of its stuck band
   // (ClampedFriction::unloaded_slip); false if no element reversed.
-  bool move_into_stuck_band(Network& network, double h);
-  // x* from the solved entries of `iterate` and the rest of `start`.
-  void merge(const Vec& iterate, const Vec& start);
-  // The unknowns (positions in `solved`) in groups that no element couples.
-  static std::vector<std::vector<int>> coupled_groups(const Network& network,
-                                                      const std::vector<int>& solved);
-  // delta_ = the matrix's inverse applied to residual_, block by block.
-  void solve_linear();
-  // Forms I - h dF/dx* over the solved entries at x* (eval_), with F there in f_, and
-  // factors it.
-  void refresh_matrix(Network& network, double t_eval, double h);
+  bool move_into_stuck_band(Network& network, IslandSolve& s, double h);
+  // Forms I - h dF/dx* over the island's solved entries at x* (eval_), with F there in f_,
+  // and factors it.
+  void refresh_matrix(Network& network, IslandSolve& s, double t_eval, double h);
   // The largest entry of a Newton correction relative to its tolerance at state x.
-  double scaled_norm(const Vec& correction, const Vec& x) const;
+  double scaled_norm(const IslandSolve& s, const Vec& correction, const Vec& x) const;
+  // The island named for a user: its first body.
+  std::string describe(const Network& network, const IslandSolve& s) const;
+  void count_part_evaluation(const IslandSolve& s);
 
   std::string name_ = "implicit";
   double dt_;
   bool prepared_ = false;
-  std::vector<int> solved_;             // indices of the solved entries
-  std::vector<int> friction_elements_;  // impedances with clamped friction and a slip
-  Vec start_, iterate_, eval_, f_, probe_, f_probe_, last_eval_, residual_, delta_;
-  // The iteration matrix is block diagonal over groups of unknowns that no element couples
-  // (separate bodies): one dense block and LU per group, positions into solved_.
-  std::vector<std::vector<int>> groups_;
-  std::vector<Eigen::MatrixXd> blocks_;
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> block_lus_;
-  std::vector<Vec> block_rhs_;  // scratch per block
-  Vec probe_delta_;
-  bool lu_valid_ = false;
-  double lu_h_ = 0.0;
+  std::vector<IslandSolve> islands_;
+  bool detach_contacts_ = true;
+  std::vector<int> separable_;  // contacts between bodies that can say their gap
+  std::vector<char> detached_;  // per impedance: stepped apart from its bodies now
+  const IslandSolve* failed_ = nullptr;
+  Vec step_start_;
+  // Whole-state vectors; each island reads and writes only its own entries.
+  Vec start_, iterate_, eval_, f_, probe_, f_probe_, last_eval_, stage_;
+  double part_evaluations_ = 0.0;  // island evaluations, in whole-network units
+  long whole_evaluations_ = 0;
+  long matrices_formed_ = 0;
 };
 
 }  // namespace stiction::core

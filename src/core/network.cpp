@@ -223,11 +223,36 @@ std::vector<LayoutEntry> Network::layout() const {
   return entries;
 }
 
+template <typename F>
+void Network::for_impedances(const Island* part, F f) const {
+  if (part != nullptr) {
+    for (int i : part->impedances) f(static_cast<std::size_t>(i));
+    return;
+  }
+  for (std::size_t i = 0; i < impedances_.size(); ++i) f(i);
+}
+
+template <typename F>
+void Network::for_admittances(const Island* part, F f) const {
+  if (part != nullptr) {
+    for (int j : part->admittances) f(static_cast<std::size_t>(j));
+    return;
+  }
+  for (std::size_t j = 0; j < admittances_.size(); ++j) f(j);
+}
+
 void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot,
-                                  const Vec* friction_reference) {
+                                  const Vec* friction_reference, const Island* part) {
   // (13d) Psi, (22) impedances, (13f) Phi.
-  u_hat_.setZero();
-  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+  if (part == nullptr) {
+    u_hat_.setZero();
+  } else {
+    for (int j : part->admittances) {
+      const Slot& s = admittance_slots_[static_cast<std::size_t>(j)];
+      u_hat_.segment(s.input_offset, s.input_size).setZero();
+    }
+  }
+  for_impedances(part, [&](std::size_t i) {
     const Slot& s = impedance_slots_[i];
     const Impedance& imp = *impedances_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
@@ -248,7 +273,7 @@ void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_
       imp.evaluate(t, x_hat, x.segment(s.state_offset, s.state_size), tau, u, y_dot);
     }
     maps_[i]->apply(x, u, u_hat_);
-  }
+  });
 }
 
 void Network::evaluate_admittances(const double* x, double* x_dot) {
@@ -270,6 +295,21 @@ void Network::derivative_at(double t, const double* x, double tau, double* x_dot
   Coupling* const* const end = couplings + coupling_count_;
   for (; couplings != end; ++couplings) (*couplings)->exchange(t, x, tau, x_dot, u_hat);
   evaluate_admittances(x, x_dot);
+}
+
+void Network::derivative_part(double t, const double* x, double tau, double* x_dot,
+                              const Island& part) {
+  double* u_hat = u_hat_.data();
+  for (int j : part.admittances) {
+    const Slot& s = admittance_slots_[static_cast<std::size_t>(j)];
+    for (int k = 0; k < s.input_size; ++k) u_hat[s.input_offset + k] = 0.0;
+  }
+  for (int i : part.impedances) plain_[static_cast<std::size_t>(i)]->exchange(t, x, tau, x_dot, u_hat);
+  for (int j : part.admittances) {
+    const AdmittanceCall& call = admittance_calls_[static_cast<std::size_t>(j)];
+    call.admittance->derivative_at(x + call.state_offset, u_hat + call.input_offset,
+                                   x_dot + call.state_offset);
+  }
 }
 
 void Network::prepare_capture() {
@@ -311,38 +351,46 @@ ConstVecRef Network::captured_state(int impedance) const {
 }
 
 void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
-                                       const Vec& reference) {
-  evaluate_impedances(t, x, tau, x_dot, &reference);
-  evaluate_admittances(x.data(), x_dot.data());
+                                       const Vec& reference, const Island* part) {
+  evaluate_impedances(t, x, tau, x_dot, &reference, part);
+  if (part == nullptr) {
+    evaluate_admittances(x.data(), x_dot.data());
+    return;
+  }
+  for (int j : part->admittances) {
+    const AdmittanceCall& call = admittance_calls_[static_cast<std::size_t>(j)];
+    call.admittance->derivative_at(x.data() + call.state_offset, u_hat_.data() + call.input_offset,
+                                   x_dot.data() + call.state_offset);
+  }
 }
 
-double Network::friction_cap_energy(ConstVecRef x) {
+double Network::friction_cap_energy(ConstVecRef x, const Island* part) {
   double total = 0.0;
-  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+  for_impedances(part, [&](std::size_t i) {
     const ClampedFriction* friction = capabilities_[i].friction;
-    if (friction == nullptr) continue;
+    if (friction == nullptr) return;
     const Slot& s = impedance_slots_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
     maps_[i]->motion(x, x_hat);
     total += friction->friction_cap_energy(x_hat);
-  }
+  });
   return total;
 }
 
-void Network::kinematics(ConstVecRef x, VecRef x_dot) const {
-  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+void Network::kinematics(ConstVecRef x, VecRef x_dot, const Island* part) const {
+  for_admittances(part, [&](std::size_t j) {
     const Slot& s = admittance_slots_[j];
     admittances_[j]->derivative(x.segment(s.state_offset, s.state_size),
                                 zero_input_.segment(s.input_offset, s.input_size),
                                 x_dot.segment(s.state_offset, s.state_size));
-  }
+  });
 }
 
-void Network::project(VecRef x) const {
-  for (std::size_t j = 0; j < admittances_.size(); ++j) {
+void Network::project(VecRef x, const Island* part) const {
+  for_admittances(part, [&](std::size_t j) {
     const Slot& s = admittance_slots_[j];
     admittances_[j]->project(x.segment(s.state_offset, s.state_size));
-  }
+  });
 }
 
 std::vector<std::string> Network::signal_columns() const {
@@ -402,9 +450,9 @@ ConstVecRef Network::impedance_input(int impedance, ConstVecRef x) {
   return x_hat;
 }
 
-std::size_t Network::regime_signature(ConstVecRef x, double tau) {
+std::size_t Network::regime_signature(ConstVecRef x, double tau, const Island* part) {
   std::size_t signature = 0;
-  for (std::size_t i = 0; i < impedances_.size(); ++i) {
+  for_impedances(part, [&](std::size_t i) {
     int r = 0;  // smooth elements have one piece
     if (const PiecewiseLaw* law = capabilities_[i].law) {
       const Slot& s = impedance_slots_[i];
@@ -413,7 +461,7 @@ std::size_t Network::regime_signature(ConstVecRef x, double tau) {
       r = law->regime(x_hat, x.segment(s.state_offset, s.state_size), tau);
     }
     signature = signature * 31 + static_cast<std::size_t>(r + 1);
-  }
+  });
   return signature;
 }
 

@@ -12,6 +12,7 @@
 #include "core/capabilities.hpp"
 #include "core/coordinate_map.hpp"
 #include "core/impedance.hpp"
+#include "core/islands.hpp"
 
 namespace stiction::core {
 
@@ -42,16 +43,24 @@ class Network {
   // steppers' hot loops: a ConstVecRef made from a Vec is an object on the caller's stack
   // with a destructor to run, at every stage.
   void derivative_at(double t, const double* x, double tau, double* x_dot);
+  // The part of F(x, t; tau) that an island's impedances and admittances make
+  // (core/islands.hpp): its state rates in x_dot, computed as derivative_at() does, and
+  // nothing else written. A pending slip capture stays pending.
+  void derivative_part(double t, const double* x, double tau, double* x_dot, const Island& part);
   // F(x, t; tau) with the friction of every ClampedFriction element held at what it is at
   // `reference`: for stability analysis only.
+  // With `part`, of that island only (its entries of x_dot; the rest is not written).
   void derivative_friction_held(double t, ConstVecRef x, double tau, VecRef x_dot,
-                                const Vec& reference);
-  // Most energy the friction-clamping elements' bounded oscillations can hold at x.
-  double friction_cap_energy(ConstVecRef x);
-  void project(VecRef x) const;
+                                const Vec& reference, const Island* part = nullptr);
+  // Most energy the friction-clamping elements' bounded oscillations can hold at x (with
+  // `part`, those of that island).
+  double friction_cap_energy(ConstVecRef x, const Island* part = nullptr);
+  // Normalizes the quaternions (of the island's bodies only, with `part`).
+  void project(VecRef x, const Island* part = nullptr) const;
   // Admittance derivatives with no forces applied: the position rates (p_dot = v,
-  // q_dot = Q(w, q), theta_dot = omega) of a state, for partitioned integrators.
-  void kinematics(ConstVecRef x, VecRef x_dot) const;
+  // q_dot = Q(w, q), theta_dot = omega) of a state, for partitioned integrators (with
+  // `part`, the island's entries only).
+  void kinematics(ConstVecRef x, VecRef x_dot, const Island* part = nullptr) const;
   // True for the admittance slots that are positions (not velocities); impedance states
   // are false.
   const std::vector<bool>& position_slots() const { return position_slots_; }
@@ -82,8 +91,8 @@ class Network {
   ConstVecRef captured_state(int impedance) const;
 
   // Regimes of all impedances at (x; tau) folded into one number: equal numbers mean the
-  // same smooth piece of the system (see PiecewiseLaw).
-  std::size_t regime_signature(ConstVecRef x, double tau);
+  // same smooth piece of the system (see PiecewiseLaw). With `part`, of its impedances.
+  std::size_t regime_signature(ConstVecRef x, double tau, const Island* part = nullptr);
 
   // Power fed in by source elements at (t, x); with driven_only, by those whose output is
   // a function of time alone (not Source::reads_state()).
@@ -116,8 +125,14 @@ class Network {
   // impedance's x_hat and u in x_hat_ and u_ (for signals); derivative() goes through the
   // couplings instead, which compute the same. With a friction reference, clamping friction
   // is held at its value there (derivative_friction_held).
+  // With `part`, the island's impedances only, into its admittances' inputs.
   void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot,
-                           const Vec* friction_reference = nullptr);
+                           const Vec* friction_reference = nullptr, const Island* part = nullptr);
+  // Calls f(i) for every impedance, or every impedance of `part`; likewise admittances.
+  template <typename F>
+  void for_impedances(const Island* part, F f) const;
+  template <typename F>
+  void for_admittances(const Island* part, F f) const;
   [[gnu::always_inline]] inline void evaluate_admittances(const double* x, double* x_dot);
 
   std::vector<std::unique_ptr<Admittance>> admittances_;

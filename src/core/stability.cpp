@@ -11,6 +11,7 @@
 #include "core/energy_budget.hpp"
 #include "core/implicit_euler.hpp"
 #include "core/integrator.hpp"
+#include "core/islands.hpp"
 
 namespace stiction::core {
 namespace {
@@ -40,6 +41,69 @@ void walk_run(Network& network, const RunOptions& options, Visit visit) {
 
 // Groups of state indices that no linearization couples (see coupled_groups).
 using Groups = std::vector<std::vector<int>>;
+
+// One island of the network (core/islands.hpp) at a state x, seen as a system of its own:
+// its state entries y, and F, F with friction held and the kinematics restricted to them.
+// No element couples islands, so the step map of the network is block diagonal over them
+// and each is analysed alone, at the cost of its own size: a scene of 1000 separate bodies
+// is 1000 small problems, not one of 13000 states. `scratch` and `scratch_out` are whole
+// state vectors equal to x outside the island (shared by the islands of one state: each
+// writes only its own entries, and puts x back there when it is done).
+class IslandSystem {
+ public:
+  IslandSystem(Network& network, const Island& island, double t, const Vec& x, Vec& scratch,
+               Vec& scratch_out)
+      : network_(network), island_(island), t_(t), x_(x), full_(scratch), out_(scratch_out) {
+    y_.resize(size());
+    for (int r = 0; r < size(); ++r) y_[r] = x[entry(r)];
+  }
+  IslandSystem(const IslandSystem&) = delete;
+  IslandSystem& operator=(const IslandSystem&) = delete;
+  ~IslandSystem() {
+    for (int e : island_.states) full_[e] = x_[e];
+  }
+  int size() const { return static_cast<int>(island_.states.size()); }
+  int entry(int r) const { return island_.states[static_cast<std::size_t>(r)]; }
+  const Vec& state() const { return y_; }
+  const Vec& whole_state() const { return x_; }
+  double t() const { return t_; }
+  Network& network() { return network_; }
+  const Island& island() const { return island_; }
+
+  void derivative(const Vec& y, double tau, Vec& out) {
+    place(y);
+    network_.derivative_part(t_, full_.data(), tau, out_.data(), island_);
+    take(out);
+  }
+  // With the clamped friction held at its value at x.
+  void derivative_friction_held(const Vec& y, double tau, Vec& out) {
+    place(y);
+    network_.derivative_friction_held(t_, full_, tau, out_, x_, &island_);
+    take(out);
+  }
+  void kinematics(const Vec& y, Vec& out) {
+    place(y);
+    network_.kinematics(full_, out_, &island_);
+    take(out);
+  }
+
+ private:
+  void place(const Vec& y) {
+    for (int r = 0; r < size(); ++r) full_[entry(r)] = y[r];
+  }
+  void take(Vec& out) {
+    out.resize(size());
+    for (int r = 0; r < size(); ++r) out[r] = out_[entry(r)];
+  }
+
+  Network& network_;
+  const Island& island_;
+  double t_;
+  const Vec& x_;
+  Vec& full_;
+  Vec& out_;
+  Vec y_;
+};
 
 // Whether the forward and backward differences of a column agree: the state is not on a
 // switching surface at this perturbation size.
@@ -133,18 +197,19 @@ std::optional<Eigen::MatrixXd> central_jacobian(const Function& F, const Vec& x,
   return J;
 }
 
-// J = dF/dx at (t, x; tau), with clamping friction held at its value at x if asked.
-std::optional<Eigen::MatrixXd> jacobian(Network& network, double t, const Vec& x, double tau,
-                                        bool friction_held, const Groups* groups = nullptr) {
+// J = dF/dx of the island at its state (tau), with clamping friction held at its value
+// there if asked.
+std::optional<Eigen::MatrixXd> jacobian(IslandSystem& sys, double tau, bool friction_held,
+                                        const Groups* groups = nullptr) {
   return central_jacobian(
       [&](const Vec& at, Vec& out) {
         if (friction_held) {
-          network.derivative_friction_held(t, at, tau, out, x);
+          sys.derivative_friction_held(at, tau, out);
         } else {
-          network.derivative(t, at, tau, out);
+          sys.derivative(at, tau, out);
         }
       },
-      x, groups);
+      sys.state(), groups);
 }
 
 // The state's indices in groups that no matrix of `matrices` couples (i and j share a group
@@ -184,16 +249,15 @@ double spectral_radius(const Eigen::MatrixXd& phi) {
 
 // Spectral radius of the linear step map of a Runge-Kutta tableau, from the Jacobians at its
 // stage sizes, built and solved group by group (coupled_groups): sum n_g^3, not n^3.
-std::optional<double> rk_step_radius(Network& network, const Tableau& tab, double t,
-                                     const Vec& x, double h, bool friction_held,
-                                     const Groups* groups) {
-  const int n = static_cast<int>(x.size());
+std::optional<double> rk_step_radius(IslandSystem& sys, const Tableau& tab, double h,
+                                     bool friction_held, const Groups* groups) {
+  const int n = sys.size();
   const int s = tab.stages;
   std::map<double, Eigen::MatrixXd> by_tau;  // one Jacobian per distinct stage size
   for (int r = 0; r < s; ++r) {
     const double tau = h * tab.d[r];
     if (by_tau.count(tau) != 0) continue;
-    auto J = jacobian(network, t, x, tau, friction_held, groups);
+    auto J = jacobian(sys, tau, friction_held, groups);
     if (!J) return std::nullopt;
     by_tau.emplace(tau, std::move(*J));
   }
@@ -220,16 +284,16 @@ std::optional<double> rk_step_radius(Network& network, const Tableau& tab, doubl
 
 // Symplectic Euler: x' = x + h F(x; h), then the positions move with the new velocities,
 // p(k+1) = p(k) + h G(x'), G the admittances' kinematics. Group by group as above.
-std::optional<double> symplectic_step_radius(Network& network, double t, const Vec& x, double h,
-                                             bool friction_held, const Groups* groups) {
-  const int n = static_cast<int>(x.size());
-  auto J = jacobian(network, t, x, h, friction_held, groups);
+std::optional<double> symplectic_step_radius(IslandSystem& sys, double h, bool friction_held,
+                                             const Groups* groups) {
+  const int n = sys.size();
+  auto J = jacobian(sys, h, friction_held, groups);
   if (!J) return std::nullopt;
   // G's Jacobian: the kinematics are smooth (p_dot = v, q_dot = Q(w) q).
-  const auto G = central_jacobian(
-      [&](const Vec& at, Vec& out) { network.kinematics(at, out); }, x, groups);
+  const auto G = central_jacobian([&](const Vec& at, Vec& out) { sys.kinematics(at, out); },
+                                  sys.state(), groups);
   if (!G) return std::nullopt;
-  const auto& positions = network.position_slots();
+  const auto& positions = sys.network().position_slots();
   double radius = 0.0;
   for (const std::vector<int>& group : coupled_groups({&*J, &*G}, n)) {
     const int m = static_cast<int>(group.size());
@@ -237,7 +301,7 @@ std::optional<double> symplectic_step_radius(Network& network, double t, const V
     Eigen::MatrixXd phi = A;
     const Eigen::MatrixXd moved = h * (*G)(group, group) * A;
     for (int i = 0; i < m; ++i) {
-      if (!positions[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])]) continue;
+      if (!positions[static_cast<std::size_t>(sys.entry(group[static_cast<std::size_t>(i)]))]) continue;
       phi.row(i) = moved.row(i);
       phi(i, i) += 1.0;
     }
@@ -263,12 +327,12 @@ double own_growth(const Eigen::MatrixXd& hJ) {
 // (I - h J P) dx' = (I + h J (I - P)) dx, its radius relative to own_growth. Backward
 // Euler damps every decaying mode at any h, so what is left to find is the clamped friction
 // states' explicit part. Group by group as above.
-std::optional<double> implicit_step_radius(Network& network, double t, const Vec& x, double h,
-                                           bool friction_held, const Groups* groups) {
-  const int n = static_cast<int>(x.size());
-  auto J = jacobian(network, t, x, h, friction_held, groups);
+std::optional<double> implicit_step_radius(IslandSystem& sys, double h, bool friction_held,
+                                           const Groups* groups,
+                                           const std::vector<bool>& solved) {
+  const int n = sys.size();
+  auto J = jacobian(sys, h, friction_held, groups);
   if (!J) return std::nullopt;
-  const std::vector<bool> solved = implicitly_solved_slots(network);
   double radius = 0.0;
   for (const std::vector<int>& group : coupled_groups({&*J}, n)) {
     const int m = static_cast<int>(group.size());
@@ -276,7 +340,7 @@ std::optional<double> implicit_step_radius(Network& network, double t, const Vec
     Eigen::MatrixXd lhs = Eigen::MatrixXd::Identity(m, m);
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Identity(m, m);
     for (int c = 0; c < m; ++c) {
-      if (solved[static_cast<std::size_t>(group[static_cast<std::size_t>(c)])]) {
+      if (solved[static_cast<std::size_t>(sys.entry(group[static_cast<std::size_t>(c)]))]) {
         lhs.col(c) -= hJ.col(c);
       } else {
         rhs.col(c) += hJ.col(c);
@@ -349,11 +413,12 @@ std::vector<TimedState> sample_states(Network& network, const RunOptions& option
 
 namespace {
 
-// The groups of a state: the indices that the system at several stage sizes, with and without
-// friction held, and the kinematics couple. Only which entries move matters here, so one
-// forward difference per index is enough, also on a switching surface.
-Groups state_groups(Network& network, double t, const Vec& x) {
-  const int n = static_cast<int>(x.size());
+// The groups of an island at its state: the indices that the system at several stage sizes,
+// with and without friction held, and the kinematics couple. Only which entries move
+// matters here, so one forward difference per index is enough, also on a switching surface.
+Groups state_groups(IslandSystem& sys) {
+  const int n = sys.size();
+  const Vec& x = sys.state();
   Eigen::MatrixXd pattern = Eigen::MatrixXd::Zero(n, n);
   Vec center(n), moved(n), plus(n);
   const auto mark = [&](const auto& F) {
@@ -368,23 +433,23 @@ Groups state_groups(Network& network, double t, const Vec& x) {
     }
   };
   for (double tau : {1e-6, 1e-3, 1e-1}) {
-    mark([&](const Vec& at, Vec& out) { network.derivative(t, at, tau, out); });
-    mark([&](const Vec& at, Vec& out) { network.derivative_friction_held(t, at, tau, out, x); });
+    mark([&](const Vec& at, Vec& out) { sys.derivative(at, tau, out); });
+    mark([&](const Vec& at, Vec& out) { sys.derivative_friction_held(at, tau, out); });
   }
-  mark([&](const Vec& at, Vec& out) { network.kinematics(at, out); });
+  mark([&](const Vec& at, Vec& out) { sys.kinematics(at, out); });
   return coupled_groups({&pattern}, n);
 }
 
-StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
-                       double h, const Groups* groups) {
+StepRadius island_step_radius(IslandSystem& sys, const std::string& integrator, double h,
+                              const Groups* groups, const std::vector<bool>& solved) {
   auto radius = [&](bool held) -> std::optional<double> {
     switch (integrator_traits(integrator).method) {
       case Method::symplectic_euler:
-        return symplectic_step_radius(network, t, x, h, held, groups);
+        return symplectic_step_radius(sys, h, held, groups);
       case Method::implicit_euler:
-        return implicit_step_radius(network, t, x, h, held, groups);
+        return implicit_step_radius(sys, h, held, groups, solved);
       case Method::explicit_rk:
-        return rk_step_radius(network, tableau_by_name(integrator), t, x, h, held, groups);
+        return rk_step_radius(sys, tableau_by_name(integrator), h, held, groups);
       case Method::adaptive_rk4:
         break;
     }
@@ -395,7 +460,7 @@ StepRadius step_radius(Network& network, const std::string& integrator, double t
   if (!full) return r;
   r.full = *full;
   r.friction_held = r.full;
-  r.friction_cap = network.friction_cap_energy(x);
+  r.friction_cap = sys.network().friction_cap_energy(sys.whole_state(), &sys.island());
   if (r.full > 1.0 + kUnstableGrowth && r.friction_cap > 0.0) {
     const auto held = radius(true);
     if (!held) return r;
@@ -405,15 +470,49 @@ StepRadius step_radius(Network& network, const std::string& integrator, double t
   return r;
 }
 
+// The islands' radii as one answer that unstable_step() judges as it would judge each:
+// the largest radii, and the largest friction cap among the islands that grow (an island's
+// stuck friction can only hold its own). No answer only where no island has one.
+void fold(StepRadius& all, StepRadius one) {
+  if (!one.smooth) return;
+  if (one.full <= 1.0 + kUnstableGrowth) one.friction_cap = 0.0;
+  if (!all.smooth) {
+    all = one;
+    return;
+  }
+  all.full = std::max(all.full, one.full);
+  all.friction_held = std::max(all.friction_held, one.friction_held);
+  all.friction_cap = std::max(all.friction_cap, one.friction_cap);
+}
+
+// Scratch for the islands of one state (IslandSystem).
+struct StateScratch {
+  Vec full, out;
+  explicit StateScratch(const Vec& x) : full(x), out(Vec::Zero(x.size())) {}
+};
+
 }  // namespace
+
+int largest_island_states(const Network& network) {
+  std::size_t largest = 0;
+  for (const Island& island : find_islands(network)) largest = std::max(largest, island.states.size());
+  return static_cast<int>(largest);
+}
 
 StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
                        double h) {
-  // Too many states for the dense analysis: no answer (state_groups alone is n evaluations of
-  // an n x n pattern; at 6000 states it ran for minutes, issue 25).
-  if (!analysable(network)) return StepRadius{};
-  const Groups groups = state_groups(network, t, x);
-  return step_radius(network, integrator, t, x, h, &groups);
+  // An island with too many states for the dense analysis gives no answer (state_groups
+  // alone is n evaluations of an n x n pattern; at 6000 states it ran for minutes, issue 25).
+  const std::vector<bool> solved = implicitly_solved_slots(network);
+  StateScratch scratch(x);
+  StepRadius all;
+  for (const Island& island : find_islands(network)) {
+    if (static_cast<int>(island.states.size()) > kMaxAnalysedStates) continue;
+    IslandSystem sys(network, island, t, x, scratch.full, scratch.out);
+    const Groups groups = state_groups(sys);
+    fold(all, island_step_radius(sys, integrator, h, &groups, solved));
+  }
+  return all;
 }
 
 bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts) {
@@ -432,6 +531,35 @@ double radius_work(const Groups& groups, int n) {
   for (const auto& g : groups) work += std::pow(static_cast<double>(g.size()), 3.0);
   return work + static_cast<double>(n) * static_cast<double>(n);
 }
+
+// Which sampled states each island is analysed at. One island: all of them. Several: each
+// island at the first and the last sampled state of each of its own regimes (its regime
+// signature). The states sample the whole network's regimes, and with 1000 separate bodies
+// nearly every state is a new combination of regimes that are each the same few per body.
+std::vector<std::vector<std::size_t>> island_states(Network& network,
+                                                    const std::vector<Island>& islands,
+                                                    const std::vector<TimedState>& states,
+                                                    double tau) {
+  std::vector<std::vector<std::size_t>> chosen(islands.size());
+  for (std::size_t k = 0; k < islands.size(); ++k) {
+    if (islands.size() == 1) {
+      for (std::size_t i = 0; i < states.size(); ++i) chosen[k].push_back(i);
+      continue;
+    }
+    std::map<std::size_t, std::pair<std::size_t, std::size_t>> first_last;
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      const std::size_t regime = network.regime_signature(states[i].x, tau, &islands[k]);
+      auto [it, fresh] = first_last.emplace(regime, std::make_pair(i, i));
+      if (!fresh) it->second.second = i;
+    }
+    for (const auto& [regime, ends] : first_last) {
+      chosen[k].push_back(ends.first);
+      if (ends.second != ends.first) chosen[k].push_back(ends.second);
+    }
+    std::sort(chosen[k].begin(), chosen[k].end());
+  }
+  return chosen;
+}
 }  // namespace
 
 StepLimit predict_step_limit(Network& network, const std::string& integrator,
@@ -442,35 +570,50 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
     skipped.skipped = true;
     return skipped;
   }
-  // stable(h, chatter_counts): no sampled state has a mode growing faster than allowed; a
-  // mode only stuck friction carries counts where the monitor would see it, or always if
-  // chatter_counts.
+  const std::vector<Island> islands = find_islands(network);
+  const std::vector<bool> solved = implicitly_solved_slots(network);
+  const auto at_states = island_states(network, islands, states, 1e-3);
+  // stable(h, chatter_counts): no sampled state has a mode growing faster than allowed in
+  // any island; a mode only stuck friction carries counts where the monitor would see it,
+  // or always if chatter_counts.
   double limiting_time = 0.0;
   // The two searches below (runaway, then chatter) visit the same grid: each radius is
-  // computed once.
-  std::map<std::pair<std::size_t, double>, StepRadius> radii;
-  std::map<std::size_t, Groups> groups;
-  auto radius_at = [&](std::size_t state, double h) {
-    auto it = radii.find({state, h});
-    if (it == radii.end()) {
-      const TimedState& s = states[state];
-      auto g = groups.find(state);
-      if (g == groups.end()) g = groups.emplace(state, state_groups(network, s.t, s.x)).first;
-      if (budget != nullptr) {
-        budget->spent += radius_work(g->second, network.state_dim());
-        if (budget->spent > budget->limit) throw SearchStopped{};
-      }
-      it = radii.emplace(std::make_pair(state, h),
-                         step_radius(network, integrator, s.t, s.x, h, &g->second))
-               .first;
+  // computed once per island and state (a site).
+  struct Site {
+    std::size_t island, state;
+    std::optional<Groups> groups;
+    std::map<double, StepRadius> radii;
+  };
+  std::vector<Site> sites;
+  for (std::size_t k = 0; k < islands.size(); ++k) {
+    for (std::size_t i : at_states[k]) sites.push_back({k, i, std::nullopt, {}});
+  }
+  // In the order of the states, so that the search meets the earliest limiting state first.
+  std::stable_sort(sites.begin(), sites.end(),
+                   [](const Site& a, const Site& b) { return a.state < b.state; });
+  std::vector<std::optional<StateScratch>> scratch(states.size());
+  auto radius_at = [&](Site& site, double h) {
+    auto it = site.radii.find(h);
+    if (it != site.radii.end()) return it->second;
+    const TimedState& s = states[site.state];
+    auto& room = scratch[site.state];
+    if (!room) room.emplace(s.x);
+    IslandSystem sys(network, islands[site.island], s.t, s.x, room->full, room->out);
+    if (!site.groups) site.groups = state_groups(sys);
+    if (budget != nullptr) {
+      budget->spent += radius_work(*site.groups, sys.size());
+      if (budget->spent > budget->limit) throw SearchStopped{};
     }
-    return it->second;
+    StepRadius r = island_step_radius(sys, integrator, h, &*site.groups, solved);
+    if (r.full <= 1.0 + kUnstableGrowth) r.friction_cap = 0.0;
+    site.radii.emplace(h, r);
+    return r;
   };
   auto stable = [&](double h, bool chatter_counts) {
-    for (std::size_t i = 0; i < states.size(); ++i) {
+    for (Site& site : sites) {
       if (stop != nullptr && stop->load(std::memory_order_relaxed)) throw SearchStopped{};
-      const TimedState& s = states[i];
-      if (unstable_step(radius_at(i, h), s.energy_headroom, chatter_counts)) {
+      const TimedState& s = states[site.state];
+      if (unstable_step(radius_at(site, h), s.energy_headroom, chatter_counts)) {
         limiting_time = s.t;
         return false;
       }

@@ -53,9 +53,12 @@ struct StepRadius {
   bool smooth = false;         // false: the state lies on a switching surface; no answer
 };
 
-// Spectral radii of the linearized step map of `integrator` with step h at (t, x).
-// Fixed-step integrators only (euler, symplectic_euler, heun, rk4, implicit). A network of more
-// than kMaxAnalysedStates states gets no answer (smooth = false), as a switching surface.
+// Spectral radii of the linearized step map of `integrator` with step h at (t, x), island by
+// island (core/islands.hpp: no element couples two islands, so the step map is block
+// diagonal over them), folded into one answer (the largest radii). Fixed-step integrators
+// only (euler, symplectic_euler, heun, rk4, implicit). Islands of more than
+// kMaxAnalysedStates states, and islands on a switching surface, give no answer; smooth is
+// false only where no island gives one.
 StepRadius step_radius(Network& network, const std::string& integrator, double t, const Vec& x,
                        double h);
 
@@ -65,16 +68,20 @@ StepRadius step_radius(Network& network, const std::string& integrator, double t
 // chatter_counts: any such mode). False on a switching surface (no answer there).
 bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts = false);
 
-// The linearization is dense: every sampled state and every step size tried costs a few
-// Jacobians of n columns (n derivative evaluations each) and an n x n eigenvalue problem, so
-// the analysis grows as n^3 and a 1000-link arm (3000 states) would take hours (issue 25).
-// Above this many states it is skipped, and says so (StepLimit::skipped): at 240 states one
-// radius costs tens of milliseconds here, so the whole analysis stays within seconds and a
-// signal is answered between two radii. The single-element figures `check` prints (each
-// stiff element against its effective mass) cost one derivative per element and remain.
+// The linearization is dense per island: every sampled state and every step size tried
+// costs a few Jacobians of n columns (n evaluations of the island each) and an n x n
+// eigenvalue problem, so an island's analysis grows as n^3 and a 1000-link arm (3000 states
+// in one island) would take hours (issue 25). A network with an island above this many
+// states is not analysed, and says so (StepLimit::skipped): at 240 states one radius costs
+// tens of milliseconds here, so the whole analysis stays within seconds and a signal is
+// answered between two radii. Separate bodies are separate islands: 1000 spheres on a floor
+// are 1000 islands of 13 states. The single-element figures `check` prints (each stiff
+// element against its effective mass) cost one derivative per element and remain.
 inline constexpr int kMaxAnalysedStates = 240;
+// States in the network's largest island.
+int largest_island_states(const Network& network);
 inline bool analysable(const Network& network) {
-  return network.state_dim() <= kMaxAnalysedStates;
+  return largest_island_states(network) <= kMaxAnalysedStates;
 }
 
 // Work the step analysis may spend, in units of one dense radius (the cube of each coupled

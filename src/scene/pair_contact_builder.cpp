@@ -63,6 +63,7 @@ void ComponentBuilder::add_pair_contact(TableReader& table, const std::string& n
                          : (sb == 's' ? components::PairKind::box_sphere
                                       : components::PairKind::box_box);
   const int count = shape.kind == components::PairKind::box_box ? 16 : 1;
+  p.gap_is_distance = shape.kind != components::PairKind::box_box;
   count_contact_elements(table, static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     const std::string element = count > 1 ? name + "." + std::to_string(i) : name;

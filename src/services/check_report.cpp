@@ -76,7 +76,8 @@ CheckReport check_scene(scene::Scene& scene) {
   if (!core::analysable(network)) {
     report.pilot = {run, false};
     report.analysis_skipped =
-        "the network has " + std::to_string(network.state_dim()) + " states, more than the " +
+        "the network's largest island (bodies its elements couple) has " +
+        std::to_string(core::largest_island_states(network)) + " states, more than the " +
         std::to_string(core::kMaxAnalysedStates) +
         " the step analysis linearizes in seconds (docs/limits.md): no step limits predicted, "
         "no step recommended; the single-element figures above are the guide";
@@ -183,6 +184,7 @@ nlohmann::json check_json(const scene::Scene& scene, const CheckReport& report) 
   j["step_limits"] = limits;
   j["analysis"] = {{"skipped", !report.analysis_skipped.empty()},
                    {"state_dim", network.state_dim()},
+                   {"largest_island_states", core::largest_island_states(network)},
                    {"max_states", core::kMaxAnalysedStates},
                    {"work", report.analysis_work},
                    {"work_budget", kCheckAnalysisWork}};

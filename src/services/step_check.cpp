@@ -71,8 +71,8 @@ std::string StepCheck::verdict() const {
 std::string StepCheck::reason() const {
   if (!applies) return "rk4_adaptive chooses its steps from its tolerance";
   if (skipped) {
-    return "the network has " + std::to_string(states) +
-           " states, more than the " + std::to_string(core::kMaxAnalysedStates) +
+    return "the network's largest island (bodies its elements couple) has " +
+           std::to_string(island_states) + " states, more than the " + std::to_string(core::kMaxAnalysedStates) +
            " the step analysis linearizes (docs/limits.md); the step was not checked";
   }
   return "";
@@ -92,6 +92,7 @@ StepCheck check_step(scene::Scene& scene) {
     return c;
   }
   c.states = scene.network->state_dim();
+  c.island_states = core::largest_island_states(*scene.network);
   if (!core::analysable(*scene.network)) {
     c.skipped = true;  // bounded work (issue 25): no pilot, no linearization
     return c;
@@ -176,6 +177,7 @@ nlohmann::ordered_json step_check_json(const StepCheck& c) {
     j["reason"] = c.reason();
     if (c.skipped) {
       j["states"] = c.states;
+      j["largest_island_states"] = c.island_states;
       j["max_states"] = core::kMaxAnalysedStates;
     }
     return j;

@@ -34,6 +34,7 @@ struct StepCheck {
   // not checked, and `reason` says so.
   bool skipped = false;
   int states = 0;  // the network's state dimension
+  int island_states = 0;  // states in its largest island (core/islands.hpp)
   bool unbounded = false;  // no instability found up to kMaxAnalysedStep
   // Largest stable step found; 0: unstable at every step analysed (from lowest_step up).
   double instability_limit = 0.0;

@@ -59,8 +59,9 @@ void StepLimitSearch::predict(scene::Scene& scene, const std::vector<std::string
     if (sys::interrupted()) throw sys::Interrupted{};
     if (predicted.skipped) {  // too many states for the dense analysis: no prediction
       limit.predicted_skipped = true;
-      note("predicted limits of " + integrator + ": skipped: the network has " +
-           std::to_string(scene.network->state_dim()) + " states, more than the " +
+      note("predicted limits of " + integrator +
+           ": skipped: the network's largest island (bodies its elements couple) has " +
+           std::to_string(core::largest_island_states(*scene.network)) + " states, more than the " +
            std::to_string(core::kMaxAnalysedStates) +
            " the step analysis linearizes (docs/limits.md); the grid is the scene's dt x 8, 4, "
            "2, ...");

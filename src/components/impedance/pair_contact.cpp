@@ -1,6 +1,7 @@
 #include "components/impedance/pair_contact.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace stiction::components {
@@ -74,6 +75,15 @@ void PairContact::evaluate_friction_held(double /*t*/, ConstVecRef x_hat, ConstV
 
 Vec3 PairContact::slip_velocity(ConstVecRef x_hat) const {
   return tangential(x_hat.segment<3>(4), normal_of(x_hat));
+}
+
+double PairContact::gap(ConstVecRef x_hat) const {
+  return params_.gap_is_distance ? -x_hat[0] : std::numeric_limits<double>::quiet_NaN();
+}
+
+double PairContact::approach_speed(ConstVecRef x_hat) const {
+  // The contact point's relative velocity bounds the rate the distance closes at.
+  return x_hat.segment<3>(4).norm();
 }
 
 Vec3 PairContact::unloaded_slip(ConstVecRef x_hat, ConstVecRef y, double tau) const {

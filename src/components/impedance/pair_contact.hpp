@@ -37,6 +37,10 @@ struct PairContactParams {
   double viscous = 0.0;            // N s/m, while sliding
   double tangential_stiffness = -1.0;  // default: K
   double tangential_damping = -1.0;    // default: B
+  // Whether the map's penetration d is minus the distance between the surfaces while they
+  // are apart (sphere-sphere, sphere-box), so that gap() can say the bodies are apart; a
+  // box corner's d against the pair's face axis is not (the axis switches).
+  bool gap_is_distance = false;
 };
 
 class PairContact final : public core::Impedance, public ContactCapabilities {
@@ -56,6 +60,8 @@ class PairContact final : public core::Impedance, public ContactCapabilities {
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
   double stored_energy(core::ConstVecRef x_hat, core::ConstVecRef y) const override;
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
+  double gap(core::ConstVecRef x_hat) const override;
+  double approach_speed(core::ConstVecRef x_hat) const override;
   core::Vec3 unloaded_slip(core::ConstVecRef x_hat, core::ConstVecRef y,
                            double tau) const override;
   void evaluate_friction_held(double t, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
