@@ -216,6 +216,7 @@ bool ImplicitEulerStepper::solve(Network& network, double t, double h, Vec& x) {
   // that reads the state's own slips.
   network.derivative(t_end, x, h, f_);
   ++evaluations_;
+  if (keep_start_slope_) f_start_ = f_;
   const auto n = static_cast<Eigen::Index>(solved_.size());
   for (Eigen::Index r = 0; r < n; ++r) residual_[r] = -h * f_[solved_[static_cast<std::size_t>(r)]];
   int formed = 0;  // matrices formed during this step
@@ -277,6 +278,14 @@ bool ImplicitEulerStepper::solve(Network& network, double t, double h, Vec& x) {
     previous = norm;
   }
   return false;
+}
+
+bool ImplicitEulerStepper::apply_inverse(Vec& v) {
+  if (!lu_valid_) return false;
+  for (Eigen::Index r = 0; r < residual_.size(); ++r) residual_[r] = v[solved_[static_cast<std::size_t>(r)]];
+  solve_linear();
+  for (Eigen::Index r = 0; r < delta_.size(); ++r) v[solved_[static_cast<std::size_t>(r)]] = delta_[r];
+  return true;
 }
 
 bool ImplicitEulerStepper::split(Network& network, double t, double h, Vec& x, int depth) {

@@ -60,6 +60,15 @@ class ImplicitEulerStepper final : public Stepper {
   }
   // F at the solution of the last stage that converged (x(end) = x + h slope()).
   const Vec& slope() const { return f_; }
+  // With keep_start_slope(true), each solve also keeps its first evaluation, F(t + h, x;
+  // tau = h) at the stage's start x (a variable-step method's dense output reads it).
+  void keep_start_slope(bool keep) { keep_start_slope_ = keep; }
+  const Vec& start_slope() const { return f_start_; }
+  // Applies the inverse of the current iteration matrix, I - h dF/dx* over the solved
+  // entries (h: the last stage's), to those entries of v, leaving the others: the filter of
+  // an embedded error estimate that keeps it bounded on stiff modes (Hairer & Wanner,
+  // Solving ODEs II, section IV.8). False (v unchanged) if there is no matrix yet.
+  bool apply_inverse(Vec& v);
 
  private:
   static constexpr int kMaxIterations = 16;
@@ -113,6 +122,8 @@ class ImplicitEulerStepper final : public Stepper {
   Vec probe_delta_;
   bool lu_valid_ = false;
   double lu_h_ = 0.0;
+  bool keep_start_slope_ = false;
+  Vec f_start_;
 };
 
 }  // namespace stiction::core

@@ -386,6 +386,7 @@ StepRadius step_radius(Network& network, const std::string& integrator, double t
       case Method::explicit_rk:
         return rk_step_radius(network, tableau_by_name(integrator), t, x, h, held, groups);
       case Method::adaptive_rk4:
+      case Method::sdirk:
         break;
     }
     throw std::invalid_argument(integrator + " has no fixed step to analyse");
