@@ -113,7 +113,6 @@ double SdirkStepper::advance(Network& network, double t, double limit, Vec& x) {
     f_start_.swap(stage_start_);
     return h;
   }
-  set_error_floors(network, x, floor_);
   for (;;) {
     const double h = std::min(h_, limit);
     const bool converged = stages(network, t, h, x);

@@ -17,7 +17,14 @@
 // gives the local error estimate err = x(k+1) - x^, filtered as Hairer and Wanner do,
 // (I - gamma h J)^-1 err with the stages' iteration matrix (Solving ODEs II, IV.8: the plain
 // difference grows as h J on stiff modes, the filtered one stays bounded), held at the
-// tolerance by core/step_control.hpp's controller (error order p^ + 1). A trial step whose
+// tolerance by core/step_control.hpp's controller (error order p^ + 1), every entry mixed
+// absolute/relative (floor 1), a clamped friction element's state e included: it is in the
+// unit of the motion it follows (m, rad), and moves with it while stuck. (rk4_adaptive
+// measures e against its natural size F / K instead, step_control.hpp's error floors, which
+// holds the ringing of a stuck element's stiff spring, amplitude F / K, to the tolerance
+// times F / K: thousands of steps of a few microseconds after the sphere sticks, where this
+// L-stable method damps it within the tolerance of the velocities. A switch the step would
+// jump over, e swinging from +F/K to -F/K, is landed on instead.) A trial step whose
 // stages do not converge is retried at a quarter of its length. A next step within 1..1.2
 // times the last keeps the last (its iteration matrix is reused). Regime switches are landed
 // on as rk4_adaptive lands on them (core/step_control.hpp): any stage solution y_r in another
@@ -94,7 +101,7 @@ class SdirkStepper final : public Stepper {
   double h_;
   StepController controller_;
   std::vector<Vec> k_, y_;  // stage slopes and solutions, allocated once
-  Vec err_, floor_, probe_, f_start_;
+  Vec err_, floor_, probe_, f_start_;  // floor_: ones (see above)
   Vec stage_start_;  // the start slope of the stages last computed
   double last_error_ = 0.0;
   bool crossing_ = false;  // the next step crosses a located switch: not located again
