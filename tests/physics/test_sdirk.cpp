@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <iomanip>
 #include <random>
 #include <sstream>
 
@@ -181,12 +182,15 @@ TEST_CASE("sdirk: the sphere of Simulation I and generated ones stick at the clo
       options.dt = 1e-4;
       options.duration = t_stick + 0.5;
       const core::RunResult r = core::simulate(*net, options);
-      INFO(name << " case " << k << ": m " << c.mass << ", R " << c.radius << ", J/(MR^2) "
+      INFO(std::setprecision(12) << name << " case " << k << ": m " << c.mass << ", R " << c.radius << ", J/(MR^2) "
                 << c.inertia_factor << ", mu " << c.mu << ", v0 " << c.v0 << ": stick at "
-                << testing::first_stick_time(r) << " (closed form " << t_stick << "), "
-                << r.steps << " steps");
+                << testing::first_stick_time(r) << " (closed form " << t_stick << "), rolling "
+                << r.trajectory.at(r.trajectory.row_count() - 1, *r.trajectory.find("sphere.v.x"))
+                << " (closed form " << v_roll << "), stick time relative error "
+                << (testing::first_stick_time(r) - t_stick) / t_stick << ", " << r.steps
+                << " steps");
       REQUIRE_FALSE(r.instability);
-      CHECK(testing::first_stick_time(r) == Approx(t_stick).epsilon(1e-9));
+      CHECK(testing::first_stick_time(r) == Approx(t_stick).epsilon(1e-10));  // measured 2.4e-12 at worst
       const auto& tr = r.trajectory;
       CHECK(tr.at(tr.row_count() - 1, *tr.find("sphere.v.x")) == Approx(v_roll).epsilon(1e-9));
     }
