@@ -13,10 +13,12 @@ def run(scene, integrator=None, dt=None, duration=None, tolerance=None, accuracy
     """Simulates a scene and returns a :class:`Result`.
 
     scene       a :class:`Scene`, or a bundled name or .toml path
-    integrator  "rk4", "euler", "symplectic_euler", "rk4_adaptive", ... (default: the scene's)
+    integrator  "rk4", "euler", "symplectic_euler", "rk4_adaptive", "implicit", "sdirk2",
+                "sdirk4", ... (default: the scene's)
     dt          step size, s (default: the scene's)
     duration    simulated time, s (default: the scene's)
-    tolerance   local error bound per state entry; selects rk4_adaptive
+    tolerance   local error bound per state entry; runs the adaptive integrator named
+                (rk4_adaptive, sdirk2, sdirk4), rk4_adaptive by default
     accuracy    True/False: estimate the run's error with a companion run at dt/2
                 (docs/accuracy.md); None: when it costs little, as on the command line
     force_step  simulate even when the step guard predicts the step unstable

@@ -28,7 +28,7 @@ struct RunArguments {
   std::optional<std::string> integrator;
   std::optional<double> dt;
   std::optional<double> duration;
-  std::optional<double> tolerance;  // selects rk4_adaptive
+  std::optional<double> tolerance;  // an adaptive integrator's (rk4_adaptive by default)
   std::vector<std::string> overrides;
   bool quiet = false;
   bool no_video = false, no_plots = false, frames = false;

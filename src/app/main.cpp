@@ -62,7 +62,8 @@ int dispatch(int argc, char** argv) {
   double tolerance = 0.0;
   CLI::Option* tolerance_opt =
       run->add_option("--tolerance", tolerance,
-                      "local error bound per state entry; selects the integrator rk4_adaptive")
+                      "local error bound per state entry; runs the adaptive integrator --integrator "
+                      "names (rk4_adaptive, sdirk2, sdirk4), rk4_adaptive by default")
           ->check(app::finite_positive());
   run->add_option("--set", run_args.overrides,
                   "KEY=VALUE: set a dotted key of the scene to a TOML value (repeatable)")

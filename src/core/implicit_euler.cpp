@@ -183,6 +183,7 @@ bool ImplicitEulerStepper::solve_stage(Network& network, double t, double h, Vec
   for (;;) {
     network.derivative(t + h, x, h, f_);
     evaluations_ = ++whole_evaluations_ + static_cast<long>(part_evaluations_);
+    if (keep_start_slope_) f_start_ = f_;
     stage_ = x;
     if (!solve_islands(network, t, h, stage_, false)) return false;
     if (separable_.empty() || !attach_closed(network, stage_)) break;
@@ -324,6 +325,20 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
     previous = norm;
   }
   return false;
+}
+
+bool ImplicitEulerStepper::apply_inverse(Vec& v) {
+  for (const IslandSolve& s : islands_) {
+    if (!s.lu_valid) return false;
+  }
+  for (IslandSolve& s : islands_) {
+    for (Eigen::Index r = 0; r < s.residual.size(); ++r) {
+      s.residual[r] = v[s.solved[static_cast<std::size_t>(r)]];
+    }
+    s.delta.noalias() = s.lu.solve(s.residual);
+    for (Eigen::Index r = 0; r < s.delta.size(); ++r) v[s.solved[static_cast<std::size_t>(r)]] = s.delta[r];
+  }
+  return true;
 }
 
 bool ImplicitEulerStepper::split(Network& network, IslandSolve& s, double t, double h, Vec& x,

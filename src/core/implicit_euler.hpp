@@ -70,6 +70,15 @@ class ImplicitEulerStepper final : public Stepper {
   bool solve_stage(Network& network, double t, double h, Vec& x);
   // F at the solution of the last stage that converged (x(end) = x + h slope()).
   const Vec& slope() const { return f_; }
+  // With keep_start_slope(true), each solve also keeps its first evaluation, F(t + h, x;
+  // tau = h) at the stage's start x (a variable-step method's dense output reads it).
+  void keep_start_slope(bool keep) { keep_start_slope_ = keep; }
+  const Vec& start_slope() const { return f_start_; }
+  // Applies the inverse of the current iteration matrix, I - h dF/dx* over the solved
+  // entries (h: the last stage's), to those entries of v, leaving the others: the filter of
+  // an embedded error estimate that keeps it bounded on stiff modes (Hairer & Wanner,
+  // Solving ODEs II, section IV.8). False (v unchanged) if there is no matrix yet.
+  bool apply_inverse(Vec& v);
 
  private:
   static constexpr int kMaxIterations = 16;
@@ -146,6 +155,8 @@ class ImplicitEulerStepper final : public Stepper {
   double part_evaluations_ = 0.0;  // island evaluations, in whole-network units
   long whole_evaluations_ = 0;
   long matrices_formed_ = 0;
+  bool keep_start_slope_ = false;
+  Vec f_start_;
 };
 
 }  // namespace stiction::core

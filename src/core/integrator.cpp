@@ -6,6 +6,8 @@
 
 #include "core/hermite.hpp"
 #include "core/implicit_euler.hpp"
+#include "core/sdirk.hpp"
+#include "core/step_control.hpp"
 
 namespace stiction::core {
 
@@ -59,6 +61,10 @@ std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, do
     case Method::adaptive_rk4:
       if (!(tolerance > 0.0)) throw std::invalid_argument(name + " needs a tolerance > 0");
       return std::make_unique<AdaptiveRk4Stepper>(state_dim, dt, tolerance, max_step);
+    case Method::sdirk:
+      if (!(tolerance > 0.0)) throw std::invalid_argument(name + " needs a tolerance > 0");
+      return std::make_unique<SdirkStepper>(sdirk_tableau_by_name(name), state_dim, dt, tolerance,
+                                            max_step);
   }
   throw std::logic_error("make_stepper: a method without a stepper");
 }
@@ -157,6 +163,7 @@ AdaptiveRk4Stepper::AdaptiveRk4Stepper(int state_dim, double initial_dt, double 
       half_(state_dim),
       mid_(state_dim),
       probe_(state_dim),
+      diff_(state_dim),
       floor_(Vec::Ones(state_dim)),
       f_start_(Vec::Zero(state_dim)),
       max_step_(max_step),
@@ -174,73 +181,20 @@ double AdaptiveRk4Stepper::error_of(Network& network, double t, double h, const 
   rk4_.step(network, t + h / 2, h / 2, half_);
   evaluations_ = rk4_.evaluations();
   // Richardson: the error of the two half steps is about (half - full) / 15.
-  double error = 0.0;
-  for (int i = 0; i < x.size(); ++i) {
-    const double scale = tolerance_ * (floor_[i] + std::abs(half_[i]));
-    error = std::max(error, std::abs(half_[i] - full_[i]) / (15.0 * scale));
-  }
-  return std::isfinite(error) ? error : 1e10;
-}
-
-void AdaptiveRk4Stepper::set_error_floors(Network& network, const Vec& x) {
-  // Each entry's error is measured against tolerance * (floor + |x_i|), floor 1 (mixed
-  // absolute/relative), except the spring state e of clamping friction, whose natural size
-  // is F / K (~3e-7 m for the sphere): against 1 its error would never count, and a large
-  // step that swings e from +F/K to -F/K (through a stick and out again) would pass.
-  floor_.setOnes();
-  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
-    const Capabilities& c = network.capabilities(i);
-    const Slot s = network.impedance_slot(i);
-    if (c.friction == nullptr || c.stiffness == nullptr || s.state_size == 0 ||
-        !(c.stiffness->stiffness() > 0.0)) {
-      continue;
-    }
-    // friction_cap_energy = F^2 / K.
-    const double cap = c.friction->friction_cap_energy(network.impedance_input(i, x));
-    const double size = std::sqrt(cap / c.stiffness->stiffness());
-    if (size > 0.0 && size < 1.0) floor_.segment(s.state_offset, s.state_size).setConstant(size);
-  }
-}
-
-bool AdaptiveRk4Stepper::same_regimes(Network& network, const Vec& a, std::size_t a_regimes,
-                                      const Vec& b, double tau) {
-  if (network.regime_signature(b, tau) != a_regimes) return false;
-  // A clamping friction element sliding at both ends whose slip reversed passed through
-  // zero, where its friction holds: a switch there and back within the step. (A stuck
-  // element's spring vibrating reverses all the time; that is no switch.)
-  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
-    const Capabilities& c = network.capabilities(i);
-    if (c.slip == nullptr || c.friction == nullptr) continue;
-    const Slot s = network.impedance_slot(i);
-    const Vec3 before = c.slip->slip_velocity(network.impedance_input(i, a));
-    if (c.friction->regime(network.impedance_input(i, a), a.segment(s.state_offset, s.state_size),
-                           tau) != 2) {
-      continue;
-    }
-    if (c.slip->slip_velocity(network.impedance_input(i, b)).dot(before) < 0.0) return false;
-  }
-  return true;
+  diff_.noalias() = half_ - full_;
+  return scaled_error(diff_, half_, floor_, tolerance_, 15.0);
 }
 
 double AdaptiveRk4Stepper::switch_point(Network& network, double t, double h, const Vec& x,
                                         std::size_t start_regimes) {
-  // Bisection on the step length: the longest step whose end is still in the start's
-  // regimes, to within `precision`. Regimes are classified with the trial step h as tau
-  // throughout, so that the comparison depends on the state alone.
-  const double precision = std::max(kSwitchPrecision * h, 1e-13 * std::max(1.0, std::abs(t)));
-  double lo = 0.0, hi = h;
-  while (hi - lo > precision) {
-    const double mid = 0.5 * (lo + hi);
-    probe_ = x;
-    rk4_.step(network, t, mid, probe_);
-    if (same_regimes(network, x, start_regimes, probe_, h)) {
-      lo = mid;
-    } else {
-      hi = mid;
-    }
-  }
+  const double at = locate_switch(network, t, h, x, start_regimes, h,
+                                  [&](double length, Vec& probe) {
+                                    rk4_.step(network, t, length, probe);
+                                    return true;
+                                  },
+                                  probe_);
   evaluations_ = rk4_.evaluations();
-  return lo > 0.0 ? lo : hi;  // land just before the switch, or cross it if it is at t
+  return at;
 }
 
 void AdaptiveRk4Stepper::measure_previous_interpolant(Network& network, const Vec& x) {
@@ -271,12 +225,12 @@ void AdaptiveRk4Stepper::remember_step(const Vec& x, double h, bool smooth) {
 }
 
 double AdaptiveRk4Stepper::advance(Network& network, double t, double limit, Vec& x) {
-  set_error_floors(network, x);
+  set_error_floors(network, x, floor_);
   bool first_trial = true;
   for (;;) {
     const double h = std::min(h_, limit);
     const double error = error_of(network, t, h, x);
-    const double factor = std::clamp(0.9 * std::pow(std::max(error, 1e-10), -0.2), 0.2, 4.0);
+    const double factor = controller_.factor(error);
     if (first_trial) {
       // The trial's first evaluation is f at the previous step's end: that step's rows can
       // be measured now. A step well past what keeps them is taken again, shorter (the cap
@@ -288,9 +242,9 @@ double AdaptiveRk4Stepper::advance(Network& network, double t, double limit, Vec
         continue;
       }
     }
-    if (error > 1.0) {
+    if (!StepController::accept(error)) {
       h_ = h * factor;
-      if (h_ < 1e-14 * std::max(1.0, std::abs(t))) {
+      if (h_ < min_adaptive_step(t)) {
         throw std::runtime_error("rk4_adaptive: step size underflow");
       }
       continue;

@@ -29,6 +29,7 @@
 
 #include "core/integrator_traits.hpp"
 #include "core/network.hpp"
+#include "core/step_control.hpp"
 
 namespace stiction::core {
 
@@ -128,16 +129,8 @@ class AdaptiveRk4Stepper final : public Stepper {
   long switches() const { return switches_; }
 
  private:
-  // Relative precision (of the trial step) to which a change of regime is located.
-  static constexpr double kSwitchPrecision = 1e-4;
   // One step of h and two of h/2 from x into full_ and half_; the scaled error estimate.
   double error_of(Network& network, double t, double h, const Vec& x);
-  // Per state entry, the size below which its error counts as absolute (see the .cpp).
-  void set_error_floors(Network& network, const Vec& x);
-  // Whether state b has every element in the regime it has at a (signature a_regimes,
-  // Network::regime_signature with tau), and no slip velocity reversed from a to b.
-  static bool same_regimes(Network& network, const Vec& a, std::size_t a_regimes, const Vec& b,
-                           double tau);
   // The step from (t, x) that lands just before the first change of regime within h.
   double switch_point(Network& network, double t, double h, const Vec& x,
                       std::size_t start_regimes);
@@ -157,7 +150,9 @@ class AdaptiveRk4Stepper final : public Stepper {
   double h_;
   double tolerance_;
   Vec full_, half_, mid_, probe_;  // mid_: after the first half step
-  Vec floor_;
+  Vec diff_;                       // half_ - full_
+  Vec floor_;                      // core/step_control.hpp's error floors
+  StepController controller_{integrator_traits("rk4_adaptive").error_order};
   Vec f_start_;  // start_derivative()
   double max_step_;
   // The previous step (start, start derivative, middle, length), whether its interpolant is
@@ -172,9 +167,9 @@ class AdaptiveRk4Stepper final : public Stepper {
 };
 
 // euler | symplectic_euler | heun | rk4 | implicit use dt (implicit: core/implicit_euler.hpp);
-// rk4_adaptive uses dt as its first step and
-// needs tolerance > 0. Throws std::invalid_argument naming the known integrators.
-// max_step bounds rk4_adaptive's step (the others ignore it).
+// the adaptive ones (rk4_adaptive; sdirk2, sdirk4: core/sdirk.hpp) use dt as their first step
+// and need tolerance > 0. Throws std::invalid_argument naming the known integrators.
+// max_step bounds an adaptive integrator's step (the others ignore it).
 std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,
                                       double tolerance = 0.0,
                                       double max_step = std::numeric_limits<double>::infinity());

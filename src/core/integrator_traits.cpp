@@ -10,8 +10,10 @@ const std::vector<IntegratorTraits>& integrator_table() {
       {"symplectic_euler", Method::symplectic_euler, 1, false, false},
       {"heun", Method::explicit_rk, 2, false, false},
       {"rk4", Method::explicit_rk, 4, false, false},
-      {"rk4_adaptive", Method::adaptive_rk4, 4, false, true},
+      {"rk4_adaptive", Method::adaptive_rk4, 4, false, true, 5},
       {"implicit", Method::implicit_euler, 1, true, false},
+      {"sdirk2", Method::sdirk, 2, true, true, 2},
+      {"sdirk4", Method::sdirk, 4, true, true, 4},
   };
   return table;
 }
@@ -41,6 +43,14 @@ const IntegratorTraits& adaptive_integrator() {
     if (t.adaptive) return t;
   }
   throw std::logic_error("no adaptive integrator in the table");
+}
+
+std::vector<std::string> adaptive_integrator_names() {
+  std::vector<std::string> names;
+  for (const IntegratorTraits& t : integrator_table()) {
+    if (t.adaptive) names.push_back(t.name);
+  }
+  return names;
 }
 
 bool is_adaptive(const std::string& name) {

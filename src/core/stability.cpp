@@ -451,6 +451,7 @@ StepRadius island_step_radius(IslandSystem& sys, const std::string& integrator, 
       case Method::explicit_rk:
         return rk_step_radius(sys, tableau_by_name(integrator), h, held, groups);
       case Method::adaptive_rk4:
+      case Method::sdirk:
         break;
     }
     throw std::invalid_argument(integrator + " has no fixed step to analyse");

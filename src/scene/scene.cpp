@@ -82,8 +82,9 @@ core::RunOptions read_simulation(TableReader& root) {
     if (!sim->has("integrator")) {
       run.integrator = core::adaptive_integrator().name;
     } else if (!core::is_adaptive(run.integrator)) {
-      sim->fail("tolerance", "only the integrator " + core::adaptive_integrator().name +
-                                 " uses a tolerance (integrator is '" + run.integrator + "')");
+      sim->fail("tolerance", "only the adaptive integrators (" +
+                                 join(core::adaptive_integrator_names()) +
+                                 ") use a tolerance (integrator is '" + run.integrator + "')");
     }
   } else if (core::is_adaptive(run.integrator)) {
     sim->fail("integrator", run.integrator +

@@ -48,7 +48,8 @@ AccuracyEstimate off(std::string reason) {
 }  // namespace
 
 double companion_cost_factor(const core::RunOptions& run) {
-  return core::is_adaptive(run.integrator) ? std::pow(100.0, 0.2) : 2.0;
+  const core::IntegratorTraits& traits = core::integrator_traits(run.integrator);
+  return traits.adaptive ? std::pow(100.0, 1.0 / traits.error_order) : 2.0;
 }
 
 core::RunOptions companion_options(const core::RunOptions& run) {

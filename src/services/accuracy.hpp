@@ -77,8 +77,10 @@ struct AccuracyEstimate {
   PredictedStepLimits limits;    // as passed in; in the JSON (`step_limits`) when known
 };
 
-// The companion's expected CPU cost relative to the run: 2 for half the step; for
-// rk4_adaptive at tolerance / 100, 100^(1/5) (the local error is O(h^5)).
+// The companion's expected CPU cost relative to the run: 2 for half the step; for an
+// adaptive integrator at tolerance / 100, 100^(1/q) with q its traits' error_order (its
+// steps scale as tolerance^(1/q): rk4_adaptive 100^(1/5), sdirk2 100^(1/2), sdirk4
+// 100^(1/4)).
 double companion_cost_factor(const core::RunOptions& run);
 
 // The companion of `run`: half the step, or an adaptive integrator's tolerance / 100, with

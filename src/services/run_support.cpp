@@ -27,14 +27,29 @@ io::RunDescription describe_run(const scene::Scene& scene) {
   return d;
 }
 
+namespace {
+std::string adaptive_names() {
+  std::string names;
+  for (const std::string& n : core::adaptive_integrator_names()) names += (names.empty() ? "" : ", ") + n;
+  return names;
+}
+}  // namespace
+
 void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   core::RunOptions& run = scene.run;
   if (overrides.tolerance) {
+    // --tolerance runs the adaptive integrator that --integrator names, else the scene's if
+    // it is adaptive, else the default one (rk4_adaptive).
     if (overrides.integrator && !core::is_adaptive(*overrides.integrator)) {
-      throw scene::InputError("error: --tolerance selects the integrator rk4_adaptive; it cannot be "
-                              "combined with --integrator " + *overrides.integrator);
+      throw scene::InputError("error: --tolerance selects an adaptive integrator (" +
+                              adaptive_names() +
+                              "); it cannot be combined with --integrator " + *overrides.integrator);
     }
-    run.integrator = core::adaptive_integrator().name;
+    if (overrides.integrator) {
+      run.integrator = *overrides.integrator;
+    } else if (!core::is_adaptive(run.integrator)) {
+      run.integrator = core::adaptive_integrator().name;
+    }
     run.tolerance = *overrides.tolerance;
   } else if (overrides.integrator) {
     run.integrator = *overrides.integrator;
@@ -42,8 +57,9 @@ void apply_overrides(scene::Scene& scene, const RunOverrides& overrides) {
   if (overrides.dt) run.dt = *overrides.dt;
   if (overrides.duration) run.duration = *overrides.duration;
   if (core::is_adaptive(run.integrator) && !(run.tolerance > 0.0)) {
-    throw scene::InputError("error: --integrator rk4_adaptive needs a tolerance: give --tolerance "
-                            "TOL or set [simulation] tolerance in the scene");
+    throw scene::InputError("error: --integrator " + run.integrator +
+                            " needs a tolerance: give --tolerance TOL or set [simulation] tolerance "
+                            "in the scene");
   }
   // The scene's own values were checked where they were read; what fails here comes from the
   // command line (or from it combined with the scene).

@@ -22,7 +22,7 @@ struct RunOverrides {
   std::optional<std::string> integrator;
   std::optional<double> dt;
   std::optional<double> duration;
-  std::optional<double> tolerance;  // selects rk4_adaptive
+  std::optional<double> tolerance;  // an adaptive integrator's (rk4_adaptive by default)
 };
 
 // Applies the overrides to scene.run. scene::InputError (exit 2) when --tolerance meets a

@@ -69,7 +69,7 @@ std::string StepCheck::verdict() const {
 }
 
 std::string StepCheck::reason() const {
-  if (!applies) return "rk4_adaptive chooses its steps from its tolerance";
+  if (!applies) return integrator + " chooses its steps from its tolerance";
   if (skipped) {
     return "the network's largest island (bodies its elements couple) has " +
            std::to_string(island_states) + " states, more than the " + std::to_string(core::kMaxAnalysedStates) +
@@ -88,7 +88,7 @@ StepCheck check_step(scene::Scene& scene) {
   c.integrator = scene.run.integrator;
   c.dt = scene.run.dt;
   if (!core::integrator_traits(c.integrator).step_analysed()) {
-    c.applies = false;  // rk4_adaptive: its step follows its tolerance
+    c.applies = false;  // an adaptive integrator: its step follows its tolerance
     return c;
   }
   c.states = scene.network->state_dim();

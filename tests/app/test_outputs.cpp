@@ -248,6 +248,25 @@ TEST_CASE("the tolerance option selects rk4_adaptive", "[app][outputs]") {
   CHECK_THAT(missing.out, Contains("tolerance"));
 }
 
+TEST_CASE("the tolerance option runs the adaptive integrator that --integrator names (sdirk2)",
+          "[app][outputs]") {
+  const fs::path dir = scratch("tolerance_sdirk");
+  const Outcome ok = run_cli({"run", "sphere_roll", "--integrator", "sdirk2", "--tolerance", "1e-6",
+                              "--duration", "0.1", "--no-video", "--no-plots", "--out", "out"},
+                             dir);
+  INFO(ok.out);
+  REQUIRE(ok.code == 0);
+  const auto summary = read_json(dir / "out" / "summary.json");
+  CHECK(summary["integrator"] == "sdirk2");
+  CHECK(summary["tolerance"] == 1e-6);
+
+  const Outcome missing = run_cli({"run", "sphere_roll", "--integrator", "sdirk4", "--no-video",
+                                   "--no-plots", "--out", "out2"},
+                                  dir);
+  CHECK(missing.code == 2);
+  CHECK_THAT(missing.out, Contains("sdirk4 needs a tolerance"));
+}
+
 TEST_CASE("[simulation] tolerance selects rk4_adaptive and is checked", "[app][outputs]") {
   const fs::path dir = scratch("tolerance_key");
   const std::string body = "[bodies.block]\ntype = \"point_mass\"\nmass = 1.0\n";

@@ -1,0 +1,182 @@
+#include "core/sdirk.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace stiction::core {
+
+double SdirkTableau::c(int r) const {
+  double sum = 0.0;
+  for (int j = 0; j <= r; ++j) sum += a_at(r, j);
+  return sum;
+}
+
+const SdirkTableau& sdirk2_tableau() {
+  static const SdirkTableau t = [] {
+    const double g = 1.0 - 1.0 / std::sqrt(2.0);
+    return SdirkTableau{"sdirk2", 2, g, {g, 0.0, 1.0 - g, g}, {1.0, 0.0}, 2, 1};
+  }();
+  return t;
+}
+
+const SdirkTableau& sdirk4_tableau() {
+  // Hairer & Wanner, Solving ODEs II, Table IV.6.5 (their code SDIRK4's first method).
+  static const SdirkTableau t{"sdirk4",
+                              5,
+                              0.25,
+                              {0.25, 0, 0, 0, 0,                                              //
+                               0.5, 0.25, 0, 0, 0,                                            //
+                               17.0 / 50, -1.0 / 25, 0.25, 0, 0,                              //
+                               371.0 / 1360, -137.0 / 2720, 15.0 / 544, 0.25, 0,              //
+                               25.0 / 24, -49.0 / 48, 125.0 / 16, -85.0 / 12, 0.25},
+                              {59.0 / 48, -17.0 / 96, 225.0 / 32, -85.0 / 12, 0.0},
+                              4,
+                              3};
+  return t;
+}
+
+const SdirkTableau& sdirk_tableau_by_name(const std::string& name) {
+  for (const SdirkTableau* t : {&sdirk2_tableau(), &sdirk4_tableau()}) {
+    if (t->name == name) return *t;
+  }
+  throw std::invalid_argument("integrator '" + name + "' is not an SDIRK tableau");
+}
+
+SdirkStepper::SdirkStepper(const SdirkTableau& tableau, int state_dim, double dt, double tolerance,
+                           double max_step)
+    : tableau_(tableau),
+      implicit_(state_dim, dt),
+      dt_(dt),
+      tolerance_(tolerance),
+      max_step_(max_step),
+      h_(std::min(dt, max_step)),
+      controller_{integrator_traits(tableau.name).error_order},
+      k_(static_cast<std::size_t>(tableau.stages), Vec::Zero(state_dim)),
+      y_(static_cast<std::size_t>(tableau.stages), Vec::Zero(state_dim)),
+      err_(Vec::Zero(state_dim)),
+      floor_(Vec::Ones(state_dim)),
+      probe_(Vec::Zero(state_dim)),
+      f_start_(Vec::Zero(state_dim)),
+      stage_start_(Vec::Zero(state_dim)) {
+  implicit_.keep_start_slope(true);
+}
+
+bool SdirkStepper::stages(Network& network, double t, double h, const Vec& x) {
+  const int s = tableau_.stages;
+  const double gh = tableau_.gamma * h;
+  bool converged = true;
+  for (int r = 0; r < s && converged; ++r) {
+    Vec& y = y_[static_cast<std::size_t>(r)];
+    y = x;
+    for (int j = 0; j < r; ++j) {
+      const double a = tableau_.a_at(r, j);
+      if (a != 0.0) y.noalias() += (h * a) * k_[static_cast<std::size_t>(j)];
+    }
+    // The stage's backward Euler step of gamma h ends at t + c_r h.
+    converged = implicit_.solve_stage(network, t + (tableau_.c(r) - tableau_.gamma) * h, gh, y);
+    if (converged) k_[static_cast<std::size_t>(r)] = implicit_.slope();
+    if (r == 0) stage_start_ = implicit_.start_slope();
+  }
+  evaluations_ = implicit_.evaluations();
+  return converged;
+}
+
+double SdirkStepper::estimate(double h) {
+  const int s = tableau_.stages;
+  err_.setZero();
+  for (int j = 0; j < s; ++j) {
+    const double w = tableau_.a_at(s - 1, j) - tableau_.b_hat[static_cast<std::size_t>(j)];
+    if (w != 0.0) err_.noalias() += (h * w) * k_[static_cast<std::size_t>(j)];
+  }
+  implicit_.apply_inverse(err_);
+  return scaled_error(err_, y_[static_cast<std::size_t>(s - 1)], floor_, tolerance_);
+}
+
+bool SdirkStepper::step(Network& network, double t, double h, Vec& x) {
+  if (!stages(network, t, h, x)) return false;
+  x = y_[static_cast<std::size_t>(tableau_.stages - 1)];
+  return true;
+}
+
+double SdirkStepper::advance(Network& network, double t, double limit, Vec& x) {
+  const auto last = static_cast<std::size_t>(tableau_.stages - 1);
+  if (!(tolerance_ > 0.0)) {
+    const double h = std::min(dt_, limit);
+    if (!step(network, t, h, x)) {
+      std::ostringstream message;
+      message << name() << ": Newton's iteration did not converge in a stage of a step of " << h
+              << " s at t = " << t << " s";
+      throw std::runtime_error(message.str());
+    }
+    f_start_.swap(stage_start_);
+    return h;
+  }
+  for (;;) {
+    const double h = std::min(h_, limit);
+    const bool converged = stages(network, t, h, x);
+    const double error = converged ? estimate(h) : std::numeric_limits<double>::infinity();
+    if (!StepController::accept(error)) {
+      ++rejections_;
+      // A stage that did not converge: a switch or a stiff transient the step is too long
+      // for; a quarter of it.
+      h_ = h * (converged ? controller_.factor(error) : 0.25);
+      if (h_ < min_adaptive_step(t)) {
+        std::ostringstream message;
+        message << name() << ": step size underflow at t = " << t << " s ("
+                << (converged ? "the error estimate stays above the tolerance"
+                              : "Newton's iteration does not converge")
+                << ")";
+        throw std::runtime_error(message.str());
+      }
+      continue;
+    }
+    // A step across a change of regime is cut to end just before it (as rk4_adaptive's).
+    const double tau = tableau_.gamma * h;
+    if (!crossing_) {
+      const std::size_t start_regimes = network.regime_signature(x, tau);
+      bool same = true;
+      for (const Vec& y : y_) same = same && same_regimes(network, x, start_regimes, y, tau);
+      if (!same) {
+        const double land = locate_switch(
+            network, t, h, x, start_regimes, tau,
+            [&](double length, Vec& probe) { return step(network, t, length, probe); }, probe_);
+        ++switches_;
+        if (land < h) {
+          if (!stages(network, t, land, x)) {  // the step to the switch
+            h_ = 0.25 * land;
+            continue;
+          }
+          last_error_ = estimate(land);
+          x.swap(y_[last]);
+          f_start_.swap(stage_start_);
+          crossing_ = true;
+          h_ = std::max(2.0 * kSwitchPrecision * h, 1e-13 * std::max(1.0, std::abs(t)));
+          evaluations_ = implicit_.evaluations();
+          return land;
+        }
+        // The switch is at the step's end: the step stands (y_ holds its stages again only
+        // if the last probe was the whole step, so they are computed anew).
+        if (!stages(network, t, h, x)) {
+          h_ = 0.25 * h;
+          continue;
+        }
+      }
+    }
+    crossing_ = false;
+    last_error_ = error;
+    x.swap(y_[last]);
+    f_start_.swap(stage_start_);
+    // A step cut short by the limit says little about the next one: keep h_ then. A factor
+    // of 1..1.2 keeps the step, so that the stages' iteration matrix is reused.
+    if (h >= h_) {
+      const double factor = controller_.factor(error);
+      if (factor < 1.0 || factor > 1.2) h_ = h * factor;
+    }
+    h_ = std::min(h_, max_step_);
+    return h;
+  }
+}
+
+}  // namespace stiction::core

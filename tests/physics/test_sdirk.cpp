@@ -1,0 +1,285 @@
+// `--integrator sdirk2` and `--integrator sdirk4` (core/sdirk.hpp): L-stable, stiffly accurate
+// SDIRK methods built on the implicit Euler stage, with error control at a tolerance.
+// - the tableaux: row sums, stiffly accurate, the embedded weights consistent, and the traits
+//   table says what the tableaux are;
+// - order: at fixed steps on a smooth nonlinear problem (a pendulum on a joint spring), halving
+//   the step divides the error by 2^p (4 for sdirk2, 16 for sdirk4);
+// - a sphere launched sliding at K = 1e7 N/m sticks at v0 / ((1 + M R^2 / J) mu g) and rolls at
+//   v0 / (1 + J / (M R^2)), the paper's parameters and generated ones, error-controlled;
+// - adaptive steps land on the switch: one step ends just before the stick;
+// - a box held by friction on a slope does not creep over 100 s (the paper's zero drift);
+// - the error control: a tighter tolerance gives a smaller error, at more steps.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <iomanip>
+#include <random>
+#include <sstream>
+
+#include "core/integrator_traits.hpp"
+#include "core/sdirk.hpp"
+#include "scene/scene.hpp"
+#include "sphere_fixture.hpp"
+
+using namespace stiction;
+using testing::SphereCase;
+
+namespace {
+
+const core::SdirkTableau& tableau_of(const std::string& name) {
+  return core::sdirk_tableau_by_name(name);
+}
+
+// A one-link pendulum (the pendulum_friction scene's arm) on a joint spring-damper instead of
+// friction: smooth and nonlinear (gravity's sin).
+scene::Scene smooth_pendulum() {
+  const std::string text =
+      "name = \"smooth_pendulum\"\ngravity = [0.0, 0.0, -9.8]\n"
+      "[simulation]\nintegrator = \"rk4\"\ndt = 1e-4\nduration = 1.0\n"
+      "[bodies.arm]\ntype = \"planar_arm\"\naxis = [0.0, -1.0, 0.0]\nbase = [0.0, 0.0, 0.6]\n"
+      "links = [{ length = 0.5, width = 0.03, mass = 1.0 }]\nangles = [-0.6]\n"
+      "[impedances.joint]\ntype = \"spring_damper\"\nbody = \"arm\"\njoint = 0\n"
+      "stiffness = 3.0\ndamping = 0.05\nrest = -1.2\n";
+  return scene::load_scene(scene::SceneSource::from_text(text, "smooth_pendulum.toml"));
+}
+
+core::Vec run_fixed(core::Network& network, core::Stepper& stepper, double duration) {
+  core::Vec x = network.initial_state();
+  double t = 0.0;
+  while (t < duration - 1e-12) t += stepper.advance(network, t, duration - t, x);
+  return x;
+}
+
+// A box (random size, mass, yaw about the slope's normal) resting on a slope (gravity tilted).
+std::string slope_scene(const std::string& integrator, double tolerance, double slope,
+                        double heading, double mu, std::mt19937& rng, double duration) {
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  const double g = 9.81, yaw = uniform(-3.0, 3.0);
+  const double sx = uniform(0.05, 0.4), sy = uniform(0.05, 0.4), sz = uniform(0.03, 0.2);
+  std::ostringstream s;
+  s.precision(17);
+  s << "name = \"generated_slope\"\n"
+    << "gravity = [" << g * std::sin(slope) * std::cos(heading) << ", "
+    << g * std::sin(slope) * std::sin(heading) << ", " << -g * std::cos(slope) << "]\n"
+    << "[simulation]\nintegrator = \"" << integrator << "\"\ntolerance = " << tolerance
+    << "\ndt = 1e-4\nduration = " << duration << "\noutput_rate = 10.0\n"
+    << "[bodies.box]\ntype = \"rigid_body\"\nmass = " << uniform(0.2, 5.0)
+    << "\nshape = \"box\"\nsize = [" << sx << ", " << sy << ", " << sz << "]\n"
+    << "position = [0.0, 0.0, " << 0.5 * sz << "]\n"
+    << "orientation = [" << std::cos(0.5 * yaw) << ", 0.0, 0.0, " << std::sin(0.5 * yaw) << "]\n"
+    << "[impedances.plane]\ntype = \"kikuuwe_contact\"\nbody = \"box\"\nstiffness = 1e6\n"
+    << "damping = 1000.0\nmu = " << mu << "\nsettle = true\n";
+  return s.str();
+}
+
+double column_at(const core::Trajectory& tr, const std::string& name, double t) {
+  const auto col = *tr.find(name);
+  int row = 0;
+  while (row + 1 < tr.row_count() && tr.at(row, 0) < t - 1e-9) ++row;
+  return tr.at(row, col);
+}
+
+SphereCase random_sphere(std::mt19937& rng) {
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  SphereCase c;
+  c.mass = uniform(0.1, 5.0);
+  c.radius = uniform(0.02, 0.5);
+  c.inertia_factor = uniform(0.0, 1.0) < 0.5 ? 0.4 : 2.0 / 3.0;
+  c.mu = uniform(0.05, 0.8);
+  c.v0 = uniform(0.5, 4.0);
+  c.damping = 10.0 * c.mass / 0.3;  // the paper's damping ratio
+  c.height = testing::resting_height(c);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("sdirk: the tableaux are stiffly accurate, their embedded weights consistent, and the "
+          "traits table says so",
+          "[sdirk]") {
+  for (const std::string name : {"sdirk2", "sdirk4"}) {
+    INFO(name);
+    const core::SdirkTableau& t = tableau_of(name);
+    const int s = t.stages;
+    for (int r = 0; r < s; ++r) {
+      CHECK(t.a_at(r, r) == t.gamma);
+      for (int j = r + 1; j < s; ++j) CHECK(t.a_at(r, j) == 0.0);
+    }
+    CHECK(t.c(s - 1) == Approx(1.0).epsilon(1e-15));  // stiffly accurate: b is a's last row
+    double bhat = 0.0, bhat_c = 0.0;
+    for (int j = 0; j < s; ++j) {
+      bhat += t.b_hat[static_cast<std::size_t>(j)];
+      bhat_c += t.b_hat[static_cast<std::size_t>(j)] * t.c(j);
+    }
+    CHECK(bhat == Approx(1.0).epsilon(1e-14));
+    if (t.embedded_order >= 2) CHECK(bhat_c == Approx(0.5).epsilon(1e-14));
+    const core::IntegratorTraits& traits = core::integrator_traits(name);
+    CHECK(traits.order == t.order);
+    CHECK(traits.implicit);
+    CHECK(traits.adaptive);
+    CHECK(traits.error_order == t.embedded_order + 1);
+  }
+  // L-stability: R(z) -> 0 as z -> -inf, i.e. the stability function's numerator degree is
+  // below s; for a stiffly accurate method that is b^T A^-1 e = 1 (checked here as the
+  // stage equations at z -> -inf: the last stage's y solves to 0 for any start).
+  for (const std::string name : {"sdirk2", "sdirk4"}) {
+    const core::SdirkTableau& t = tableau_of(name);
+    // R(-inf) = 1 - b^T A^-1 e; with b = A's last row, b^T A^-1 = e_s^T, so R(-inf) = 1 - 1.
+    std::vector<double> w(static_cast<std::size_t>(t.stages), 0.0);  // A^-1 e by substitution
+    for (int r = 0; r < t.stages; ++r) {
+      double sum = 1.0;
+      for (int j = 0; j < r; ++j) sum -= t.a_at(r, j) * w[static_cast<std::size_t>(j)];
+      w[static_cast<std::size_t>(r)] = sum / t.gamma;
+    }
+    double btw = 0.0;
+    for (int j = 0; j < t.stages; ++j) btw += t.a_at(t.stages - 1, j) * w[static_cast<std::size_t>(j)];
+    CHECK(1.0 - btw == Approx(0.0).margin(1e-12));
+  }
+}
+
+TEST_CASE("sdirk: halving the step divides the error by 2^order on a smooth problem", "[sdirk]") {
+  scene::Scene reference_scene = smooth_pendulum();
+  const double duration = 2.0;
+  core::RungeKuttaStepper rk4(core::rk4_tableau(), reference_scene.network->state_dim(), 1e-5);
+  const core::Vec reference = run_fixed(*reference_scene.network, rk4, duration);
+  struct Case {
+    const char* name;
+    double h;
+    double ratio;
+  };
+  for (const Case c : {Case{"sdirk2", 0.02, 4.0}, Case{"sdirk4", 0.05, 16.0}}) {
+    std::vector<double> errors;
+    for (double h : {c.h, c.h / 2, c.h / 4}) {
+      scene::Scene scene = smooth_pendulum();
+      core::SdirkStepper stepper(tableau_of(c.name), scene.network->state_dim(), h, 0.0);
+      const core::Vec x = run_fixed(*scene.network, stepper, duration);
+      errors.push_back((x - reference).cwiseAbs().maxCoeff());
+    }
+    INFO(c.name << ": errors " << errors[0] << ", " << errors[1] << ", " << errors[2]
+                << ", ratios " << errors[0] / errors[1] << ", " << errors[1] / errors[2]);
+    CHECK(errors[2] > 1e-11);  // well above the reference's own error
+    CHECK(errors[0] / errors[1] == Approx(c.ratio).epsilon(0.1));
+    CHECK(errors[1] / errors[2] == Approx(c.ratio).epsilon(0.1));
+  }
+}
+
+TEST_CASE("sdirk: the sphere of Simulation I and generated ones stick at the closed-form time "
+          "and roll at the closed-form speed, error-controlled",
+          "[sdirk]") {
+  std::mt19937 rng(36);
+  std::vector<SphereCase> cases{SphereCase{}};
+  cases.front().height = testing::resting_height(cases.front());
+  for (int k = 0; k < 4; ++k) cases.push_back(random_sphere(rng));
+  for (const std::string name : {"sdirk2", "sdirk4"}) {
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const SphereCase& c = cases[k];
+      const double t_stick = c.v0 / ((1.0 + 1.0 / c.inertia_factor) * c.mu * c.g);
+      const double v_roll = c.v0 / (1.0 + c.inertia_factor);
+      auto net = testing::make_sphere(c);
+      core::RunOptions options;
+      options.integrator = name;
+      options.tolerance = 1e-6;
+      options.dt = 1e-4;
+      options.duration = t_stick + 0.5;
+      const core::RunResult r = core::simulate(*net, options);
+      INFO(std::setprecision(12) << name << " case " << k << ": m " << c.mass << ", R " << c.radius << ", J/(MR^2) "
+                << c.inertia_factor << ", mu " << c.mu << ", v0 " << c.v0 << ": stick at "
+                << testing::first_stick_time(r) << " (closed form " << t_stick << "), rolling "
+                << r.trajectory.at(r.trajectory.row_count() - 1, *r.trajectory.find("sphere.v.x"))
+                << " (closed form " << v_roll << "), stick time relative error "
+                << (testing::first_stick_time(r) - t_stick) / t_stick << ", " << r.steps
+                << " steps");
+      REQUIRE_FALSE(r.instability);
+      CHECK(testing::first_stick_time(r) == Approx(t_stick).epsilon(1e-10));  // measured 2.4e-12 at worst
+      const auto& tr = r.trajectory;
+      CHECK(tr.at(tr.row_count() - 1, *tr.find("sphere.v.x")) == Approx(v_roll).epsilon(1e-9));
+    }
+  }
+}
+
+TEST_CASE("sdirk: adaptive steps land just before the sphere sticks and take long steps while it "
+          "slides and rolls",
+          "[sdirk]") {
+  SphereCase c;
+  c.height = testing::resting_height(c);
+  const double t_stick = 2.0 * c.v0 / (7.0 * c.mu * c.g);
+  struct Case {
+    const char* name;
+    double longest;  // s: at least, while it slides or rolls
+    long steps;      // at most, over 1 s
+  };
+  // sdirk2's step while sliding is set by its first-order embedded estimate on the
+  // orientation (angle quadratic in t): about 8e-4 s at 1e-6; sdirk4's grows to 0.05 s.
+  for (const Case k : {Case{"sdirk2", 5e-4, 5000}, Case{"sdirk4", 0.02, 1000}}) {
+    const std::string name = k.name;
+    auto net = testing::make_sphere(c);
+    core::SdirkStepper stepper(tableau_of(name), net->state_dim(), 1e-4, 1e-6);
+    core::Vec x = net->initial_state();
+    double t = 0.0, closest = 1.0, longest = 0.0;
+    long steps = 0;
+    while (t < 1.0) {
+      const double h = stepper.advance(*net, t, 1.0 - t, x);
+      t += h;
+      ++steps;
+      longest = std::max(longest, h);
+      if (t <= t_stick) closest = std::min(closest, t_stick - t);
+    }
+    INFO(name << ": " << steps << " steps, longest " << longest << " s, a step ends " << closest
+              << " s before the stick, " << stepper.switches() << " switches, "
+              << stepper.rejections() << " rejections");
+    CHECK(stepper.switches() >= 1);
+    CHECK(closest < 1e-5);
+    CHECK(longest > k.longest);  // no step bound here: it grows where nothing happens
+    CHECK(steps < k.steps);
+  }
+}
+
+TEST_CASE("sdirk: generated boxes held on slopes do not creep over 100 s", "[sdirk]") {
+  std::mt19937 rng(2036);
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  for (const std::string name : {"sdirk2", "sdirk4"}) {
+    for (int k = 0; k < 2; ++k) {
+      const double slope = uniform(0.1, 0.5), heading = uniform(-3.0, 3.0);
+      const double mu = std::tan(slope) + uniform(0.05, 0.3);
+      auto scene = scene::load_scene(scene::SceneSource::from_text(
+          slope_scene(name, 1e-6, slope, heading, mu, rng, 105.0), "generated_slope.toml"));
+      const core::RunResult r = core::simulate(*scene.network, scene.run);
+      REQUIRE_FALSE(r.instability);
+      double creep = 0.0;
+      for (const char* axis : {"x", "y", "z"}) {
+        const std::string column = std::string("box.p.") + axis;
+        creep = std::max(creep, std::abs(column_at(r.trajectory, column, 105.0) -
+                                         column_at(r.trajectory, column, 5.0)));
+      }
+      INFO(name << " case " << k << ": slope " << slope << " rad, mu " << mu << ": creep " << creep
+                << " m over 100 s in " << r.steps << " steps");
+      CHECK(creep < 1e-12);
+    }
+  }
+}
+
+TEST_CASE("sdirk: a tighter tolerance gives a smaller error on the smooth pendulum", "[sdirk]") {
+  scene::Scene reference_scene = smooth_pendulum();
+  const double duration = 2.0;
+  core::RungeKuttaStepper rk4(core::rk4_tableau(), reference_scene.network->state_dim(), 1e-5);
+  const core::Vec reference = run_fixed(*reference_scene.network, rk4, duration);
+  for (const std::string name : {"sdirk2", "sdirk4"}) {
+    std::vector<double> errors;
+    std::vector<long> evaluations;
+    for (double tolerance : {1e-4, 1e-6, 1e-8}) {
+      scene::Scene scene = smooth_pendulum();
+      core::SdirkStepper stepper(tableau_of(name), scene.network->state_dim(), 1e-3, tolerance);
+      const core::Vec x = run_fixed(*scene.network, stepper, duration);
+      errors.push_back((x - reference).cwiseAbs().maxCoeff());
+      evaluations.push_back(stepper.evaluations());
+    }
+    INFO(name << ": errors " << errors[0] << ", " << errors[1] << ", " << errors[2]
+              << "; evaluations " << evaluations[0] << ", " << evaluations[1] << ", "
+              << evaluations[2]);
+    CHECK(errors[1] < 0.2 * errors[0]);
+    CHECK(errors[2] < 0.2 * errors[1]);
+    CHECK(errors[2] < 1e-6);
+    CHECK(evaluations[0] < evaluations[1]);
+    CHECK(evaluations[1] < evaluations[2]);
+  }
+}
