@@ -137,7 +137,7 @@ class BulletPeer final : public Peer {
     for (int side : {-1, 1}) {
       btRigidBody::btRigidBodyConstructionInfo finger(k.finger_mass, nullptr,
                                                       w_->finger_shape.get(), inertia);
-      finger.m_startWorldTransform.setOrigin(btVector3(side * k.finger_x(), 0, k.height));
+      finger.m_startWorldTransform.setOrigin(btVector3(side * (k.finger_x() - k.start_overlap), 0, k.height));
       finger.m_friction = 1.0;
       finger.m_restitution = 0.0;
       auto body = std::make_unique<btRigidBody>(finger);

@@ -145,7 +145,7 @@ class DartPeer final : public Peer {
       auto skeleton = dynamics::Skeleton::create(side < 0 ? "left" : "right");
       dynamics::PrismaticJoint::Properties joint;
       joint.mAxis = Eigen::Vector3d::UnitX();
-      joint.mT_ParentBodyToJoint.translation() = Eigen::Vector3d(side * k.finger_x(), 0, k.height);
+      joint.mT_ParentBodyToJoint.translation() = Eigen::Vector3d(side * (k.finger_x() - k.start_overlap), 0, k.height);
       auto [slider, finger] =
           skeleton->createJointAndBodyNodePair<dynamics::PrismaticJoint>(nullptr, joint);
       auto shape = std::make_shared<dynamics::BoxShape>(

@@ -177,8 +177,9 @@ bool slides_at(Peer& peer, Case c, double angle, bool quick, Result& result, dou
 
 // The breakaway search of one mu (once, in the first round: its errors do not change and its
 // run count depends on the engine): bisection between the flat plane and atan mu + 5 degrees
-// for the smallest angle at which the box slides. Errors: the angle found less atan mu
-// (degrees), the bracket's half width (degrees), the number of runs.
+// for the smallest angle at which the box slides. Errors: the angle found less the ideal
+// Coulomb box's under the same test, breakaway_reference() (degrees), the bracket's half
+// width (degrees), the number of runs.
 void run_breakaway(Peer& peer, const Case& c, bool quick, Result& result) {
   if (result.steps > 0 || !result.failure.empty()) return;
   const double degree = std::numbers::pi / 180.0;
@@ -198,7 +199,8 @@ void run_breakaway(Peer& peer, const Case& c, bool quick, Result& result) {
         const double mid = 0.5 * (lo + hi);
         (slides_at(peer, c, mid, quick, result, cpu) ? hi : lo) = mid;
       }
-      result.errors = {(0.5 * (lo + hi) - exact) / degree, 0.5 * (hi - lo) / degree,
+      result.errors = {(0.5 * (lo + hi) - breakaway_reference(c.mu, quick)) / degree,
+                       0.5 * (hi - lo) / degree,
                        static_cast<double>(runs), {}};
     }
   } catch (const std::exception& e) {
@@ -573,8 +575,9 @@ int main(int argc, char** argv) {
     std::printf("\nRamp grid: a 0.2 x 0.2 x 0.1 m, 1 kg box at rest on a ramp of angle a, %zu "
                 "points of mu x tan a / mu (all below 1: it must hold). Creep: speed along the "
                 "slope after %g s (m/s), the largest over mu at each tan a / mu. Breakaway: the "
-                "smallest angle at which the box moves faster than %g m/s on average, less atan "
-                "mu (degrees; bisection, one round). CPU: the creep grid's.\n\n"
+                "smallest angle at which the box moves faster than %g m/s on average, less the "
+                "ideal Coulomb box's (atan mu + 0.002-0.003 deg; degrees; bisection to 4e-4 "
+                "deg, one round). CPU: the creep grid's.\n\n"
                 "| engine | settings | step |",
                 grid.size(), settle_time(options.quick), kBreakawaySpeed);
     for (double r : ratios) std::printf(" creep tan/mu = %.3g |", r);

@@ -58,7 +58,7 @@ std::string model_xml(const Case& c, double dt, const char* integrator) {
                     "<body pos='%.17g 0 %.17g'><joint type='slide' axis='1 0 0'/><geom type='box' "
                     "size='%.17g %.17g %.17g' mass='%.17g' condim='3' "
                     "friction='%.17g 0.005 0.0001'/></body>",
-                    side * k.finger_x(), k.height, k.finger[0] / 2, k.finger[1] / 2,
+                    side * (k.finger_x() - k.start_overlap), k.height, k.finger[0] / 2, k.finger[1] / 2,
                     k.finger[2] / 2, k.finger_mass, mu);
       xml += text;
     }
@@ -139,7 +139,7 @@ class MujocoPeer final : public Peer {
     if (problem_ == Problem::pinch && i > 0) {
       // Finger i: its slide joint's displacement from its starting x.
       const double side = i == 1 ? -1.0 : 1.0;
-      const double p[3] = {side * kPinch.finger_x() + data_->qpos[6 + i], 0.0, kPinch.height};
+      const double p[3] = {side * (kPinch.finger_x() - kPinch.start_overlap) + data_->qpos[6 + i], 0.0, kPinch.height};
       const double v[3] = {data_->qvel[5 + i], 0.0, 0.0}, w[3] = {0.0, 0.0, 0.0};
       fill_sample(s, p, v, w);
       return;

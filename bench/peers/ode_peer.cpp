@@ -127,7 +127,7 @@ class OdePeer final : public Peer {
       dMassSetBoxTotal(&mass, k.finger_mass, k.finger[0], k.finger[1], k.finger[2]);
       dBodySetMass(finger, &mass);
       dGeomSetBody(dCreateBox(space_, k.finger[0], k.finger[1], k.finger[2]), finger);
-      dBodySetPosition(finger, side * k.finger_x(), 0, k.height);
+      dBodySetPosition(finger, side * (k.finger_x() - k.start_overlap), 0, k.height);
       dJointID slider = dJointCreateSlider(world_, nullptr);
       dJointAttach(slider, finger, nullptr);
       dJointSetSliderAxis(slider, 1, 0, 0);

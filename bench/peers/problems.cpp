@@ -163,6 +163,11 @@ std::vector<Case> pinch_cases(bool quick) {
   return cases;
 }
 
+double breakaway_reference(double mu, bool quick) {
+  const double mean = 0.5 * (settle_time(quick) + breakaway_duration(quick));
+  return std::atan(mu) + std::asin(kBreakawaySpeed / (kG * mean * std::sqrt(1.0 + mu * mu)));
+}
+
 double settle_time(bool quick) { return quick ? 0.5 : 1.0; }
 double breakaway_duration(bool quick) { return settle_time(quick) + (quick ? 1.0 : 2.0); }
 

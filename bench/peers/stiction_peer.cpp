@@ -124,7 +124,7 @@ std::string pinch_scene(const Case& c) {
                   "normal = [0.0, -1.0, 0.0]\noffset = %.17g\n"
                   "stiffness = %.17g\ndamping = %.17g\nmu = 0.0\npoints = %s\n",
                   name, k.finger_mass, vec(k.finger[0], k.finger[1], k.finger[2]).c_str(),
-                  vec(side * k.finger_x(), 0.0, k.height).c_str(), name, name, k.stiffness,
+                  vec(side * (k.finger_x() - 0.25 * force / k.stiffness), 0.0, k.height).c_str(), name, name, k.stiffness,
                   k.damping, corners(2, -1.0).c_str(), name, name, -hy, k.stiffness, k.damping,
                   corners(1, -1.0).c_str(), name, name, -hy, k.stiffness, k.damping,
                   corners(1, 1.0).c_str());
