@@ -24,7 +24,10 @@ FLOOR = 1e-20  # m/s: creeps below this are drawn on it
 
 def step_text(dt):
     n = 1.0 / dt
-    if abs(n - round(n)) < 1e-6 and round(n) % 10:
+    p = math.log10(dt)
+    if abs(p - round(p)) < 1e-9:
+        return "1e%d s" % round(p)
+    if abs(n - round(n)) < 1e-6 and abs(1e3 * dt - round(1e3 * dt)) > 1e-9:
         return "1/%d s" % round(n)
     return "%g s" % dt
 
@@ -79,7 +82,7 @@ def ramp_figure(rows, out):
         ax.grid(True, which="major", lw=0.4, alpha=0.5)
         ax.axhline(FLOOR, color="0.6", lw=0.6, ls=":")
         if below:
-            ax.text(0.04, 0.06, "on the floor: creep < %g m/s" % FLOOR, transform=ax.transAxes,
+            ax.text(0.04, 0.92, "dotted line: creep < %g m/s" % FLOOR, transform=ax.transAxes,
                     fontsize=7, color="0.3")
     ax_empty = list(axes.flat)[len(panels):]
     for ax in ax_empty:
@@ -121,7 +124,7 @@ def pinch_figure(rows, out):
         ys = [max(c, FLOOR) if math.isfinite(c) else float("nan") for _, c in points]
         below |= any(c < FLOOR for _, c in points)
         ax.plot([m for m, _ in points], ys, marker=markers[k % len(markers)], ms=4, lw=1.2,
-                label=name)
+                label=name, color=plt.cm.tab20((2 * k) % 20 + (2 * k) // 20))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xticks([1.1, 1.5, 2, 5, 20])
