@@ -5,11 +5,15 @@
 // friction mu and restitution 0 on both shape nodes. The N spheres are a skeleton each. The
 // pendulum: a bar on a RevoluteJoint to the world with Coulomb joint friction F
 // (setCoulombFriction, which DART's constraint solver bounds like a contact's friction).
+// The ramp grid is the slope box with the case's gravity and mu. The pinch: the block a
+// FreeJoint skeleton, each finger a skeleton on a PrismaticJoint to the world along x whose
+// joint force is set before every step (World::step resets it), friction mu on all three.
 // Not <dart/dart.hpp>: Debian's package lacks the ikfast header it includes.
 #include <dart/collision/dart/DARTCollisionDetector.hpp>
 #include <dart/constraint/ConstraintSolver.hpp>
 #include <dart/dynamics/BoxShape.hpp>
 #include <dart/dynamics/FreeJoint.hpp>
+#include <dart/dynamics/PrismaticJoint.hpp>
 #include <dart/dynamics/RevoluteJoint.hpp>
 #include <dart/dynamics/Skeleton.hpp>
 #include <dart/dynamics/SphereShape.hpp>
@@ -46,10 +50,11 @@ class DartPeer final : public Peer {
   void reset(const Case& c) override {
     world_ = simulation::World::create();
     double g[3];
-    gravity_of(c.problem, g);
+    gravity_of(c, g);
     world_->setGravity(Eigen::Vector3d(g[0], g[1], g[2]));
     world_->setTimeStep(dt_);
     bodies_.clear();
+    fingers_.clear();
     if (c.problem == Problem::pendulum) {
       add_pendulum();
       return;
@@ -60,7 +65,11 @@ class DartPeer final : public Peer {
     // DART keeps at most 1000 contacts per step by default: room for every sphere's.
     world_->getConstraintSolver()->getCollisionOption().maxNumContacts =
         std::max<std::size_t>(1000u, 4u * static_cast<std::size_t>(c.count));
-    const double mu = mu_of(c.problem);
+    const double mu = mu_of(c);
+    if (c.problem == Problem::pinch) {
+      add_pinch(c);
+      return;
+    }
 
     auto ground = dynamics::Skeleton::create("ground");
     auto [weld, floor] = ground->createJointAndBodyNodePair<dynamics::WeldJoint>();
@@ -102,7 +111,11 @@ class DartPeer final : public Peer {
     }
   }
 
-  void step() override { world_->step(); }
+  void step() override {
+    for (std::size_t f = 0; f < fingers_.size(); ++f)
+      fingers_[f]->setForce(0, (f == 0 ? 1.0 : -1.0) * squeeze_);
+    world_->step();
+  }
 
   void read(int i, Sample& s) const override {
     const Eigen::Vector3d p = bodies_[i]->getCOM();
@@ -112,6 +125,43 @@ class DartPeer final : public Peer {
   }
 
  private:
+  // The block (body 0) and the fingers at -x (1) and +x (2).
+  void add_pinch(const Case& c) {
+    const PinchParams& k = kPinch;
+    auto block = dynamics::Skeleton::create("block");
+    auto [free, body] = block->createJointAndBodyNodePair<dynamics::FreeJoint>();
+    auto cube = std::make_shared<dynamics::BoxShape>(Eigen::Vector3d::Constant(k.size));
+    add_shape(body, cube, c.mu);
+    dynamics::Inertia inertia;
+    inertia.setMass(k.mass);
+    inertia.setMoment(cube->computeInertia(k.mass));
+    body->setInertia(inertia);
+    Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+    start.translation() = Eigen::Vector3d(0, 0, k.height);
+    free->setPositions(dynamics::FreeJoint::convertToPositions(start));
+    world_->addSkeleton(block);
+    bodies_.push_back(body);
+    for (int side : {-1, 1}) {
+      auto skeleton = dynamics::Skeleton::create(side < 0 ? "left" : "right");
+      dynamics::PrismaticJoint::Properties joint;
+      joint.mAxis = Eigen::Vector3d::UnitX();
+      joint.mT_ParentBodyToJoint.translation() = Eigen::Vector3d(side * (k.finger_x() - k.start_overlap), 0, k.height);
+      auto [slider, finger] =
+          skeleton->createJointAndBodyNodePair<dynamics::PrismaticJoint>(nullptr, joint);
+      auto shape = std::make_shared<dynamics::BoxShape>(
+          Eigen::Vector3d(k.finger[0], k.finger[1], k.finger[2]));
+      add_shape(finger, shape, c.mu);
+      dynamics::Inertia moments;
+      moments.setMass(k.finger_mass);
+      moments.setMoment(shape->computeInertia(k.finger_mass));
+      finger->setInertia(moments);
+      world_->addSkeleton(skeleton);
+      bodies_.push_back(finger);
+      fingers_.push_back(slider);
+    }
+    squeeze_ = k.squeeze(c.margin);
+  }
+
   // The bar's frame at its centre, the hinge (axis -y) at its top end (local z = +l_c) and
   // at the world origin; no shape (nothing touches it), the box's inertia set directly.
   void add_pendulum() {
@@ -136,6 +186,8 @@ class DartPeer final : public Peer {
   double dt_;
   simulation::WorldPtr world_;
   std::vector<dynamics::BodyNode*> bodies_;
+  std::vector<dynamics::PrismaticJoint*> fingers_;  // the pinch's, at -x then +x
+  double squeeze_ = 0.0;                            // the pinch's force on each finger (N)
 };
 
 }  // namespace

@@ -1,11 +1,13 @@
 // bench_peers: the problems of problems.hpp in stiction and in every peer engine this build
 // found, interleaved (each round runs every engine and setting once), the thread CPU time of
 // the stepping taken as the median over the rounds. Prints three work-precision tables
-// (Markdown): the sphere, the hold and the slide; the N spheres; the pendulum. Optionally
-// also every row as CSV. Usage:
+// (Markdown): the sphere, the hold and the slide; the N spheres; the pendulum; and the hold
+// benchmark of issue 38, the ramp grid and the pinch. Optionally also every row as CSV
+// (bench/peers/hold_figure.py draws the ramp grid from it). Usage:
 //   bench_peers [--rounds N] [--quick] [--csv FILE] [--problems LIST] [--spheres LIST]
 // --quick: short runs and N = 1, 10 (a smoke test; its errors are not the problems' measures).
-// --problems: a comma-separated subset of sphere,slope_hold,slope_slide,spheres,pendulum.
+// --problems: a comma-separated subset of sphere,slope_hold,slope_slide,spheres,pendulum,
+//   ramp_grid,pinch (default: all).
 // --spheres: the sizes N of the spheres problem (default 1,10,100,1000).
 // --engines: a comma-separated list of engine names to keep (stiction,ode,bullet,mujoco,
 //   dart,siconos; the start of the name, any case). Ratios are to the rows kept.
@@ -17,6 +19,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <limits>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -36,6 +40,7 @@ double thread_cpu_seconds() {
 
 struct Result {
   bool expressed = true;
+  bool shown = true;  // false: a row the hold benchmark leaves out by choice
   Errors errors;
   std::vector<double> cpu;  // seconds of stepping, one per round
   long steps = 0;
@@ -118,12 +123,108 @@ void run_spheres(Peer& peer, const Case& c, bool quick, Result& result) {
   result.simulated = static_cast<double>(n) * peer.dt();
 }
 
+// One run of a hold problem (ramp grid point, pinch): the timed loop steps and copies every
+// body's state (the box; the block and both fingers) every sample interval.
+void run_hold(Peer& peer, const Case& c, bool quick, Result& result) {
+  const Plan plan = plan_of(c.problem, quick);
+  const long n = std::lround(plan.duration / peer.dt());
+  const long stride = std::max(1L, std::lround(plan.sample_interval / peer.dt()));
+  const auto bodies = static_cast<std::size_t>(c.count);
+  std::vector<std::vector<Sample>> samples(bodies,
+                                           std::vector<Sample>(static_cast<std::size_t>(n / stride + 1)));
+  if (!set_up(peer, c, result)) return;
+  for (std::size_t b = 0; b < bodies; ++b) peer.read(static_cast<int>(b), samples[b][0]);
+  std::size_t next = 1;
+  const double start = thread_cpu_seconds();
+  for (long k = 1; k <= n; ++k) {
+    peer.step();
+    if (k % stride == 0) {
+      for (std::size_t b = 0; b < bodies; ++b) peer.read(static_cast<int>(b), samples[b][next]);
+      ++next;
+    }
+  }
+  result.cpu.push_back(thread_cpu_seconds() - start);
+  for (auto& record : samples) {
+    for (std::size_t i = 0; i < next; ++i) record[i].t = static_cast<double>(i * stride) * peer.dt();
+    record.resize(next);
+  }
+  result.errors = measure_hold(c, samples, quick);
+  result.steps = n;
+  result.simulated = static_cast<double>(n) * peer.dt();
+}
+
+// Whether the ramp's box slides at `angle`: its mean speed along the slope over [settle,
+// end] of breakaway_duration() above kBreakawaySpeed (a run that blows up slides). Adds the
+// run's steps and CPU to the result.
+bool slides_at(Peer& peer, Case c, double angle, bool quick, Result& result, double& cpu) {
+  c.angle = angle;
+  peer.reset(c);
+  const long n = std::lround(breakaway_duration(quick) / peer.dt());
+  const long settle = std::lround(settle_time(quick) / peer.dt());
+  Sample from, to;
+  const double start = thread_cpu_seconds();
+  for (long k = 1; k <= n; ++k) {
+    peer.step();
+    if (k == settle) peer.read(0, from);
+  }
+  peer.read(0, to);
+  cpu += thread_cpu_seconds() - start;
+  result.steps += n;
+  result.simulated += static_cast<double>(n) * peer.dt();
+  const double speed = std::abs(to.p[0] - from.p[0]) / (static_cast<double>(n - settle) * peer.dt());
+  return !(speed <= kBreakawaySpeed);
+}
+
+// The breakaway search of one mu (once, in the first round: its errors do not change and its
+// run count depends on the engine): bisection between the flat plane and atan mu + 5 degrees
+// for the smallest angle at which the box slides. Errors: the angle found less the ideal
+// Coulomb box's under the same test, breakaway_reference() (degrees), the bracket's half
+// width (degrees), the number of runs.
+void run_breakaway(Peer& peer, const Case& c, bool quick, Result& result) {
+  if (result.steps > 0 || !result.failure.empty()) return;
+  const double degree = std::numbers::pi / 180.0;
+  const double exact = std::atan(c.mu);
+  double lo = 0.0, hi = exact + 5.0 * degree, cpu = 0.0;
+  int runs = 0;
+  try {
+    const bool slides_high = slides_at(peer, c, hi, quick, result, cpu);
+    const bool slides_flat = slides_at(peer, c, lo, quick, result, cpu);
+    runs = 2;
+    const double nan = std::nan("");
+    if (!slides_high || slides_flat) {
+      result.errors = {nan, nan, static_cast<double>(runs),
+                       slides_flat ? "slides on the flat plane" : "holds at atan mu + 5 deg"};
+    } else {
+      for (int i = 0; i < (quick ? 4 : 16); ++i, ++runs) {
+        const double mid = 0.5 * (lo + hi);
+        (slides_at(peer, c, mid, quick, result, cpu) ? hi : lo) = mid;
+      }
+      result.errors = {(0.5 * (lo + hi) - breakaway_reference(c.mu, quick)) / degree,
+                       0.5 * (hi - lo) / degree,
+                       static_cast<double>(runs), {}};
+    }
+  } catch (const std::exception& e) {
+    result.failure = e.what();
+    return;
+  }
+  result.cpu.push_back(cpu);
+}
+
 void run(Peer& peer, const Case& c, bool quick, Result& result) {
   if (!peer.expresses(c.problem)) {
     result.expressed = false;
     return;
   }
-  if (c.problem == Problem::spheres) {
+  const bool hold = c.problem == Problem::ramp_grid || c.problem == Problem::pinch;
+  if (hold && !peer.in_hold_benchmark()) {
+    result.shown = false;
+    return;
+  }
+  if (c.problem == Problem::ramp_grid && c.breakaway) {
+    run_breakaway(peer, c, quick, result);
+  } else if (hold) {
+    run_hold(peer, c, quick, result);
+  } else if (c.problem == Problem::spheres) {
     run_spheres(peer, c, quick, result);
   } else {
     run_recorded(peer, c, quick, result);
@@ -169,8 +270,9 @@ struct Options {
   int rounds = 5;
   bool quick = false;
   std::string csv;
-  std::vector<Problem> problems{Problem::sphere, Problem::slope_hold, Problem::slope_slide,
-                                Problem::spheres, Problem::pendulum};
+  std::vector<Problem> problems{Problem::sphere,   Problem::slope_hold, Problem::slope_slide,
+                                Problem::spheres,  Problem::pendulum,   Problem::ramp_grid,
+                                Problem::pinch};
   std::vector<int> sizes;  // N of the spheres problem
   std::vector<std::string> engines;  // engine name prefixes to keep (empty: all)
 };
@@ -204,7 +306,8 @@ Options parse(int argc, char** argv) {
       for (const std::string& name : split(argv[++i])) {
         bool known = false;
         for (Problem p : {Problem::sphere, Problem::slope_hold, Problem::slope_slide,
-                          Problem::spheres, Problem::pendulum}) {
+                          Problem::spheres, Problem::pendulum, Problem::ramp_grid,
+                          Problem::pinch}) {
           if (problem_name(p) == name) {
             o.problems.push_back(p);
             known = true;
@@ -229,6 +332,10 @@ std::vector<Case> cases_of(const Options& o) {
   for (Problem p : o.problems) {
     if (p == Problem::spheres) {
       for (int n : o.sizes) cases.push_back({p, n});
+    } else if (p == Problem::ramp_grid) {
+      for (const Case& c : ramp_cases(o.quick)) cases.push_back(c);
+    } else if (p == Problem::pinch) {
+      for (const Case& c : pinch_cases(o.quick)) cases.push_back(c);
     } else {
       cases.push_back({p, 1});
     }
@@ -333,14 +440,16 @@ int main(int argc, char** argv) {
   if (csv)
     std::fprintf(csv,
                  "engine,settings,dt,problem,count,error1,error2,error3,note,cpu_per_simulated_s,"
-                 "cpu_per_step,ratio_to_reference,ratio_to_ode_60\n");
+                 "cpu_per_step,ratio_to_reference,ratio_to_ode_60,mu,angle_deg,margin,breakaway\n");
 
   // Table 1: the one-body problems, one row per engine, setting and problem.
   bool header = false;
   for (std::size_t p = 0; p < peers.size(); ++p) {
     for (std::size_t q = 0; q < count; ++q) {
       const Problem problem = cases[q].problem;
-      if (problem == Problem::spheres || problem == Problem::pendulum) continue;
+      if (problem == Problem::spheres || problem == Problem::pendulum ||
+          problem == Problem::ramp_grid || problem == Problem::pinch)
+        continue;
       const Result& r = result(p, q);
       if (!r.expressed) continue;
       if (!header) {
@@ -425,18 +534,147 @@ int main(int argc, char** argv) {
     }
   }
 
+  // The hold benchmark's CPU per simulated second over a set of cases: the sum of the
+  // medians over the sum of the simulated time (NaN if one did not run).
+  auto grid_per_second = [&](std::size_t p, const std::vector<std::size_t>& qs) {
+    double cpu = 0.0, simulated = 0.0;
+    for (std::size_t q : qs) {
+      const Result& r = result(p, q);
+      if (!r.failure.empty() || r.cpu.empty()) return std::nan("");
+      cpu += median(r.cpu);
+      simulated += r.simulated;
+    }
+    return simulated > 0 ? cpu / simulated : std::nan("");
+  };
+  // A row's first cells when the engine cannot express the problem or failed in it; empty
+  // when every case ran.
+  auto hold_failure = [&](std::size_t p, const std::vector<std::size_t>& qs) -> std::string {
+    for (std::size_t q : qs) {
+      const Result& r = result(p, q);
+      if (!r.expressed) return "cannot express it (see the settings)";
+      if (!r.failure.empty()) return "failed (" + case_name(cases[q]) + "): " + r.failure;
+    }
+    return "";
+  };
+
+  // Table 4: the ramp grid (issue 38).
+  std::vector<std::size_t> grid, breakaways;
+  std::vector<double> ratios;  // tan a / mu of the grid's columns, in order
+  for (std::size_t q = 0; q < count; ++q) {
+    if (cases[q].problem != Problem::ramp_grid) continue;
+    if (cases[q].breakaway) {
+      breakaways.push_back(q);
+      continue;
+    }
+    grid.push_back(q);
+    const double r = std::tan(cases[q].angle) / cases[q].mu;
+    if (std::none_of(ratios.begin(), ratios.end(), [&](double x) { return std::abs(x - r) < 1e-9; }))
+      ratios.push_back(r);
+  }
+  if (!grid.empty() || !breakaways.empty()) {
+    std::printf("\nRamp grid: a 0.2 x 0.2 x 0.1 m, 1 kg box at rest on a ramp of angle a, %zu "
+                "points of mu x tan a / mu (all below 1: it must hold). Creep: speed along the "
+                "slope after %g s (m/s), the largest over mu at each tan a / mu. Breakaway: the "
+                "smallest angle at which the box moves faster than %g m/s on average, less the "
+                "ideal Coulomb box's (atan mu + 0.002-0.003 deg; degrees; bisection to 4e-4 "
+                "deg, one round). CPU: the creep grid's.\n\n"
+                "| engine | settings | step |",
+                grid.size(), settle_time(options.quick), kBreakawaySpeed);
+    for (double r : ratios) std::printf(" creep tan/mu = %.3g |", r);
+    if (!grid.empty()) std::printf(" creep median |");
+    for (std::size_t q : breakaways) std::printf(" breakaway mu = %g |", cases[q].mu);
+    std::printf(" CPU per simulated s | x %s |\n|---|---|---|", first.c_str());
+    for (std::size_t k = 0; k < ratios.size() + (grid.empty() ? 0 : 1) + breakaways.size() + 2; ++k)
+      std::printf("---|");
+    std::printf("\n");
+    std::vector<std::size_t> all = grid;
+    all.insert(all.end(), breakaways.begin(), breakaways.end());
+    const double reference = grid_per_second(0, grid);
+    for (std::size_t p = 0; p < peers.size(); ++p) {
+      if (!result(p, all[0]).shown) continue;
+      std::string line = row_head(*peers[p]);
+      const std::string failure = hold_failure(p, all);
+      if (!failure.empty()) {
+        std::printf("%s %s |\n", line.c_str(), failure.c_str());
+        continue;
+      }
+      std::vector<double> creeps;
+      for (double ratio : ratios) {
+        double worst = 0.0;
+        for (std::size_t q : grid) {
+          if (std::abs(std::tan(cases[q].angle) / cases[q].mu - ratio) > 1e-9) continue;
+          const double c = result(p, q).errors.first;
+          worst = std::isfinite(c) && std::isfinite(worst) ? std::max(worst, c) : std::nan("");
+          creeps.push_back(c);
+        }
+        line += " " + number(worst, "%.2g") + " |";
+      }
+      if (!grid.empty()) {
+        for (double& c : creeps) if (!std::isfinite(c)) c = std::numeric_limits<double>::infinity();
+        line += " " + number(median(creeps), "%.2g") + " |";
+      }
+      for (std::size_t q : breakaways) {
+        const Errors& e = result(p, q).errors;
+        line += " " + (e.note.empty() ? number(e.first, "%+.2g") : e.note) + " |";
+      }
+      const double cpu = grid_per_second(p, grid);
+      line += " " + number(1e3 * cpu, "%.3g") + " ms | " + number(cpu / reference, "%.2g") + " |";
+      std::printf("%s\n", line.c_str());
+    }
+  }
+
+  // Table 5: the pinch (issue 38).
+  std::vector<std::size_t> pinch;
+  for (std::size_t q = 0; q < count; ++q)
+    if (cases[q].problem == Problem::pinch) pinch.push_back(q);
+  if (!pinch.empty()) {
+    std::printf("\nPinch: a 0.1 m, 1 kg cube between two fingers pressed with F = margin m g / "
+                "(2 mu), mu %g, under gravity. Creep: the block's vertical speed relative to the "
+                "fingers after %g s (m/s); drop: the block's largest fall relative to the fingers "
+                "over the run (m).\n\n| engine | settings | step |",
+                kPinch.mu, settle_time(options.quick));
+    for (std::size_t q : pinch) std::printf(" creep %gx |", cases[q].margin);
+    std::printf(" drop (largest) | CPU per simulated s | x %s |\n|---|---|---|", first.c_str());
+    for (std::size_t k = 0; k < pinch.size() + 3; ++k) std::printf("---|");
+    std::printf("\n");
+    const double reference = grid_per_second(0, pinch);
+    for (std::size_t p = 0; p < peers.size(); ++p) {
+      if (!result(p, pinch[0]).shown) continue;
+      std::string line = row_head(*peers[p]);
+      const std::string failure = hold_failure(p, pinch);
+      if (!failure.empty()) {
+        std::printf("%s %s |\n", line.c_str(), failure.c_str());
+        continue;
+      }
+      double drop = 0.0;
+      for (std::size_t q : pinch) {
+        const Errors& e = result(p, q).errors;
+        line += " " + number(e.first, "%.2g") + " |";
+        drop = std::isfinite(e.third) && std::isfinite(drop) ? std::max(drop, e.third) : std::nan("");
+      }
+      const double cpu = grid_per_second(p, pinch);
+      line += " " + number(drop, "%.2g") + " m | " + number(1e3 * cpu, "%.3g") + " ms | " +
+              number(cpu / reference, "%.2g") + " |";
+      std::printf("%s\n", line.c_str());
+    }
+  }
+
   if (csv) {
     for (std::size_t p = 0; p < peers.size(); ++p) {
       for (std::size_t q = 0; q < count; ++q) {
         const Result& r = result(p, q);
         if (!r.expressed || !r.failure.empty() || r.cpu.empty()) continue;
         const Peer& peer = *peers[p];
-        std::fprintf(csv, "\"%s\",\"%s\",%.17g,%s,%d,%.6g,%.6g,%.6g,\"%s\",%.6g,%.6g,%.6g,%.6g\n",
+        const Case& c = cases[q];
+        std::fprintf(csv,
+                     "\"%s\",\"%s\",%.17g,%s,%d,%.6g,%.6g,%.6g,\"%s\",%.6g,%.6g,%.6g,%.6g,%.6g,%.9g,"
+                     "%.6g,%d\n",
                      peer.engine().c_str(), peer.settings().c_str(), peer.dt(),
                      problem_name(cases[q].problem).c_str(), cases[q].count, r.errors.first,
                      r.errors.second, r.errors.third, r.errors.note.c_str(), per_second(r),
                      median(r.cpu) / static_cast<double>(r.steps), ratio(p, q, 0),
-                     ratio(p, q, ode));
+                     ratio(p, q, ode), mu_of(c), c.angle * 180.0 / std::numbers::pi, c.margin,
+                     c.breakaway ? 1 : 0);
       }
     }
     std::fclose(csv);

@@ -3,7 +3,10 @@
 // (implicit in velocity; 2.2.2 has no implicitfast), each at MuJoCo's default step 2 ms and
 // at 1/60 s. condim 3 and friction mu on both geoms (MuJoCo takes the larger of the two).
 // The model is built from an XML text through a virtual file. The pendulum: a hinge joint with
-// frictionloss F (MuJoCo's joint dry friction, a soft constraint like its contacts).
+// frictionloss F (MuJoCo's joint dry friction, a soft constraint like its contacts). The ramp
+// grid is the slope box with the case's gravity and mu. The pinch: the block a free box,
+// each finger a box on a slide joint along x pushed by qfrc_applied (set once: mj_step keeps
+// it), condim 3 and friction mu on all three geoms.
 #include <mujoco/mujoco.h>
 
 #include <cmath>
@@ -24,8 +27,8 @@ namespace {
 // bit), as in the other engines where the lanes keep them apart.
 std::string model_xml(const Case& c, double dt, const char* integrator) {
   double g[3];
-  gravity_of(c.problem, g);
-  const double mu = mu_of(c.problem);
+  gravity_of(c, g);
+  const double mu = mu_of(c);
   char text[600];
   std::snprintf(text, sizeof text,
                 "<mujoco><option timestep='%.17g' gravity='%.17g %.17g %.17g' integrator='%s'/>"
@@ -42,13 +45,32 @@ std::string model_xml(const Case& c, double dt, const char* integrator) {
                   k.friction, k.width / 2, k.width / 2, k.length / 2, -k.com(), k.mass);
     return xml + text + "</worldbody></mujoco>";
   }
+  if (c.problem == Problem::pinch) {
+    const PinchParams& k = kPinch;
+    const double h = 0.5 * k.size;
+    std::snprintf(text, sizeof text,
+                  "<body pos='0 0 %.17g'><freejoint/><geom type='box' size='%.17g %.17g %.17g' "
+                  "mass='%.17g' condim='3' friction='%.17g 0.005 0.0001'/></body>",
+                  k.height, h, h, h, k.mass, mu);
+    xml += text;
+    for (int side : {-1, 1}) {
+      std::snprintf(text, sizeof text,
+                    "<body pos='%.17g 0 %.17g'><joint type='slide' axis='1 0 0'/><geom type='box' "
+                    "size='%.17g %.17g %.17g' mass='%.17g' condim='3' "
+                    "friction='%.17g 0.005 0.0001'/></body>",
+                    side * (k.finger_x() - k.start_overlap), k.height, k.finger[0] / 2, k.finger[1] / 2,
+                    k.finger[2] / 2, k.finger_mass, mu);
+      xml += text;
+    }
+    return xml + "</worldbody></mujoco>";
+  }
   std::snprintf(text, sizeof text,
                 "<geom type='plane' size='0 0 1' condim='3' friction='%.17g 0.005 0.0001' "
                 "contype='0' conaffinity='1'/>",
                 mu);
   xml += text;
   for (int i = 0; i < c.count; ++i) {
-    if (c.problem == Problem::slope_hold || c.problem == Problem::slope_slide) {
+    if (box_on_plane(c.problem)) {
       const double* s = kBox.size;
       std::snprintf(text, sizeof text,
                     "<body pos='0 0 %.17g'><freejoint/><geom type='box' size='%.17g %.17g %.17g' "
@@ -94,6 +116,11 @@ class MujocoPeer final : public Peer {
       data_->qpos[0] = kPendulum.angle0;
     } else if (c.problem == Problem::sphere || c.problem == Problem::spheres) {
       for (int i = 0; i < c.count; ++i) data_->qvel[6 * i] = spheres_v0(i, c.count);
+    } else if (c.problem == Problem::pinch) {
+      // dofs: the block's free joint (6), then each finger's slide joint.
+      const double force = kPinch.squeeze(c.margin);
+      data_->qfrc_applied[6] = force;
+      data_->qfrc_applied[7] = -force;
     }
   }
 
@@ -106,6 +133,14 @@ class MujocoPeer final : public Peer {
       const double p[3] = {l * std::sin(phi), 0.0, -l * std::cos(phi)};
       const double v[3] = {l * rate * std::cos(phi), 0.0, l * rate * std::sin(phi)};
       const double w[3] = {0.0, -rate, 0.0};
+      fill_sample(s, p, v, w);
+      return;
+    }
+    if (problem_ == Problem::pinch && i > 0) {
+      // Finger i: its slide joint's displacement from its starting x.
+      const double side = i == 1 ? -1.0 : 1.0;
+      const double p[3] = {side * (kPinch.finger_x() - kPinch.start_overlap) + data_->qpos[6 + i], 0.0, kPinch.height};
+      const double v[3] = {data_->qvel[5 + i], 0.0, 0.0}, w[3] = {0.0, 0.0, 0.0};
       fill_sample(s, p, v, w);
       return;
     }

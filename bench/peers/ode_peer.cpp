@@ -6,7 +6,10 @@
 // have stiction's stiffness. Auto-disable (sleeping) is off, its default. The N spheres share
 // a hash space (ODE's choice for many objects: the simple space would test all N^2 pairs).
 // The pendulum: a box body on a hinge joint to the world whose motor has target velocity 0
-// and maximum torque F, the ODE manual's way to model joint friction.
+// and maximum torque F, the ODE manual's way to model joint friction. The ramp grid is the
+// slope box under the case's gravity and mu. The pinch: the block a free box, each finger a
+// box body on a slider joint to the world along x, pushed by dBodyAddForce before every
+// step; block-finger contacts as the box's (soft, K and B of kPinch per point).
 #include <ode/ode.h>
 
 #include <cmath>
@@ -31,15 +34,20 @@ class OdePeer final : public Peer {
     space_ = c.problem == Problem::spheres ? dHashSpaceCreate(nullptr) : dSimpleSpaceCreate(nullptr);
     contacts_ = dJointGroupCreate(0);
     double g[3];
-    gravity_of(c.problem, g);
+    gravity_of(c, g);
     dWorldSetGravity(world_, g[0], g[1], g[2]);
     bodies_.clear();
+    squeeze_ = 0.0;
     if (c.problem == Problem::pendulum) {
       add_pendulum();
       return;
     }
+    mu_ = mu_of(c);
+    if (c.problem == Problem::pinch) {
+      add_pinch(c);
+      return;
+    }
     dCreatePlane(space_, 0, 0, 1, 0);
-    mu_ = mu_of(c.problem);
     dMass mass;
     if (c.problem == Problem::sphere || c.problem == Problem::spheres) {
       for (int i = 0; i < c.count; ++i) {
@@ -67,6 +75,10 @@ class OdePeer final : public Peer {
   }
 
   void step() override {
+    if (squeeze_ != 0.0) {
+      dBodyAddForce(bodies_[1], squeeze_, 0, 0);
+      dBodyAddForce(bodies_[2], -squeeze_, 0, 0);
+    }
     dSpaceCollide(space_, this, &OdePeer::near);
     dWorldStep(world_, dt_);
     dJointGroupEmpty(contacts_);
@@ -100,6 +112,32 @@ class OdePeer final : public Peer {
     bodies_.push_back(body);
   }
 
+  // The block (body 0) and the fingers at -x (1) and +x (2), each on a slider along x.
+  void add_pinch(const Case& c) {
+    const PinchParams& k = kPinch;
+    dMass mass;
+    dBodyID block = dBodyCreate(world_);
+    dMassSetBoxTotal(&mass, k.mass, k.size, k.size, k.size);
+    dBodySetMass(block, &mass);
+    dGeomSetBody(dCreateBox(space_, k.size, k.size, k.size), block);
+    dBodySetPosition(block, 0, 0, k.height);
+    bodies_.push_back(block);
+    for (int side : {-1, 1}) {
+      dBodyID finger = dBodyCreate(world_);
+      dMassSetBoxTotal(&mass, k.finger_mass, k.finger[0], k.finger[1], k.finger[2]);
+      dBodySetMass(finger, &mass);
+      dGeomSetBody(dCreateBox(space_, k.finger[0], k.finger[1], k.finger[2]), finger);
+      dBodySetPosition(finger, side * (k.finger_x() - k.start_overlap), 0, k.height);
+      dJointID slider = dJointCreateSlider(world_, nullptr);
+      dJointAttach(slider, finger, nullptr);
+      dJointSetSliderAxis(slider, 1, 0, 0);
+      bodies_.push_back(finger);
+    }
+    squeeze_ = k.squeeze(c.margin);
+    stiffness_ = k.stiffness;
+    damping_ = k.damping;
+  }
+
   static void near(void* data, dGeomID a, dGeomID b) {
     auto* self = static_cast<OdePeer*>(data);
     dContact contact[8];
@@ -129,6 +167,7 @@ class OdePeer final : public Peer {
   dJointGroupID contacts_ = nullptr;
   std::vector<dBodyID> bodies_;
   double mu_ = 0, stiffness_ = 0, damping_ = 0;
+  double squeeze_ = 0;  // the pinch's force on each finger (N)
 };
 
 }  // namespace

@@ -19,12 +19,17 @@ class Peer {
   virtual double dt() const = 0;
   // Whether this engine at this setting can express the problem (no row where it cannot).
   virtual bool expresses(Problem /*problem*/) const { return true; }
+  // Whether this setting is one of the rows of the hold benchmark (ramp_grid, pinch): a
+  // choice of the rows shown, not an inability (stiction keeps rk4 1e-4 s and implicit
+  // 1/60 s, Bullet its rows with sleeping off).
+  virtual bool in_hold_benchmark() const { return true; }
   // Builds the case's world at rest at t = 0 (discarding any previous one).
   virtual void reset(const Case& c) = 0;
   // One step of dt().
   virtual void step() = 0;
   // Body i's centre position, velocity and angular velocity, world frame: i < c.count, the
-  // spheres in the order of spheres_v0(i, n); the pendulum's bar is body 0.
+  // spheres in the order of spheres_v0(i, n); the pendulum's bar is body 0; the pinch's
+  // block is body 0, its fingers 1 (at -x) and 2 (at +x).
   virtual void read(int body, Sample& sample) const = 0;
 };
 

@@ -70,20 +70,45 @@ std::string problem_name(Problem problem) {
       return "spheres";
     case Problem::pendulum:
       return "pendulum";
+    case Problem::ramp_grid:
+      return "ramp_grid";
+    case Problem::pinch:
+      return "pinch";
   }
   return "?";
 }
 
 std::string case_name(const Case& c) {
-  return c.problem == Problem::spheres ? "spheres N=" + std::to_string(c.count)
-                                       : problem_name(c.problem);
+  char text[96];
+  switch (c.problem) {
+    case Problem::spheres:
+      return "spheres N=" + std::to_string(c.count);
+    case Problem::ramp_grid:
+      if (c.breakaway) {
+        std::snprintf(text, sizeof text, "ramp_grid mu=%g breakaway", c.mu);
+      } else {
+        std::snprintf(text, sizeof text, "ramp_grid mu=%g tan/mu=%.3g", c.mu,
+                      std::tan(c.angle) / c.mu);
+      }
+      return text;
+    case Problem::pinch:
+      std::snprintf(text, sizeof text, "pinch margin=%g", c.margin);
+      return text;
+    default:
+      return problem_name(c.problem);
+  }
+}
+
+bool box_on_plane(Problem problem) {
+  return problem == Problem::slope_hold || problem == Problem::slope_slide ||
+         problem == Problem::ramp_grid;
 }
 
 double slope_rad() { return kSlopeDeg * std::numbers::pi / 180.0; }
 
-void gravity_of(Problem problem, double g[3]) {
-  const bool slope = problem == Problem::slope_hold || problem == Problem::slope_slide;
-  const double a = slope ? slope_rad() : 0.0;
+void gravity_of(const Case& c, double g[3]) {
+  const bool slope = c.problem == Problem::slope_hold || c.problem == Problem::slope_slide;
+  const double a = slope ? slope_rad() : c.problem == Problem::ramp_grid ? c.angle : 0.0;
   g[0] = kG * std::sin(a);
   g[1] = 0.0;
   g[2] = -kG * std::cos(a);
@@ -100,9 +125,51 @@ double mu_of(Problem problem) {
       return 0.2;
     case Problem::pendulum:
       return 0.0;  // joint friction: a torque bound, kPendulum.friction
+    case Problem::ramp_grid:
+      return 0.5;
+    case Problem::pinch:
+      return kPinch.mu;
   }
   return 0.0;
 }
+
+double mu_of(const Case& c) {
+  return c.problem == Problem::ramp_grid || c.problem == Problem::pinch ? c.mu
+                                                                          : mu_of(c.problem);
+}
+
+std::vector<Case> ramp_cases(bool quick) {
+  std::vector<Case> cases;
+  for (double mu : kRampMus) {
+    if (quick && mu != 0.5) continue;
+    for (double ratio : kRampRatios) {
+      if (quick && ratio != 0.9) continue;
+      cases.push_back({Problem::ramp_grid, 1, mu, std::atan(ratio * mu), 0.0, false});
+    }
+  }
+  for (double mu : kRampMus) {
+    if (quick && mu != 0.5) continue;
+    cases.push_back({Problem::ramp_grid, 1, mu, std::atan(mu), 0.0, true});
+  }
+  return cases;
+}
+
+std::vector<Case> pinch_cases(bool quick) {
+  std::vector<Case> cases;
+  for (double margin : kPinchMargins) {
+    if (quick && margin != 2.0) continue;
+    cases.push_back({Problem::pinch, 3, kPinch.mu, 0.0, margin, false});
+  }
+  return cases;
+}
+
+double breakaway_reference(double mu, bool quick) {
+  const double mean = 0.5 * (settle_time(quick) + breakaway_duration(quick));
+  return std::atan(mu) + std::asin(kBreakawaySpeed / (kG * mean * std::sqrt(1.0 + mu * mu)));
+}
+
+double settle_time(bool quick) { return quick ? 0.5 : 1.0; }
+double breakaway_duration(bool quick) { return settle_time(quick) + (quick ? 1.0 : 2.0); }
 
 double spheres_v0(int i, int n) { return n == 1 ? kSphere.v0 : 1.0 + 2.0 * i / (n - 1); }
 double spheres_lane(int i) { return kLaneSpacing * i; }
@@ -126,6 +193,9 @@ Plan plan_of(Problem problem, bool quick) {
       return {1.0, 0.0};
     case Problem::pendulum:  // the reference stops at 7.0 s
       return {quick ? 2.0 : 9.0, 0.0};
+    case Problem::ramp_grid:  // creep over 10 s after settling
+    case Problem::pinch:
+      return {settle_time(quick) + (quick ? 1.0 : 10.0), 0.1};
   }
   return {0.0, 0.0};
 }
@@ -153,9 +223,34 @@ Errors measure(Problem problem, const std::vector<Sample>& samples, bool quick) 
     case Problem::pendulum:
       return compare_swings(swings_of(samples), pendulum_reference(end.t));
     case Problem::spheres:  // watched, not recorded: see StickWatch
+    case Problem::ramp_grid:  // measure_hold
+    case Problem::pinch:
       break;
   }
   return {kNaN, kNaN};
+}
+
+Errors measure_hold(const Case& c, const std::vector<std::vector<Sample>>& samples, bool quick) {
+  const std::vector<Sample>& block = samples.at(0);
+  if (block.size() < 2) return {kNaN, kNaN, kNaN};
+  // The coordinate whose creep counts: along the slope (x) on the ramp; the block's height
+  // less the fingers' mean height in the pinch.
+  auto coordinate = [&](std::size_t k) {
+    if (c.problem == Problem::ramp_grid) return block[k].p[0];
+    return block[k].p[2] - 0.5 * (samples.at(1)[k].p[2] + samples.at(2)[k].p[2]);
+  };
+  const std::size_t last = block.size() - 1;
+  for (std::size_t k : {std::size_t{0}, last}) {
+    if (!std::isfinite(coordinate(k)) || !std::isfinite(block[k].p[0])) return {kNaN, kNaN, kNaN};
+  }
+  const double settled = settle_time(quick);
+  std::size_t from = 0;
+  for (std::size_t k = 0; k <= last; ++k) {
+    if (std::abs(block[k].t - settled) < std::abs(block[from].t - settled)) from = k;
+  }
+  const double creep = std::abs(coordinate(last) - coordinate(from)) / (block[last].t - block[from].t);
+  const double moved = coordinate(last) - coordinate(0);
+  return {creep, std::abs(moved), c.problem == Problem::pinch ? -moved : 0.0};
 }
 
 std::string describe(Problem problem, const Errors& e) {
@@ -180,6 +275,10 @@ std::string describe(Problem problem, const Errors& e) {
     case Problem::pendulum:
       std::snprintf(text, sizeof text, "phase %.2g s, amplitude %.2g rad, stop %+.2g s%s%s",
                     e.first, e.second, e.third, e.note.empty() ? "" : "; ", e.note.c_str());
+      break;
+    case Problem::ramp_grid:
+    case Problem::pinch:
+      std::snprintf(text, sizeof text, "creep %.2g m/s, moved %.2g m", e.first, e.second);
       break;
   }
   return text;

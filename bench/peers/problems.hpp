@@ -28,6 +28,24 @@
 //    every turning point (pendulum_reference.cpp); the measures are the turning points'
 //    times (phase) and angles (amplitude), the rest angle and the stop time.
 //
+// 6. ramp_grid (issue 38): problem 2's box on a ramp of angle a, friction mu, over a grid:
+//    mu in kRampMus and tan a / mu in kRampRatios (all below 1: it must hold). Creep = the
+//    speed along the slope after settling, |x(end) - x(settle)| / (end - settle). Per mu, the
+//    breakaway angle is found by bisection (Case::breakaway): the smallest angle at which
+//    the box moves faster than kBreakawaySpeed on average over [settle, settle + 2 s];
+//    its error against atan mu says whether the box holds just below atan mu and slides just
+//    above it. Untimed (a bisection's run count depends on the engine).
+// 7. pinch (issue 38): a 0.1 m cube of 1 kg pinched between two fingers (0.02 x 0.15 x
+//    0.15 m boxes of 0.5 kg on either side along x) under vertical gravity, mu 0.5 between
+//    block and finger; each finger pressed towards the block by F = margin m g / (2 mu),
+//    margin in kPinchMargins (the squeeze's holding margin, 1.1x to 20x). The peers' fingers
+//    slide along x on a prismatic joint (each engine's gripper); stiction's stand on a
+//    frictionless floor (mu 0) with a force source each, so the floor carries them.
+//    Creep = the block's vertical speed relative to the fingers after settling. Contact
+//    K = 1e6 N/m, B = 100 N s/m per point (stiction, ODE): the box's B = 1000 would damp the
+//    light fingers' rotation at -4.6 / (1e-4 s), past rk4's stability limit, and the
+//    fingers then chatter in their guides and let the block creep (2-4e-4 m/s, measured).
+//
 // Contact stiffness where an engine takes one (stiction; ODE's soft ERP/CFM): the sphere
 // K = 1e7 N/m, B = 10 N s/m (scenes/sphere_roll.toml); the box K = 1e6 N/m, B = 1000 N s/m per
 // corner (scenes/box_slope.toml).
@@ -39,21 +57,28 @@
 
 namespace stiction::peers {
 
-enum class Problem { sphere, slope_hold, slope_slide, spheres, pendulum };
+enum class Problem { sphere, slope_hold, slope_slide, spheres, pendulum, ramp_grid, pinch };
 std::string problem_name(Problem problem);
 
 // A problem and its size: the number of spheres of Problem::spheres (1 for every other).
+// ramp_grid: mu, the ramp angle (rad) and whether this case is the breakaway search (angle
+// unused); pinch: mu and the holding margin.
 struct Case {
   Problem problem = Problem::sphere;
   int count = 1;
+  double mu = 0.0, angle = 0.0, margin = 0.0;
+  bool breakaway = false;
 };
 std::string case_name(const Case& c);
 
 inline constexpr double kG = 9.81;
 inline constexpr double kSlopeDeg = 20.0;
 double slope_rad();
-// World gravity of a problem: vertical for the sphere, tilted for the slope problems.
-void gravity_of(Problem problem, double g[3]);
+// World gravity of a case: vertical for the sphere and the pinch, tilted for the slopes and
+// the ramp (its case's angle).
+void gravity_of(const Case& c, double g[3]);
+// Whether the case is problem 2's box on the (tilted) plane: slope_hold, slope_slide, ramp.
+bool box_on_plane(Problem problem);
 
 struct SphereParams {
   double mass = 0.3, radius = 0.2, mu = 0.1, v0 = 2.0;
@@ -79,8 +104,29 @@ struct PendulumParams {
 inline constexpr SphereParams kSphere{};
 inline constexpr BoxParams kBox{};
 inline constexpr PendulumParams kPendulum{};
+struct PinchParams {
+  double mass = 1.0, size = 0.1;                    // the block, a cube
+  double finger_mass = 0.5, finger[3] = {0.02, 0.15, 0.15};
+  double mu = 0.5;
+  double stiffness = 1e6, damping = 100.0;  // per contact point (stiction, ODE)
+  double height = 0.075;                     // the centres' z: stiction's fingers stand on z = 0
+  // The force on each finger for a holding margin: 2 mu F = margin m g.
+  double squeeze(double margin) const { return margin * mass * kG / (2.0 * mu); }
+  // The fingers' centres at x = -+finger_x() when they just touch the block.
+  double finger_x() const { return 0.5 * (size + finger[0]); }
+  // How far the peers' fingers start inside the block (m): touching exactly, ODE and DART at
+  // 1/60 s find no contact at the first step and the fingers pass through the block at 20x
+  // (0.11 m in one step). stiction's start at its static deflection, F / (4 K).
+  double start_overlap = 5e-4;
+};
+inline constexpr PinchParams kPinch{};
+inline constexpr double kRampMus[] = {0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
+inline constexpr double kRampRatios[] = {0.25, 0.5, 0.75, 0.9, 0.99};  // tan a / mu
+inline constexpr double kPinchMargins[] = {1.1, 1.5, 2.0, 5.0, 20.0};
+inline constexpr double kBreakawaySpeed = 1e-3;  // m/s: faster on average is sliding
 inline constexpr double kLaneSpacing = 0.5;  // m between the lanes of the N spheres
 double mu_of(Problem problem);  // the friction coefficient of the problem's contact
+double mu_of(const Case& c);    // the case's (ramp_grid, pinch) or else the problem's
 
 // Sphere i of n (problem 4): launch speed along x and lane (y of its centre).
 double spheres_v0(int i, int n);
@@ -105,6 +151,15 @@ struct Plan {
   double sample_interval;  // 0: every step
 };
 Plan plan_of(Problem problem, bool quick);
+// The angle (rad) at which an ideal Coulomb box on the ramp passes the breakaway test: it
+// slides from t = 0 at g (sin a - mu cos a), so its mean speed over [settle, end] is that
+// times (settle + end) / 2; the breakaway error is measured against this angle (a hair
+// above atan mu: 0.0029 degrees at mu 0.1), not against atan mu itself.
+double breakaway_reference(double mu, bool quick);
+// Settling time of the hold problems (ramp_grid, pinch): creep is measured after it.
+double settle_time(bool quick);
+// The breakaway search's runs: their duration (settle + the averaging window).
+double breakaway_duration(bool quick);
 
 // Errors of a run: up to three numbers per problem (NaN where the run failed).
 // sphere: stick time error (s), relative final speed error at the end of the run;
@@ -120,6 +175,14 @@ struct Errors {
   std::string note = {};
 };
 Errors measure(Problem problem, const std::vector<Sample>& samples, bool quick);
+// ramp_grid (body 0) and pinch (bodies 0, 1, 2): creep in m/s after settling, the
+// displacement over the whole run (m), and for the pinch the block's drop relative to the
+// fingers (m, positive down). samples[b] is body b's record.
+Errors measure_hold(const Case& c, const std::vector<std::vector<Sample>>& samples, bool quick);
+// The ramp grid's cases (creep: mus x ratios; then one breakaway case per mu) and the
+// pinch's (one per margin); quick: one of each.
+std::vector<Case> ramp_cases(bool quick);
+std::vector<Case> pinch_cases(bool quick);
 // Labels of the numbers for the table.
 std::string describe(Problem problem, const Errors& errors);
 

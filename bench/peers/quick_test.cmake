@@ -1,6 +1,7 @@
 # ctest bench_peers_quick: runs `bench_peers --rounds 1 --quick` (BENCH_PEERS: its path) and
 # checks that it exits 0 and prints a stiction row with a number for every problem: the one-body
-# problems, the N spheres at N = 1 and 10, the pendulum. Not a timing test.
+# problems, the N spheres at N = 1 and 10, the pendulum, the ramp grid and the pinch (one
+# point each). Not a timing test.
 execute_process(COMMAND "${BENCH_PEERS}" --rounds 1 --quick
                 RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
@@ -19,6 +20,13 @@ if(NOT out MATCHES "\\| stiction \\| rk4 \\| 1e-4 s \\| ${n} \\| ${n} \\| ${n} \
 endif()
 if(NOT out MATCHES "Pendulum with joint friction: reference [^\n]* turns [1-9]")
   message(FATAL_ERROR "no pendulum reference")
+endif()
+# The hold benchmark: the ramp grid's creep, median creep and breakaway error; the pinch's creep.
+if(NOT out MATCHES "Ramp grid: [^\n]*\n\n[^\n]*\n[^\n]*\n\\| stiction \\| rk4 \\| 1e-4 s \\| ${n} \\| ${n} \\| ${n} \\|")
+  message(FATAL_ERROR "no stiction rk4 row with creep and breakaway error for the ramp grid")
+endif()
+if(NOT out MATCHES "Pinch: [^\n]*\n\n[^\n]*\n[^\n]*\n\\| stiction \\| rk4 \\| 1e-4 s \\| ${n} \\| ${n} m \\|")
+  message(FATAL_ERROR "no stiction rk4 row with creep for the pinch")
 endif()
 if(NOT out MATCHES "\\| stiction \\| rk4 \\| 1e-4 s \\| ${n} s \\| ${n} rad \\|")
   message(FATAL_ERROR "no stiction rk4 row with phase and amplitude errors for the pendulum")

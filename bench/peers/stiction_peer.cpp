@@ -2,7 +2,8 @@
 // here, spheres_scene()) loaded with scene::load_scene and stepped by core::make_stepper's
 // stepper, as bench/bench_step.cpp steps them. Rows: the paper's RK4 and symplectic Euler at
 // 1e-4 s (explicit: the stiff contacts bound the step), and the implicit integrator at 1e-3,
-// 1/240 and 1/60 s where this build has it.
+// 1/240 and 1/60 s where this build has it. The hold benchmark (ramp_grid, pinch) keeps rk4
+// at 1e-4 s and implicit at 1/60 s; its scenes are written here (ramp_scene, pinch_scene).
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
@@ -51,19 +52,121 @@ std::string spheres_scene(int n) {
   return text;
 }
 
+std::string vec(double x, double y, double z) {
+  char text[96];
+  std::snprintf(text, sizeof text, "[%.17g, %.17g, %.17g]", x, y, z);
+  return text;
+}
+
+// Problem 6's scene at one grid point: scenes/slope_hold.toml's box and contact with the
+// case's mu, under gravity tilted by the case's angle.
+std::string ramp_scene(const Case& c) {
+  double g[3];
+  gravity_of(c, g);
+  char text[900];
+  std::snprintf(text, sizeof text,
+                "name = \"peers_ramp\"\ndescription = \"bench_peers: a box on a ramp\"\n"
+                "gravity = %s\n[simulation]\nintegrator = \"rk4\"\ndt = 1e-4\nduration = 1.0\n"
+                "[bodies.box]\ntype = \"rigid_body\"\nmass = %.17g\nshape = \"box\"\n"
+                "size = %s\nposition = [0.0, 0.0, %.17g]\n"
+                "[impedances.plane]\ntype = \"kikuuwe_contact\"\nbody = \"box\"\n"
+                "stiffness = %.17g\ndamping = %.17g\nmu = %.17g\nsettle = true\n",
+                vec(g[0], g[1], g[2]).c_str(), kBox.mass,
+                vec(kBox.size[0], kBox.size[1], kBox.size[2]).c_str(), 0.5 * kBox.size[2],
+                kBox.stiffness, kBox.damping, c.mu);
+  return text;
+}
+
+// Problem 7's scene: the block between two finger boxes (box-box pair contacts, 16 points
+// each, K and B of kPinch per point). Each finger runs in a frictionless channel, its gripper's
+// prismatic guide: a floor (mu 0, settled: it carries the finger and the block's weight) under
+// its four bottom corners and two walls (mu 0) touching its faces at -y and +y at four
+// corners each, so it slides along x alone (without the walls the pair yaws: forces along
+// world x on fingers turned about z have a moment that turns them further). A force source
+// presses each finger towards the block.
+std::string pinch_scene(const Case& c) {
+  const PinchParams& k = kPinch;
+  const double force = k.squeeze(c.margin);
+  const double hx = 0.5 * k.finger[0], hy = 0.5 * k.finger[1], hz = 0.5 * k.finger[2];
+  auto corners = [&](int axis, double side) {
+    std::string list = "[";
+    for (int i = 0; i < 4; ++i) {
+      double p[3];
+      const double u = i & 1 ? 1.0 : -1.0, v = i & 2 ? 1.0 : -1.0;
+      p[axis] = side * (axis == 1 ? hy : hz);
+      p[0] = u * hx;
+      p[axis == 1 ? 2 : 1] = v * (axis == 1 ? hz : hy);
+      list += (i ? ", " : "") + vec(p[0], p[1], p[2]);
+    }
+    return list + "]";
+  };
+  std::string text =
+      "name = \"peers_pinch\"\ndescription = \"bench_peers: a block pinched between two "
+      "fingers\"\ngravity = [0.0, 0.0, -9.81]\n[simulation]\nintegrator = \"rk4\"\n"
+      "dt = 1e-4\nduration = 1.0\n";
+  char block[1600];
+  std::snprintf(block, sizeof block,
+                "[bodies.block]\ntype = \"rigid_body\"\nmass = %.17g\nshape = \"box\"\n"
+                "size = %s\nposition = [0.0, 0.0, %.17g]\n",
+                k.mass, vec(k.size, k.size, k.size).c_str(), k.height);
+  text += block;
+  for (int side : {-1, 1}) {
+    const char* name = side < 0 ? "left" : "right";
+    std::snprintf(block, sizeof block,
+                  "[bodies.%s]\ntype = \"rigid_body\"\nmass = %.17g\nshape = \"box\"\n"
+                  "size = %s\nposition = %s\n"
+                  "[impedances.%s_floor]\ntype = \"kikuuwe_contact\"\nbody = \"%s\"\n"
+                  "stiffness = %.17g\ndamping = %.17g\nmu = 0.0\nsettle = true\npoints = %s\n"
+                  "[impedances.%s_wall_a]\ntype = \"kikuuwe_contact\"\nbody = \"%s\"\n"
+                  "normal = [0.0, 1.0, 0.0]\noffset = %.17g\n"
+                  "stiffness = %.17g\ndamping = %.17g\nmu = 0.0\npoints = %s\n"
+                  "[impedances.%s_wall_b]\ntype = \"kikuuwe_contact\"\nbody = \"%s\"\n"
+                  "normal = [0.0, -1.0, 0.0]\noffset = %.17g\n"
+                  "stiffness = %.17g\ndamping = %.17g\nmu = 0.0\npoints = %s\n",
+                  name, k.finger_mass, vec(k.finger[0], k.finger[1], k.finger[2]).c_str(),
+                  vec(side * (k.finger_x() - 0.25 * force / k.stiffness), 0.0, k.height).c_str(), name, name, k.stiffness,
+                  k.damping, corners(2, -1.0).c_str(), name, name, -hy, k.stiffness, k.damping,
+                  corners(1, -1.0).c_str(), name, name, -hy, k.stiffness, k.damping,
+                  corners(1, 1.0).c_str());
+    text += block;
+    std::snprintf(block, sizeof block,
+                  "[impedances.%s_pinch]\ntype = \"kikuuwe_contact\"\nbody = \"block\"\n"
+                  "other = \"%s\"\nstiffness = %.17g\ndamping = %.17g\nmu = %.17g\n"
+                  "[impedances.%s_squeeze]\ntype = \"force_source\"\nbody = \"%s\"\n"
+                  "force = [%.17g, 0.0, 0.0]\n",
+                  name, name, k.stiffness, k.damping, c.mu, name, name, -side * force);
+    text += block;
+  }
+  return text;
+}
+
 class StictionPeer final : public Peer {
  public:
   StictionPeer(std::string integrator, double dt) : integrator_(std::move(integrator)), dt_(dt) {}
   std::string engine() const override { return "stiction"; }
   std::string settings() const override { return integrator_; }
   double dt() const override { return dt_; }
+  bool in_hold_benchmark() const override {
+    return (integrator_ == "rk4" && dt_ == 1e-4) ||
+           (integrator_ == "implicit" && std::abs(dt_ - 1.0 / 60) < 1e-12);
+  }
 
   void reset(const Case& c) override {
     problem_ = c.problem;
-    scene_ = c.problem == Problem::spheres
-                 ? scene::load_scene(scene::SceneSource::from_text(spheres_scene(c.count),
-                                                                   "spheres.toml"))
-                 : scene::load_scene(scene_file(c.problem));
+    switch (c.problem) {
+      case Problem::spheres:
+        scene_ = scene::load_scene(
+            scene::SceneSource::from_text(spheres_scene(c.count), "spheres.toml"));
+        break;
+      case Problem::ramp_grid:
+        scene_ = scene::load_scene(scene::SceneSource::from_text(ramp_scene(c), "ramp.toml"));
+        break;
+      case Problem::pinch:
+        scene_ = scene::load_scene(scene::SceneSource::from_text(pinch_scene(c), "pinch.toml"));
+        break;
+      default:
+        scene_ = scene::load_scene(scene_file(c.problem));
+    }
     stepper_ = core::make_stepper(integrator_, scene_.network->state_dim(), dt_);
     x_ = scene_.network->initial_state();
     t_ = 0.0;
@@ -74,8 +177,11 @@ class StictionPeer final : public Peer {
     for (int a = 0; a < static_cast<int>(network.admittances().size()); ++a) {
       const std::string& name = network.admittances()[a]->name();
       for (int i = 0; i < c.count; ++i) {
-        if (c.problem != Problem::spheres || name == sphere_name(i))
-          bodies_[i] = network.admittance_slot(a).state_offset;
+        const bool match = c.problem == Problem::spheres ? name == sphere_name(i)
+                           : c.problem == Problem::pinch
+                               ? name == (i == 0 ? "block" : i == 1 ? "left" : "right")
+                               : true;
+        if (match) bodies_[i] = network.admittance_slot(a).state_offset;
       }
     }
     arm_ = dynamic_cast<const core::JointSpace*>(network.admittances()[0].get());
