@@ -1,7 +1,9 @@
 #include "core/row_sampler.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/hermite.hpp"
@@ -14,6 +16,21 @@ double unwrap_toward(double value, double reference) {
   constexpr double kTurn = 2.0 * 3.14159265358979323846;
   return value + kTurn * std::round((reference - value) / kTurn);
 }
+
+// Adds the time from its construction to its destruction to `total` (RunResult::row_seconds).
+class RowTimer {
+ public:
+  explicit RowTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~RowTimer() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  RowTimer(const RowTimer&) = delete;
+  RowTimer& operator=(const RowTimer&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 }  // namespace
 
@@ -31,7 +48,10 @@ RowSampler::RowSampler(Network& network, const RunOptions& options, const Steppe
       row_(n_ + 1),
       last_row_(n_ + 1),
       row_prev_(n_),
-      row_now_(n_) {
+      row_now_(n_),
+      row_blend_(n_),
+      end_signals_(n_),
+      end_signals_t_(std::numeric_limits<double>::quiet_NaN()) {
   if (dense_ && stepper.start_derivative() == nullptr) {
     throw std::logic_error("RowSampler: a variable step without its start derivative");
   }
@@ -58,6 +78,10 @@ RowSampler::RowSampler(Network& network, const RunOptions& options, const Steppe
     x_row_.resize(x0.size());
   }
   network.write_signals(0.0, x0, T_, row_now_);
+  if (!dense_) {
+    end_signals_ = row_now_;
+    end_signals_t_ = 0.0;
+  }
   emit(0.0, row_now_);
   ++sample_;
 }
@@ -111,16 +135,22 @@ RunObserver::Before RowSampler::before_step(const StepPlan& plan) {
   const double next_sample = static_cast<double>(sample_) * sample_period_;
   const bool inside = sample_ < total_samples_ && next_sample <= plan.t_next + 1e-9 * T_ &&
                       (next_sample - plan.t) / (plan.t_next - plan.t) <= 1.0 - 1e-9;
-  return {Verdict::go_on, inside};
+  // The start signals are kept from the step before when it ended here.
+  return {Verdict::go_on, inside && !(end_signals_t_ == plan.t)};
 }
 
 Verdict RowSampler::after_step(const StepTaken& step) {
   t_reached_ = step.t_now;
   steps_seen_ = step.k + 1;
   if (!dense_) {
-    sample_linear(step);
+    if (sample_ < total_samples_ &&
+        static_cast<double>(sample_) * sample_period_ <= step.t_now + 1e-9 * T_) {
+      const RowTimer timer(result_.row_seconds);
+      sample_linear(step);
+    }
     return stop_if_non_finite();
   }
+  const RowTimer timer(result_.row_seconds);
   const Vec& start_derivative = *stepper_.start_derivative();  // at step.t, the pending end
   if (pending_) {
     f1_ = start_derivative;
@@ -144,6 +174,8 @@ void RowSampler::sample_linear(const StepTaken& step) {
     const double ts = static_cast<double>(sample_) * sample_period_;
     if (!have_now) {
       network_.write_signals(step.t_now, step.x, T_, row_now_);
+      end_signals_ = row_now_;
+      end_signals_t_ = step.t_now;
       have_now = true;
     }
     const double alpha = (ts - step.t) / (step.t_now - step.t);
@@ -151,12 +183,17 @@ void RowSampler::sample_linear(const StepTaken& step) {
       emit(ts, row_now_);
     } else {
       if (!have_prev) {
-        // before_step asked for the start state for exactly this row.
-        network_.write_signals(step.t, step.x_prev, T_, row_prev_);
+        if (end_signals_t_ == step.t) {
+          row_prev_ = end_signals_;  // the step before ended here
+        } else {
+          // before_step asked for the start state for exactly this row.
+          network_.write_signals(step.t, step.x_prev, T_, row_prev_);
+        }
         for (int c : wrapped_) row_now_[c] = unwrap_toward(row_now_[c], row_prev_[c]);
         have_prev = true;
       }
-      emit(ts, (1.0 - alpha) * row_prev_ + alpha * row_now_);
+      row_blend_.noalias() = (1.0 - alpha) * row_prev_ + alpha * row_now_;
+      emit(ts, row_blend_);
     }
     ++sample_;
   }
@@ -184,6 +221,7 @@ void RowSampler::sample_dense() {
 }
 
 void RowSampler::finish(const Vec& x) {
+  const RowTimer timer(result_.row_seconds);
   const double h_last = dense_ ? t1_ - t0_ : T_;
   if (pending_) {
     // The last step's end derivative: no next step evaluates it, so one evaluation here.

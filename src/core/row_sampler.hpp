@@ -5,7 +5,9 @@
 //
 // - A fixed step: rows at step ends are the step's signals; a row strictly inside a step is
 //   the linear blend of the signals at its two ends (an O(dt^2) error of the output only, and
-//   the rows of every existing run, bit for bit).
+//   the rows of every existing run, bit for bit). The signals at a step's end are kept: they are
+//   the next step's start signals (same time, same state, same tau), so a step with rows
+//   inside it evaluates the network once for its rows, not twice.
 // - A variable step (rk4_adaptive, whose steps span several rows in smooth phases): rows come
 //   from the state interpolated by a cubic Hermite (core/hermite.hpp) from both ends' values
 //   and derivatives, quaternions renormalized (Network::project), then
@@ -68,6 +70,11 @@ class RowSampler final : public RunObserver {
   double t_reached_ = 0.0;      // the end of the last step this sampler saw
   long steps_seen_ = 0;
   Vec row_prev_, row_now_;  // signals at a step's two ends (linear) or at a row (dense)
+  Vec row_blend_;           // a row between them (linear)
+  // The signals at the end of the last step that wrote rows, before unwrapping, and that
+  // step's end time (NaN: none): the next step's start signals if it starts there.
+  Vec end_signals_;
+  double end_signals_t_;
   // Dense output: the step whose rows wait for its end derivative.
   bool pending_ = false;
   double t0_ = 0.0, t1_ = 0.0;

@@ -10,7 +10,10 @@ DecimatedTrajectory::DecimatedTrajectory(std::vector<std::string> columns, std::
     : trajectory_(std::move(columns)),
       capacity_(std::max<std::size_t>(capacity, 4)),
       stride_(std::max<std::size_t>(min_stride, 1)) {
-  trajectory_.reserve_rows(static_cast<int>(std::min<std::size_t>(capacity_ + 1, 4096)));
+  // Room for every row it can hold at once when that is a few MB (the plots' copy, 16384
+  // rows): appending then never reallocates, and thinning works in place. Pages are touched
+  // only as rows arrive.
+  trajectory_.reserve_rows(static_cast<int>(std::min<std::size_t>(capacity_ + 1, 16385)));
 }
 
 void DecimatedTrajectory::write(const double* rows, std::size_t count, std::size_t columns) {
@@ -33,10 +36,7 @@ void DecimatedTrajectory::write(const double* rows, std::size_t count, std::size
 void DecimatedTrajectory::thin() {
   // Kept rows are those with index % stride == 0; keep those with index % (2 stride) == 0,
   // which are the even positions of the table.
-  Trajectory thinned(trajectory_.columns());
-  thinned.reserve_rows(static_cast<int>(capacity_ + 1));
-  for (int r = 0; r < trajectory_.row_count(); r += 2) thinned.append(trajectory_.row(r));
-  trajectory_ = std::move(thinned);
+  trajectory_.keep_even_rows();
   stride_ *= 2;
 }
 

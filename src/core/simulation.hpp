@@ -71,6 +71,10 @@ struct RunResult {
   long steps = 0;
   long evaluations = 0;  // network evaluations (the integrator's cost)
   double wall_seconds = 0.0;
+  // Of wall_seconds, the time the run loop spent on rows (core/row_sampler.hpp: signals at
+  // row times, interpolation, handing rows to the sink), steady clock, measured only around
+  // steps that produce rows. What a sink does on threads of its own is not in it.
+  double row_seconds = 0.0;
   std::optional<Instability> instability;
   bool interrupted = false;              // stopped early through RunOptions::stop
   std::vector<SlipHistory> slip_events;  // one per impedance with a slip speed

@@ -1,42 +1,31 @@
 #include "io/csv_writer.hpp"
 
-#include <algorithm>
-#include <charconv>
+#include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/block_pipe.hpp"
+#include "io/row_text.hpp"
 
 namespace stiction::io {
 
 void append_number(std::string& out, double v) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  out.append(buffer, result.ptr);
-  // "0" or "12" would read back as integers (pandas makes such a column int64): a number
-  // without a point, exponent or letter (nan, inf) gets ".0" (DESIGN section 4).
-  if (std::find_if(buffer, result.ptr, [](char c) { return c != '-' && (c < '0' || c > '9'); }) ==
-      result.ptr) {
-    out += ".0";
-  }
+  char buffer[kMaxNumberChars];
+  out.append(buffer, format_number(buffer, v));
 }
-
-void append_row(std::string& out, const double* row, std::size_t columns);
 
 namespace {
 
-void append_header(std::string& out, const core::Trajectory& trajectory) {
-  const auto& columns = trajectory.columns();
+std::string header(const std::vector<std::string>& columns) {
+  std::string out;
   for (std::size_t c = 0; c < columns.size(); ++c) {
     if (c > 0) out += ',';
     out += columns[c];
   }
   out += '\n';
+  return out;
 }
 
-void append_trajectory_row(std::string& out, const core::Trajectory& trajectory, int r) {
-  io::append_row(out, trajectory.row(r), static_cast<std::size_t>(trajectory.column_count()));
-}
-
-constexpr std::size_t kChunk = 1u << 20;
+constexpr std::size_t kFileChunk = std::size_t{1} << 20;
 
 }  // namespace
 
@@ -49,51 +38,66 @@ void append_row(std::string& out, const double* row, std::size_t columns) {
 }
 
 CsvStream::CsvStream(const std::filesystem::path& path, const std::vector<std::string>& columns)
-    : file_(std::make_unique<AtomicFile>(path)) {
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    if (c > 0) buffer_ += ',';
-    buffer_ += columns[c];
-  }
-  buffer_ += '\n';
+    : columns_(columns.size()),
+      file_(std::make_unique<AtomicFile>(path)),
+      text_(std::make_unique<TextBuffer>()),
+      row_text_(std::make_unique<RowText>(columns.size())) {
+  text_->reserve_more(kChunk + row_text_->max_row_chars());
+  text_->append(header(columns));
+  pipe_ = std::make_unique<BlockPipe>(
+      columns_, [this](const double* rows, std::size_t count) { consume(rows, count); });
 }
 
-CsvStream::~CsvStream() = default;
+CsvStream::~CsvStream() { pipe_.reset(); }  // stops the writer before what it uses goes
+
+void CsvStream::consume(const double* rows, std::size_t count) {
+  for (std::size_t r = 0; r < count; ++r) {
+    row_text_->append_row(*text_, rows + r * columns_);
+    if (text_->size() >= kChunk) {
+      file_->write(text_->view());
+      text_->clear();
+    }
+  }
+}
 
 void CsvStream::write(const double* rows, std::size_t count, std::size_t columns) {
-  for (std::size_t r = 0; r < count; ++r) append_row(buffer_, rows + r * columns, columns);
-  if (buffer_.size() > kChunk) {
-    file_->write(buffer_);
-    buffer_.clear();
-  }
+  if (columns != columns_) throw std::logic_error("CsvStream: rows of another width");
+  pipe_->push(rows, count);
 }
 
 void CsvStream::commit() {
-  file_->write(buffer_);
-  buffer_.clear();
-  buffer_.shrink_to_fit();
+  pipe_->close();
+  file_->write(text_->view());
+  text_->clear();
   file_->commit();
 }
 
+double CsvStream::writer_cpu_seconds() const { return pipe_->writer_cpu_seconds(); }
+
 std::string to_csv(const core::Trajectory& trajectory) {
-  std::string out;
-  append_header(out, trajectory);
-  for (int r = 0; r < trajectory.row_count(); ++r) append_trajectory_row(out, trajectory, r);
-  return out;
+  const std::size_t n = static_cast<std::size_t>(trajectory.column_count());
+  TextBuffer text;
+  text.append(header(trajectory.columns()));
+  RowText rows(n);
+  for (int r = 0; r < trajectory.row_count(); ++r) rows.append_row(text, trajectory.row(r));
+  return std::string(text.view());
 }
 
 void write_csv(const core::Trajectory& trajectory, const std::filesystem::path& path) {
   AtomicFile file(path);
   // Rows go out in chunks: a long run need not hold its whole text in memory.
-  std::string chunk;
-  append_header(chunk, trajectory);
+  const std::size_t n = static_cast<std::size_t>(trajectory.column_count());
+  TextBuffer text;
+  text.append(header(trajectory.columns()));
+  RowText rows(n);
   for (int r = 0; r < trajectory.row_count(); ++r) {
-    append_trajectory_row(chunk, trajectory, r);
-    if (chunk.size() > kChunk) {
-      file.write(chunk);
-      chunk.clear();
+    rows.append_row(text, trajectory.row(r));
+    if (text.size() > kFileChunk) {
+      file.write(text.view());
+      text.clear();
     }
   }
-  file.write(chunk);
+  file.write(text.view());
   file.commit();
 }
 

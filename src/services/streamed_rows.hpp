@@ -26,6 +26,8 @@ class StreamedRows {
                bool video);
   core::RowSink& sink() { return *fan_out_; }
   void commit_csv() { csv_.commit(); }
+  // CPU seconds trajectory.csv's writer thread spent (after commit_csv()).
+  double csv_writer_cpu_seconds() const { return csv_.writer_cpu_seconds(); }
   const core::Trajectory& for_plots() const { return plots_.trajectory(); }
   const core::Trajectory& for_video() const { return video_->trajectory(); }
 
