@@ -32,12 +32,6 @@ using namespace stiction::peers;
 
 namespace {
 
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 struct Result {
   bool expressed = true;
   bool shown = true;  // false: a row the hold benchmark leaves out by choice

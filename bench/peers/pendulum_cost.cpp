@@ -34,12 +34,6 @@ using namespace stiction::peers;
 
 namespace {
 
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 struct Setting {
   std::string integrator;
   double dt = 0.0;         // the step, or the first step of an adaptive integrator

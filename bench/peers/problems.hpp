@@ -51,11 +51,19 @@
 // corner (scenes/box_slope.toml).
 #pragma once
 
+#include <ctime>
 #include <limits>
 #include <string>
 #include <vector>
 
 namespace stiction::peers {
+
+// CPU time of the calling thread (s): what each engine's stepping costs, whatever else runs.
+inline double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 enum class Problem { sphere, slope_hold, slope_slide, spheres, pendulum, ramp_grid, pinch };
 std::string problem_name(Problem problem);

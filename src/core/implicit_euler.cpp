@@ -6,7 +6,6 @@
 #include <sstream>
 #include <stdexcept>
 
-
 namespace stiction::core {
 
 std::vector<bool> implicitly_solved_slots(const Network& network) {
@@ -135,8 +134,7 @@ std::string ImplicitEulerStepper::describe(const Network& network, const IslandS
     text << "'" << network.impedances()[static_cast<std::size_t>(part.impedances.front())]->name()
          << "'";
   }
-  text << " (" << part.admittances.size() << " bodies, " << part.impedances.size()
-       << " elements)";
+  text << " (" << part.admittances.size() << " bodies, " << part.impedances.size() << " elements)";
   return text.str();
 }
 
@@ -266,7 +264,8 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
   for (int e : s.island.states) start_[e] = eval_[e] = iterate_[e] = x[e];
   if (!start_known) evaluate_part(network, s, t_end, x, h, f_);
   const auto n = static_cast<Eigen::Index>(s.solved.size());
-  for (Eigen::Index r = 0; r < n; ++r) s.residual[r] = -h * f_[s.solved[static_cast<std::size_t>(r)]];
+  for (Eigen::Index r = 0; r < n; ++r)
+    s.residual[r] = -h * f_[s.solved[static_cast<std::size_t>(r)]];
   int formed = 0;  // matrices formed during this step
   if (!s.lu_valid || s.lu_h != h) {
     refresh_matrix(network, s, t_end, h);
@@ -277,7 +276,8 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
   int moves = 0, halvings = 0;
   for (int k = 0; k < kMaxIterations; ++k) {
     for (int e : s.island.states) last_eval_[e] = eval_[e];
-    for (Eigen::Index r = 0; r < n; ++r) iterate_[s.solved[static_cast<std::size_t>(r)]] -= s.delta[r];
+    for (Eigen::Index r = 0; r < n; ++r)
+      iterate_[s.solved[static_cast<std::size_t>(r)]] -= s.delta[r];
     evaluate_iterate(network, s, t_end, h);
     // Converged when the next Newton correction is below the tolerance: measured on the
     // correction, not the residual, since a stiff element's residual carries its stiffness
@@ -336,7 +336,8 @@ bool ImplicitEulerStepper::apply_inverse(Vec& v) {
       s.residual[r] = v[s.solved[static_cast<std::size_t>(r)]];
     }
     s.delta.noalias() = s.lu.solve(s.residual);
-    for (Eigen::Index r = 0; r < s.delta.size(); ++r) v[s.solved[static_cast<std::size_t>(r)]] = s.delta[r];
+    for (Eigen::Index r = 0; r < s.delta.size(); ++r)
+      v[s.solved[static_cast<std::size_t>(r)]] = s.delta[r];
   }
   return true;
 }

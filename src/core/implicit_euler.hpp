@@ -94,10 +94,10 @@ class ImplicitEulerStepper final : public Stepper {
 
   // One island's Newton solver: what it solves, its matrix and its scratch.
   struct IslandSolve {
-    Island island;                             // its part of the network
-    std::vector<int> solved;                   // the state entries Newton solves for
-    std::vector<int> friction_elements;        // clamped friction with a slip
-    double share = 0.0;                        // states / state_dim: its evaluation's cost
+    Island island;                       // its part of the network
+    std::vector<int> solved;             // the state entries Newton solves for
+    std::vector<int> friction_elements;  // clamped friction with a slip
+    double share = 0.0;                  // states / state_dim: its evaluation's cost
     Eigen::MatrixXd matrix;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
     Vec residual, delta, probe_delta;

@@ -46,7 +46,8 @@ std::vector<Island> find_islands(const Network& network, const std::vector<char>
   // map, so one lookup table instead of a search per pointer).
   std::vector<std::pair<const Admittance*, int>> index;
   index.reserve(admittances.size());
-  for (int j = 0; j < n_adm; ++j) index.emplace_back(admittances[static_cast<std::size_t>(j)].get(), j);
+  for (int j = 0; j < n_adm; ++j)
+    index.emplace_back(admittances[static_cast<std::size_t>(j)].get(), j);
   std::sort(index.begin(), index.end());
   const auto find = [&](const Admittance* a) {
     const auto it = std::lower_bound(index.begin(), index.end(), std::make_pair(a, -1));

@@ -224,21 +224,12 @@ std::vector<LayoutEntry> Network::layout() const {
 }
 
 template <typename F>
-void Network::for_impedances(const Island* part, F f) const {
-  if (part != nullptr) {
-    for (int i : part->impedances) f(static_cast<std::size_t>(i));
+void Network::for_each_index(const std::vector<int>* listed, std::size_t count, F f) {
+  if (listed != nullptr) {
+    for (int i : *listed) f(static_cast<std::size_t>(i));
     return;
   }
-  for (std::size_t i = 0; i < impedances_.size(); ++i) f(i);
-}
-
-template <typename F>
-void Network::for_admittances(const Island* part, F f) const {
-  if (part != nullptr) {
-    for (int j : part->admittances) f(static_cast<std::size_t>(j));
-    return;
-  }
-  for (std::size_t j = 0; j < admittances_.size(); ++j) f(j);
+  for (std::size_t i = 0; i < count; ++i) f(i);
 }
 
 void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot,
@@ -252,7 +243,7 @@ void Network::evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_
       u_hat_.segment(s.input_offset, s.input_size).setZero();
     }
   }
-  for_impedances(part, [&](std::size_t i) {
+  for_each_index(part ? &part->impedances : nullptr, impedances_.size(), [&](std::size_t i) {
     const Slot& s = impedance_slots_[i];
     const Impedance& imp = *impedances_[i];
     auto x_hat = x_hat_.segment(s.input_offset, s.input_size);
@@ -304,7 +295,9 @@ void Network::derivative_part(double t, const double* x, double tau, double* x_d
     const Slot& s = admittance_slots_[static_cast<std::size_t>(j)];
     for (int k = 0; k < s.input_size; ++k) u_hat[s.input_offset + k] = 0.0;
   }
-  for (int i : part.impedances) plain_[static_cast<std::size_t>(i)]->exchange(t, x, tau, x_dot, u_hat);
+  for (int i : part.impedances) {
+    plain_[static_cast<std::size_t>(i)]->exchange(t, x, tau, x_dot, u_hat);
+  }
   for (int j : part.admittances) {
     const AdmittanceCall& call = admittance_calls_[static_cast<std::size_t>(j)];
     call.admittance->derivative_at(x + call.state_offset, u_hat + call.input_offset,
@@ -366,7 +359,7 @@ void Network::derivative_friction_held(double t, ConstVecRef x, double tau, VecR
 
 double Network::friction_cap_energy(ConstVecRef x, const Island* part) {
   double total = 0.0;
-  for_impedances(part, [&](std::size_t i) {
+  for_each_index(part ? &part->impedances : nullptr, impedances_.size(), [&](std::size_t i) {
     const ClampedFriction* friction = capabilities_[i].friction;
     if (friction == nullptr) return;
     const Slot& s = impedance_slots_[i];
@@ -378,7 +371,7 @@ double Network::friction_cap_energy(ConstVecRef x, const Island* part) {
 }
 
 void Network::kinematics(ConstVecRef x, VecRef x_dot, const Island* part) const {
-  for_admittances(part, [&](std::size_t j) {
+  for_each_index(part ? &part->admittances : nullptr, admittances_.size(), [&](std::size_t j) {
     const Slot& s = admittance_slots_[j];
     admittances_[j]->derivative(x.segment(s.state_offset, s.state_size),
                                 zero_input_.segment(s.input_offset, s.input_size),
@@ -387,7 +380,7 @@ void Network::kinematics(ConstVecRef x, VecRef x_dot, const Island* part) const 
 }
 
 void Network::project(VecRef x, const Island* part) const {
-  for_admittances(part, [&](std::size_t j) {
+  for_each_index(part ? &part->admittances : nullptr, admittances_.size(), [&](std::size_t j) {
     const Slot& s = admittance_slots_[j];
     admittances_[j]->project(x.segment(s.state_offset, s.state_size));
   });
@@ -452,7 +445,7 @@ ConstVecRef Network::impedance_input(int impedance, ConstVecRef x) {
 
 std::size_t Network::regime_signature(ConstVecRef x, double tau, const Island* part) {
   std::size_t signature = 0;
-  for_impedances(part, [&](std::size_t i) {
+  for_each_index(part ? &part->impedances : nullptr, impedances_.size(), [&](std::size_t i) {
     int r = 0;  // smooth elements have one piece
     if (const PiecewiseLaw* law = capabilities_[i].law) {
       const Slot& s = impedance_slots_[i];

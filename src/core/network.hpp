@@ -128,11 +128,10 @@ class Network {
   // With `part`, the island's impedances only, into its admittances' inputs.
   void evaluate_impedances(double t, ConstVecRef x, double tau, VecRef x_dot,
                            const Vec* friction_reference = nullptr, const Island* part = nullptr);
-  // Calls f(i) for every impedance, or every impedance of `part`; likewise admittances.
+  // Calls f(i) for every index in `listed` (an island's impedances or admittances), or
+  // for 0 .. count - 1 without a list.
   template <typename F>
-  void for_impedances(const Island* part, F f) const;
-  template <typename F>
-  void for_admittances(const Island* part, F f) const;
+  static void for_each_index(const std::vector<int>* listed, std::size_t count, F f);
   [[gnu::always_inline]] inline void evaluate_admittances(const double* x, double* x_dot);
 
   std::vector<std::unique_ptr<Admittance>> admittances_;

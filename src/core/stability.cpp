@@ -301,7 +301,8 @@ std::optional<double> symplectic_step_radius(IslandSystem& sys, double h, bool f
     Eigen::MatrixXd phi = A;
     const Eigen::MatrixXd moved = h * (*G)(group, group) * A;
     for (int i = 0; i < m; ++i) {
-      if (!positions[static_cast<std::size_t>(sys.entry(group[static_cast<std::size_t>(i)]))]) continue;
+      const int entry = sys.entry(group[static_cast<std::size_t>(i)]);
+      if (!positions[static_cast<std::size_t>(entry)]) continue;
       phi.row(i) = moved.row(i);
       phi(i, i) += 1.0;
     }
@@ -496,7 +497,9 @@ struct StateScratch {
 
 int largest_island_states(const Network& network) {
   std::size_t largest = 0;
-  for (const Island& island : find_islands(network)) largest = std::max(largest, island.states.size());
+  for (const Island& island : find_islands(network)) {
+    largest = std::max(largest, island.states.size());
+  }
   return static_cast<int>(largest);
 }
 

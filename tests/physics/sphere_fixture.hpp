@@ -3,6 +3,8 @@
 #pragma once
 
 #include <memory>
+#include <random>
+#include <string>
 
 #include "components/admittance/rigid_body.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
@@ -10,6 +12,7 @@
 #include "core/events.hpp"
 #include "core/network.hpp"
 #include "core/simulation.hpp"
+#include "core/trajectory.hpp"
 
 namespace stiction::testing {
 
@@ -50,6 +53,29 @@ inline std::unique_ptr<core::Network> make_sphere(const SphereCase& c) {
 // Height at which the sphere rests on the spring of the contact: no bounce.
 inline double resting_height(const SphereCase& c) {
   return c.radius - c.mass * c.g / c.stiffness;
+}
+
+// A sphere with generated mass, radius, inertia (solid or hollow), mu and launch speed,
+// damped at the paper's ratio, resting at its static deflection.
+inline SphereCase random_sphere(std::mt19937& rng) {
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  SphereCase c;
+  c.mass = uniform(0.1, 5.0);
+  c.radius = uniform(0.02, 0.5);
+  c.inertia_factor = uniform(0.0, 1.0) < 0.5 ? 0.4 : 2.0 / 3.0;
+  c.mu = uniform(0.05, 0.8);
+  c.v0 = uniform(0.5, 4.0);
+  c.damping = 10.0 * c.mass / 0.3;  // the paper's damping ratio
+  c.height = resting_height(c);
+  return c;
+}
+
+// Column `name` of a trajectory at the first row at or after t.
+inline double column_at(const core::Trajectory& tr, const std::string& name, double t) {
+  const auto col = *tr.find(name);
+  int row = 0;
+  while (row + 1 < tr.row_count() && tr.at(row, 0) < t - 1e-9) ++row;
+  return tr.at(row, col);
 }
 
 inline double first_stick_time(const core::RunResult& result) {

@@ -44,7 +44,9 @@ std::string header(double dt) {
 }
 
 Ball random_ball(std::mt19937& rng, int k) {
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   Ball b{};
   b.mass = uniform(0.1, 5.0);
   b.radius = uniform(0.02, 0.3);
@@ -156,13 +158,16 @@ TEST_CASE("islands: a ball stepped among many moves to the bit as the same ball 
   }
 }
 
-TEST_CASE("islands: two spheres apart step as two islands, collide as one, and move as with "
-          "the contact always attached",
-          "[implicit][islands]") {
+TEST_CASE(
+    "islands: two spheres apart step as two islands, collide as one, and move as with "
+    "the contact always attached",
+    "[implicit][islands]") {
   // Generated glancing collisions without gravity: the contact between the spheres detaches
   // while they are apart (two islands and the contact's own) and attaches as they close.
   std::mt19937 rng(11);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
   for (int trial = 0; trial < 4; ++trial) {
     const double ra = uniform(0.05, 0.2), rb = uniform(0.05, 0.2), ma = uniform(0.5, 3.0),
                  mb = uniform(0.5, 3.0), v = uniform(1.0, 3.0), offset = uniform(0.0, 0.8);

@@ -23,6 +23,8 @@
 
 using namespace stiction;
 using testing::SphereCase;
+using testing::column_at;
+using testing::random_sphere;
 
 namespace {
 
@@ -70,26 +72,6 @@ std::string slope_scene(const std::string& integrator, double tolerance, double 
     << "[impedances.plane]\ntype = \"kikuuwe_contact\"\nbody = \"box\"\nstiffness = 1e6\n"
     << "damping = 1000.0\nmu = " << mu << "\nsettle = true\n";
   return s.str();
-}
-
-double column_at(const core::Trajectory& tr, const std::string& name, double t) {
-  const auto col = *tr.find(name);
-  int row = 0;
-  while (row + 1 < tr.row_count() && tr.at(row, 0) < t - 1e-9) ++row;
-  return tr.at(row, col);
-}
-
-SphereCase random_sphere(std::mt19937& rng) {
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
-  SphereCase c;
-  c.mass = uniform(0.1, 5.0);
-  c.radius = uniform(0.02, 0.5);
-  c.inertia_factor = uniform(0.0, 1.0) < 0.5 ? 0.4 : 2.0 / 3.0;
-  c.mu = uniform(0.05, 0.8);
-  c.v0 = uniform(0.5, 4.0);
-  c.damping = 10.0 * c.mass / 0.3;  // the paper's damping ratio
-  c.height = testing::resting_height(c);
-  return c;
 }
 
 }  // namespace
