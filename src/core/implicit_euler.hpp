@@ -86,6 +86,10 @@ class ImplicitEulerStepper final : public Stepper {
   static constexpr int kMaxBandMoves = 2;        // per step
   static constexpr int kMaxHalvings = 4;         // per step: damped Newton where it grows
   static constexpr int kMaxMatricesPerStep = 4;  // formed anew where the iteration stalls
+  // Steps within this relative difference share an iteration matrix (rounding of h).
+  static constexpr double kSameStep = 1e-9;
+  // Islands of up to this many unknowns keep their matrix's inverse (correct()).
+  static constexpr Eigen::Index kInverseUnknowns = 24;
   // Tolerance of a Newton correction's entry i: kRelative |x_i| + kAbsolute.
   static constexpr double kRelative = 1e-12;
   static constexpr double kAbsolute = 1e-13;
@@ -100,12 +104,15 @@ class ImplicitEulerStepper final : public Stepper {
     double share = 0.0;                  // states / state_dim: its evaluation's cost
     Eigen::MatrixXd matrix;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+    Eigen::MatrixXd inverse;  // of small islands only (kInverseUnknowns)
     Vec residual, delta, probe_delta;
     bool lu_valid = false;
     double lu_h = 0.0;
   };
 
   void prepare(Network& network);
+  // delta = the iteration matrix's inverse applied to the residual.
+  void correct(IslandSolve& s);
   // (Re)builds islands_ for the current detached_ set, keeping the matrices of the islands
   // that are unchanged.
   void build_islands(Network& network);
