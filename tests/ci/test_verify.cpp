@@ -219,7 +219,7 @@ TEST_CASE("verify: two runs of each bundled scene give identical frame and figur
   CHECK(images >= 3 * bundled);  // two frames and at least one figure each
 }
 
-TEST_CASE("verify: its figures are the ones run writes, pixel for pixel") {
+TEST_CASE("verify: its figures are the ones run writes (the same pixels)") {
   // The same rows (thinned as run thins them), the same events with their labels ("slide
   // 2.45 s", not "ground.0 slip"), the same layout: services::run_figure for both.
   const fs::path dir = scratch_dir("stiction_test_ci_verify_", "as_run");
