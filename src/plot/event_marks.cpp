@@ -383,8 +383,9 @@ void draw_event_labels(Painter& painter, const EventLabelPlan& plan,
       }
       if (!report.leader.empty()) painter.polyline(report.leader, leader);
       report.text = static_cast<int>(layout.texts.size());
+      const TextOrigin origin{event.label, l.text != event.label};
       painter.text(l.text, box.x0, box.y1 - e.line_descent, m.event(), event_colour(event.kind),
-                   TextRole::event_label, -1);
+                   TextRole::event_label, -1, false, &origin);
     }
     layout.event_labels.push_back(std::move(report));
   }

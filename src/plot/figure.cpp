@@ -119,12 +119,14 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   // The title by the text rule: on one line in the pixel design, on up to two in print.
   double title_size = m.title();
   std::vector<std::string> title_lines;
+  bool title_shortened = false;
   if (!figure.title.empty()) {
     const FittedText title = fit_text(
         painter, figure.title,
         TextRule{m.title(), m.floor(m.title()), margin_width, std::size_t{m.shrinks ? 1u : 2u}});
     title_lines = title.lines;
     title_size = title.size;
+    title_shortened = title.shortened;
   }
   const Extent title_extent = painter.measure("Hg", title_size);
   const double title_line = title_extent.line_ascent + title_extent.line_descent;
@@ -163,7 +165,10 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   const bool edge_ticks = std::any_of(figure.panels.begin(), figure.panels.end(),
                                       [](const Panel& p) { return p.log || (p.y_min && p.y_max); });
   const double tick_line = tick_extent.line_ascent + tick_extent.line_descent;
-  const double gap = (edge_ticks ? std::max(26 * s, tick_line + 4 * s) : 26 * s) + caption_line;
+  // Between panels: room for the tick labels at the frames' edges; with captions, the caption
+  // row (left of the frame nothing but tick labels sits, so the two share the height).
+  const double tick_gap = edge_ticks ? std::max(26 * s, tick_line + 4 * s) : 26 * s;
+  const double gap = captions ? std::max(tick_gap, caption_line + 8 * s) : tick_gap;
   const Panel empty_panel;
   auto panel_at = [&](std::size_t p) -> const Panel& {
     return p < figure.panels.size() ? figure.panels[p] : empty_panel;
@@ -179,6 +184,8 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   bool with_key = false;
   std::string x_title;
   double x_title_size = m.label();
+  bool x_title_shortened = false;
+  std::string x_title_given;
   std::vector<Legend> legends(n_panels);
   std::vector<Rect> legend_boxes(n_panels);  // inside places (chosen each pass)
   // Where each legend goes: it moves only from inside to above to beside the axes, and back
@@ -220,6 +227,16 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
                            px + 0.5 * w + 2 * s, baseline + tick_extent.line_descent});
     }
     return boxes;
+  };
+  // A legend in the panel's caption row: one unboxed row right of the caption, when the
+  // figure has caption rows; it costs the data no room. The caption stays whole, at its size
+  // or smaller down to the floor of its text (the text rule).
+  auto caption_row_legend = [&](std::size_t p, const Rect& f) -> std::optional<Legend> {
+    if (!captions) return std::nullopt;
+    const std::string& caption = panel_at(p).caption;
+    const double taken =
+        caption.empty() ? 0.0 : painter.measure(caption, m.floor(m.event())).width + 20 * s;
+    return legend_in_caption_row(panel_at(p), painter, m, f.width() - taken);
   };
   std::vector<std::vector<std::vector<Point>>> lines(n_panels);
   for (int pass = 0; pass < 8; ++pass) {
@@ -315,7 +332,25 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
           draw_event_marks(mask, figure.events, x_axis, f, event_rug, m);
         });
         const PanelInk ink{data, marks};
-        if (const auto inside = free_place_inside(panel_at(p), painter, m, f, ink, legend_ink[p])) {
+        // Inside at the legend's size; else in the caption row (no room taken, nothing
+        // covered); else inside at the floor of its text (a smaller legend inside costs the
+        // data less than one above or beside the axes).
+        if (const auto inside =
+                free_place_inside(panel_at(p), painter, m, f, ink, m.legend(), legend_ink[p])) {
+          legends[p] = inside->legend;
+          legend_boxes[p] = inside->box;
+          continue;
+        }
+        if (!crowded[p]) {
+          if (auto row = caption_row_legend(p, f)) {
+            places[p] = LegendPlace::caption;
+            legends[p] = std::move(*row);
+            moved = true;
+            continue;
+          }
+        }
+        if (const auto inside = free_place_inside(panel_at(p), painter, m, f, ink,
+                                                  m.floor(m.legend()), legend_ink[p])) {
           legends[p] = inside->legend;
           legend_boxes[p] = inside->box;
           continue;
@@ -331,7 +366,8 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
           }
           continue;
         }
-        // Outside: where it costs the data least room, as a fraction of the figure (beside
+        // Outside: in the caption row when it fits there (no room taken), else where it costs
+        // the data least room, as a fraction of the figure (beside
         // the axes every panel narrows, unless a legend is there already), a legend with
         // shortened labels counting as worse beside and not going above at all.
         const Legend on_top = legend_above(panel_at(p), painter, m, f.width(), 2);
@@ -372,6 +408,16 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
         } else {
           places[p] = cost_above <= cost_beside ? LegendPlace::above : LegendPlace::right;
         }
+      }
+      if (places[p] == LegendPlace::caption) {
+        if (auto row = caption_row_legend(p, f)) {
+          legends[p] = std::move(*row);
+          continue;
+        }
+        // No longer fits beside the caption as the panels narrowed: above the panel (a place
+        // changes only in the order inside, caption row, above, beside, so the passes settle).
+        places[p] = LegendPlace::above;
+        moved = true;
       }
       if (places[p] == LegendPlace::above) {
         legends[p] = legend_above(panel_at(p), painter, m, f.width(), above_rows[p]);
@@ -485,11 +531,12 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
           const double px = x_axis.map(e.x);
           return !e.labelled && std::isfinite(px) && px >= frames[0].x0 && px <= frames[0].x1;
         });
-    const FittedText x_fitted =
-        fit_text(painter, axis_title(figure.x_label, figure.x_unit, x_labels.exponent),
-                 TextRule{m.label(), m.floor(m.label()), frames.back().width(), 1});
+    x_title_given = axis_title(figure.x_label, figure.x_unit, x_labels.exponent);
+    const FittedText x_fitted = fit_text(
+        painter, x_title_given, TextRule{m.label(), m.floor(m.label()), frames.back().width(), 1});
     x_title = x_fitted.joined();
     x_title_size = x_fitted.size;
+    x_title_shortened = x_fitted.shortened;
     const double x_title_half = 0.5 * painter.measure(x_title, x_title_size).width;
     const double centre = 0.5 * (frames.back().x0 + frames.back().x1);
     const bool key_beside = size.width - m.margin() - key.width >= centre + x_title_half + 16 * s ||
@@ -505,11 +552,13 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   layout.x_axis = AxisRange{x_lo, x_hi, false};
 
   // ---- Title.
+  const TextOrigin title_origin{figure.title, title_shortened};
   for (std::size_t k = 0; k < title_lines.size(); ++k) {
     const double w = painter.measure(title_lines[k], title_size).width;
     const double cx = 0.5 * (frames[0].x0 + frames[0].x1);
     painter.text(title_lines[k], std::clamp(cx - 0.5 * w, m.margin(), size.width - w - m.margin()),
-                 title_baseline + k * title_line, title_size, kText, TextRole::title, -1);
+                 title_baseline + k * title_line, title_size, kText, TextRole::title, -1, false,
+                 &title_origin);
   }
 
   const Stroke frame_stroke{kFrame, m.frame_width(), {}};
@@ -556,10 +605,17 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
                            (legends[p].place == LegendPlace::above && !legends[p].entries.empty()
                                 ? legends[p].height + 6 * s
                                 : 0.0);
+      // Beside a legend in the caption row it keeps the room left of it.
+      const double legend_room =
+          legends[p].place == LegendPlace::caption && !legends[p].entries.empty()
+              ? legends[p].width + 20 * s
+              : 0.0;
       const FittedText caption =
-          fit_text(painter, panel.caption, TextRule{m.event(), m.floor(m.event()), f.width(), 1});
+          fit_text(painter, panel.caption,
+                   TextRule{m.event(), m.floor(m.event()), f.width() - legend_room, 1});
+      const TextOrigin caption_origin{panel.caption, caption.shortened};
       painter.text(caption.joined(), f.x0, f.y0 - above - 5 * s - caption_extent.line_descent,
-                   caption.size, kText, TextRole::note, pi);
+                   caption.size, kText, TextRole::note, pi, false, &caption_origin);
     }
     // Legend: inside at its free place, above the panel (right-aligned, over the event
     // labels of the top panel) or beside the axes.
@@ -571,6 +627,10 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
     Rect box = legend_boxes[p];
     if (L.place == LegendPlace::right) {
       box = Rect{f.x1 + 16 * s, f.y0, f.x1 + 16 * s + L.width, f.y0 + L.height};
+    } else if (L.place == LegendPlace::caption) {
+      const double bottom_edge =
+          f.y0 - (p == 0 ? event_rows_height(painter, event_rows, m) : 0.0) - 5 * s;
+      box = Rect{f.x1 - L.width, bottom_edge - L.height, f.x1, bottom_edge};
     } else if (L.place == LegendPlace::above) {
       const double bottom_edge =
           f.y0 - (p == 0 ? event_rows_height(painter, event_rows, m) : 0.0) - 6 * s;
@@ -599,9 +659,10 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
   const double xw = painter.measure(x_title, x_title_size).width;
   const double x_title_baseline =
       tick_baseline + tick_extent.line_descent + 8 * s + label_extent.line_ascent;
+  const TextOrigin x_title_origin{x_title_given, x_title_shortened};
   const Rect x_title_box =
       painter.text(x_title, 0.5 * (bottom.x0 + bottom.x1) - 0.5 * xw, x_title_baseline,
-                   x_title_size, kText, TextRole::axis_label, -1);
+                   x_title_size, kText, TextRole::axis_label, -1, false, &x_title_origin);
 
   // ---- Event labels above the top panel, at their marks; the key beside the time axis title.
   draw_event_labels(painter, event_plan, figure.events, frames[0], m, layout);

@@ -29,6 +29,12 @@ struct TextBox {
   TextRole role = TextRole::note;
   Rect box;        // the logical box: advance width by the font's ascent + descent
   int panel = -1;  // the panel it belongs to (-1: the figure)
+  // What the figure was given to say here (the whole title, axis title, legend entry, event
+  // label; a wrapped text's lines each carry all of it), and whether the text rule left
+  // words of it out (text_fit.hpp): `text` is then its whole words and segments with "…" in
+  // place of those left out, never a piece of a word.
+  std::string given;
+  bool shortened = false;
 };
 
 // A labelled event: its mark (on the upper edge of the top panel), its label (an index into

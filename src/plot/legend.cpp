@@ -54,6 +54,7 @@ Legend shape_legend(const Panel& panel, const std::vector<int>& entries, Painter
     }
     L.labels.push_back(fitted[k].joined());
     L.label_sizes.push_back(fitted[k].size);
+    L.label_shortened.push_back(fitted[k].shortened);
     L.shortened = L.shortened || fitted[k].shortened || fitted[k].below_floor;
     text_width = std::max(text_width, painter.measure(L.labels.back(), fitted[k].size).width);
   }
@@ -106,6 +107,42 @@ Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, doub
                  : shape_legend(panel, entries, painter, m, std::max(1, n), max_width, m.legend());
   L.place = LegendPlace::above;
   return L;
+}
+
+std::optional<Legend> legend_in_caption_row(const Panel& panel, Painter& painter, const Metrics& m,
+                                            double max_width) {
+  const std::vector<int> entries = legend_entries(panel);
+  if (entries.empty()) return std::nullopt;
+  const int n = static_cast<int>(entries.size());
+  for (const double size : {m.legend(), m.floor(m.legend())}) {
+    Legend L;
+    L.entries = entries;
+    L.boxed = false;
+    L.place = LegendPlace::caption;
+    L.size = size;
+    L.pad = 0.0;
+    L.sample = 40 * m.s;
+    L.columns = n;
+    L.rows = 1;
+    L.by_rows = true;
+    L.shrunk = size < m.legend();
+    const Extent e = painter.measure("Hg", size);
+    L.row = e.line_ascent + e.line_descent;
+    double text_width = 0.0;
+    for (int i : entries) {
+      const std::string& label = i >= 0 ? panel.series[i].label : panel.references[-1 - i].label;
+      L.labels.push_back(label);
+      L.label_sizes.push_back(size);
+      L.label_shortened.push_back(false);
+      text_width = std::max(text_width, painter.measure(label, size).width);
+    }
+    // Equal columns, 14 units between an entry's label and the next sample.
+    L.column = L.sample + 8 * m.s + text_width + 14 * m.s;
+    L.width = n * L.column - 14 * m.s;
+    L.height = L.row;
+    if (L.width <= max_width) return L;
+  }
+  return std::nullopt;
 }
 
 namespace {
@@ -173,20 +210,17 @@ const Candidate* best(const std::vector<Candidate>& found) {
 }  // namespace
 
 std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                             const Rect& f, const PanelInk& ink, long& ink_under) {
+                                             const Rect& f, const PanelInk& ink, double size,
+                                             long& ink_under) {
   const long allowed =
       static_cast<long>(std::floor(kLegendDataShare * static_cast<double>(ink.data.count(f))));
-  // At the legend's size, else at the floor of its text (text_fit.hpp): a smaller legend
-  // inside costs the data less than one above or beside the axes.
-  for (const double size : {m.legend(), m.floor(m.legend())}) {
-    std::vector<Candidate> free;
-    for (const Candidate& c : inside_places(panel, painter, m, f, ink, size)) {
-      if (c.data <= allowed) free.push_back(c);
-    }
-    if (const Candidate* pick = best(free)) {
-      ink_under = pick->data;
-      return pick->place;
-    }
+  std::vector<Candidate> free;
+  for (const Candidate& c : inside_places(panel, painter, m, f, ink, size)) {
+    if (c.data <= allowed) free.push_back(c);
+  }
+  if (const Candidate* pick = best(free)) {
+    ink_under = pick->data;
+    return pick->place;
   }
   return std::nullopt;
 }
@@ -219,9 +253,11 @@ InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const
 void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Rect& box,
                  int panel_index, const Metrics& m) {
   const double s = m.s;
-  painter.fill_rect(box, kLegendBox);
-  painter.stroke_rect(Rect{box.x0 + 0.5, box.y0 + 0.5, box.x1 - 0.5, box.y1 - 0.5},
-                      Stroke{kLegendFrame, std::max(1.0, 1.2 * m.line), {}});
+  if (L.boxed) {
+    painter.fill_rect(box, kLegendBox);
+    painter.stroke_rect(Rect{box.x0 + 0.5, box.y0 + 0.5, box.x1 - 0.5, box.y1 - 0.5},
+                        Stroke{kLegendFrame, std::max(1.0, 1.2 * m.line), {}});
+  }
   const Extent le = painter.measure("Hg", L.size);
   for (std::size_t k = 0; k < L.entries.size(); ++k) {
     const int entry = L.entries[k];
@@ -235,9 +271,12 @@ void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Re
     const double x0 = box.x0 + L.pad + column * L.column;
     const double cy = box.y0 + 0.8 * L.pad + row * L.row + 0.5 * L.row;
     painter.line({x0, cy}, {x0 + L.sample, cy}, make_stroke(style, m.line));
-    painter.text(L.labels[k], x0 + L.sample + 12 * s,
-                 cy + 0.5 * (le.line_ascent - le.line_descent) - 1 * s, L.label_sizes[k], kText,
-                 TextRole::legend_entry, panel_index);
+    const TextOrigin origin{
+        entry >= 0 ? panel.series[entry].label : panel.references[-1 - entry].label,
+        L.label_shortened[k]};
+    painter.text(L.labels[k], x0 + L.sample + (L.boxed ? 12 : 8) * s,
+                 cy + 0.5 * (le.line_ascent - le.line_descent) - (L.boxed ? 1 : 0) * s,
+                 L.label_sizes[k], kText, TextRole::legend_entry, panel_index, false, &origin);
   }
 }
 

@@ -16,18 +16,23 @@
 
 namespace stiction::plot {
 
-enum class LegendPlace { inside, above, right };
+// Where a legend goes, in the order a layout tries them: inside the axes; in the panel's
+// caption row (one unboxed row right of the caption, costing no room); above the panel;
+// beside the axes on the right.
+enum class LegendPlace { inside, caption, above, right };
 
 struct Legend {
   std::vector<int> entries;  // series indices, then -1 - k for reference line k
   std::vector<std::string> labels;
-  std::vector<double> label_sizes;  // each label's size: `size`, or smaller to fit (text_fit)
-  double size = 0.0;                // font size
+  std::vector<double> label_sizes;    // each label's size: `size`, or smaller to fit (text_fit)
+  std::vector<bool> label_shortened;  // each label: words left out by the text rule
+  double size = 0.0;                  // font size
   double width = 0.0, height = 0.0, row = 0.0, sample = 0.0, pad = 0.0, column = 0.0;
   int columns = 1, rows = 0;
   bool by_rows = false;    // entries fill rows first (a wide legend reads left to right)
   bool shortened = false;  // some label shortened (or set under the floor) to fit
   bool shrunk = false;     // the labels set smaller than asked, to fit
+  bool boxed = true;       // drawn on a box with a frame (not in a caption row)
   LegendPlace place = LegendPlace::inside;
 };
 
@@ -51,6 +56,12 @@ Legend legend_beside(const Panel& panel, Painter& painter, const Metrics& m, dou
 Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
                     int max_rows = 2);
 
+// In the panel's caption row: its entries side by side in one row without a box, labels whole
+// at the legend's size or the floor of its text, at most `max_width` wide (the frame's width
+// less the caption's); none when it is wider at the floor.
+std::optional<Legend> legend_in_caption_row(const Panel& panel, Painter& painter, const Metrics& m,
+                                            double max_width);
+
 // The share of a panel's data (its series and reference lines as drawn) a legend inside may
 // cover: a corner that a curve merely grazes is still free. More, and the legend goes outside.
 inline constexpr double kLegendDataShare = 0.02;
@@ -65,15 +76,15 @@ struct PanelInk {
 // Inside the frame: of every place (the corners: top right, top left, bottom right, bottom
 // left; the middles of the edges; places along the edges) and shape (one to four columns),
 // the one whose box, with a margin, covers the least data (an event mark counting a quarter
-// of a data pixel); the first in that order on a tie. When that covers more than
-// kLegendDataShare of the panel's data, the same at the floor size of the legend's text
-// (Metrics::floor); none when that does too. `ink_under` gets the data pixels under it.
+// of a data pixel), its text at `size` (the legend's, or the floor of its text); the first in
+// that order on a tie; none when that covers more than kLegendDataShare of the panel's data.
+// `ink_under` gets the data pixels under it.
 struct InsidePlace {
   Legend legend;
   Rect box;
 };
 std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                             const Rect& frame, const PanelInk& ink,
+                                             const Rect& frame, const PanelInk& ink, double size,
                                              long& ink_under);
 
 // The place inside with the least data under it whatever the share (at the legend's size

@@ -97,7 +97,7 @@ Extent Painter::measure(const std::string& text, double size) {
 }
 
 Rect Painter::text(const std::string& s, double x, double baseline, double size, image::Rgba colour,
-                   TextRole role, int panel, bool rotated) {
+                   TextRole role, int panel, bool rotated, const TextOrigin* origin) {
   const Extent e = measure(s, size);
   if (deferred_) {
     deferred_->push_back({s, x, baseline, size, colour, rotated});
@@ -116,7 +116,8 @@ Rect Painter::text(const std::string& s, double x, double baseline, double size,
   const Rect box = rotated
                        ? Rect{x - e.line_ascent, baseline - e.width, x + e.line_descent, baseline}
                        : Rect{x, baseline - e.line_ascent, x + e.width, baseline + e.line_descent};
-  layout_.texts.push_back({s, role, box, panel});
+  layout_.texts.push_back(
+      {s, role, box, panel, origin ? origin->given : s, origin ? origin->shortened : false});
   return box;
 }
 

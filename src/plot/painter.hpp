@@ -30,6 +30,13 @@ struct PlacedText {
   bool rotated = false;
 };
 
+// Where a drawn text comes from: the text it was given and whether the text rule shortened
+// it (recorded in TextBox::given and TextBox::shortened).
+struct TextOrigin {
+  const std::string& given;
+  bool shortened = false;
+};
+
 class Painter {
  public:
   // With `deferred`, text is measured and recorded but not drawn: it is appended there.
@@ -49,9 +56,10 @@ class Painter {
   Extent measure(const std::string& text, double size);
 
   // Text at the pen origin (x, baseline); rotated: reads bottom to top, the pen origin at the
-  // bottom end of the baseline. Returns the recorded box.
+  // bottom end of the baseline. Returns the recorded box, whose `given` is `origin`'s text
+  // (`s` itself when there is none: a tick label, drawn as made).
   Rect text(const std::string& s, double x, double baseline, double size, image::Rgba colour,
-            TextRole role, int panel, bool rotated = false);
+            TextRole role, int panel, bool rotated = false, const TextOrigin* origin = nullptr);
 
   void polyline(const std::vector<Point>& points, const Stroke& stroke);
   void line(Point a, Point b, const Stroke& stroke) { polyline({a, b}, stroke); }

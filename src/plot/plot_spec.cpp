@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -827,6 +828,52 @@ FigureLayout write_comparison_plot(const PlotSpec& spec, const std::vector<Run>&
 
 namespace {
 
+// How much a column differs between the runs: the largest gap of any run from the first over
+// the time they share (each run's value interpolated linearly at the first run's rows),
+// relative to the column's range over all runs (its largest magnitude when it is flat; 0
+// when it is zero everywhere). 0: the same in every run.
+double run_difference(const std::vector<Run>& runs, const std::string& column) {
+  const core::Trajectory& first = *runs.front().trajectory;
+  const std::optional<int> t0 = first.find("t"), c0 = first.find(column);
+  if (!t0 || !c0) return 0.0;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo, magnitude = 0.0;
+  for (const Run& run : runs) {
+    const core::Trajectory& tr = *run.trajectory;
+    const std::optional<int> c = tr.find(column);
+    if (!c) return 0.0;
+    for (int r = 0; r < tr.row_count(); ++r) {
+      const double v = tr.at(r, *c);
+      if (!std::isfinite(v)) continue;
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+      magnitude = std::max(magnitude, std::abs(v));
+    }
+  }
+  const double scale = hi - lo > 1e-12 * magnitude ? hi - lo : magnitude;
+  if (!(scale > 0.0) || !std::isfinite(scale)) return 0.0;
+  double gap = 0.0;
+  for (std::size_t k = 1; k < runs.size(); ++k) {
+    const core::Trajectory& tr = *runs[k].trajectory;
+    const std::optional<int> t = tr.find("t"), c = tr.find(column);
+    if (!t || !c || tr.row_count() == 0) continue;
+    int j = 0;
+    for (int r = 0; r < first.row_count(); ++r) {
+      const double time = first.at(r, *t0);
+      while (j + 1 < tr.row_count() && tr.at(j + 1, *t) < time) ++j;
+      if (j + 1 >= tr.row_count() || time < tr.at(0, *t)) continue;  // outside the time shared
+      const double ta = tr.at(j, *t), tb = tr.at(j + 1, *t);
+      const double w = tb > ta ? std::clamp((time - ta) / (tb - ta), 0.0, 1.0) : 0.0;
+      const double other = (1.0 - w) * tr.at(j, *c) + w * tr.at(j + 1, *c);
+      const double d = std::abs(first.at(r, *c0) - other);
+      if (std::isfinite(d))
+        gap = std::max(gap, d);
+      else if (std::isfinite(first.at(r, *c0)) != std::isfinite(other))
+        gap = scale;
+    }
+  }
+  return gap / scale;
+}
+
 // A comparison of more than two runs is a two-column figure (180 mm): its legend, one entry
 // per run and signal, has no room beside or above the panels of a one-column page.
 PlotSpec widen_for_runs(PlotSpec spec, std::size_t runs) {
@@ -850,6 +897,36 @@ PlotSpec default_comparison_spec(const std::vector<Run>& runs) {
   if (has_column(common, "arm.theta.0") && has_column(common, "arm.theta.1")) {
     return drift_comparison_spec();
   }
+  // The signals that differ most between the runs (run_difference, relative to each one's
+  // range): the first, and those within kCompareShare of it, at most kCompareSignals signals
+  // in at most kComparePanels panels (signal groups), in the order of the columns.
+  std::vector<std::pair<double, std::size_t>> scored;
+  for (std::size_t i = 0; i < common.size(); ++i) {
+    if (common[i] == "t") continue;
+    const double d = run_difference(runs, common[i]);
+    if (d > 1e-9) scored.push_back({d, i});
+  }
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<std::size_t> picked;
+  std::vector<std::string> groups;
+  for (const auto& [d, i] : scored) {
+    if (picked.size() >= kCompareSignals || d < kCompareShare * scored.front().first) break;
+    const std::string& c = common[i];
+    const std::size_t first = c.find('.');
+    const std::string group = first == std::string::npos ? c : c.substr(0, c.find('.', first + 1));
+    const bool new_group = std::find(groups.begin(), groups.end(), group) == groups.end();
+    if (new_group && groups.size() >= kComparePanels) continue;
+    if (new_group) groups.push_back(group);
+    picked.push_back(i);
+  }
+  if (!picked.empty()) {
+    std::sort(picked.begin(), picked.end());
+    std::vector<std::string> chosen;
+    for (std::size_t i : picked) chosen.push_back(common[i]);
+    return comparison_spec(runs, chosen, {});
+  }
+  // The runs agree everywhere: the first default figure of what they share.
   std::vector<PlotSpec> specs = default_plot_specs(common);
   if (specs.empty()) throw InputError("the runs have no signal in common to compare");
   PlotSpec spec = specs.front();
@@ -884,11 +961,11 @@ PlotSpec comparison_spec(const std::vector<Run>& runs, const std::vector<std::st
     }
     if (!found) {
       const std::vector<std::string> shared = signal_columns(common);
-      throw InputError(
-          "--signals: '" + name + "' is not a signal of every run; " +
-          (shared.empty() ? std::string("the runs have no signal in common (compare runs of "
-                                        "scenes that share a component name)")
-                          : "the signals they all have: " + join(shared)));
+      throw InputError("--signals: '" + name + "' is not a signal of every run; " +
+                       (shared.empty()
+                            ? std::string("the runs have no signal in common (compare runs of "
+                                          "scenes that share a component name)")
+                            : "the signals they all have: " + join(shared)));
     }
   }
   std::vector<core::ColumnInfo> unique;

@@ -180,8 +180,15 @@ void write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
 FigureLayout write_comparison_plot(const PlotSpec& spec, const std::vector<Run>& runs,
                                    const std::filesystem::path& path, Format format);
 // A comparison of more than two runs is a two-column figure, 180 mm wide.
-// The comparison to draw for `stiction compare`: drift_comparison_spec() when every run has
-// the arm's joint angles, else the first default spec of the columns common to all runs.
+// The comparison to draw for `stiction compare` without --signals: drift_comparison_spec()
+// when every run has the arm's joint angles; else the signals common to all runs that differ
+// most between them (the largest gap of a run from the first, relative to the signal's range
+// over the runs): the one that differs most and those within kCompareShare of it, at most
+// kCompareSignals signals in at most kComparePanels panels, as comparison_spec draws them;
+// runs that agree everywhere: the first default figure of their common columns.
+inline constexpr std::size_t kCompareSignals = 4;
+inline constexpr std::size_t kComparePanels = 3;
+inline constexpr double kCompareShare = 0.25;
 PlotSpec default_comparison_spec(const std::vector<Run>& runs);
 // A comparison of chosen signals: one panel per signal group among `signals` (each a column
 // of every run, or a group "<component>.<signal>" meaning all its axes), units from

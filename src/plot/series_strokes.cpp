@@ -164,11 +164,36 @@ void draw_series(Painter& painter, const Panel& panel,
                  const std::vector<std::vector<Point>>& pixels, const Rect& frame, double line,
                  FigureLayout* layout) {
   painter.clip(frame);
+  std::vector<Stroke> strokes;
+  std::vector<std::vector<SeriesPiece>> split;
   for (std::size_t i = 0; i < panel.series.size(); ++i) {
     const Series& series = panel.series[i];
     const LineStyle style = series.style ? *series.style : series_style(static_cast<int>(i));
-    const Stroke stroke = make_stroke(style, line);
-    const std::vector<SeriesPiece> pieces = split_dense(pixels[i], dense_spacing(stroke.width));
+    strokes.push_back(make_stroke(style, line));
+    split.push_back(split_dense(pixels[i], dense_spacing(strokes.back().width)));
+  }
+  // The bands' fills first, under every line: a band never tints another series' line, and
+  // where two bands overlap their light tints stay light (each is kBandTint of its colour).
+  for (std::size_t i = 0; i < split.size(); ++i) {
+    for (const SeriesPiece& piece : split[i]) {
+      if (piece.band.empty()) continue;
+      std::vector<Point> outline;
+      for (const BandColumn& c : piece.band) {
+        outline.push_back({c.x0, c.top});
+        outline.push_back({c.x1, c.top});
+      }
+      for (auto c = piece.band.rbegin(); c != piece.band.rend(); ++c) {
+        outline.push_back({c->x1, c->bottom});
+        outline.push_back({c->x0, c->bottom});
+      }
+      image::Rgba tint = strokes[i].colour;
+      tint.a = static_cast<std::uint8_t>(tint.a * kBandTint);
+      painter.fill_polygon(outline, tint);
+    }
+  }
+  for (std::size_t i = 0; i < split.size(); ++i) {
+    const Stroke& stroke = strokes[i];
+    const std::vector<SeriesPiece>& pieces = split[i];
     const bool dense = std::any_of(pieces.begin(), pieces.end(),
                                    [](const SeriesPiece& p) { return !p.band.empty(); });
     if (!dense) {
@@ -179,20 +204,8 @@ void draw_series(Painter& painter, const Panel& panel,
           painter.polyline(piece.line, stroke);
           continue;
         }
-        // The band: filled in a tint of the series' colour between its extremes, edged inside
-        // by the series' line, so its ink spans exactly the lowest to the highest value.
-        std::vector<Point> outline;
-        for (const BandColumn& c : piece.band) {
-          outline.push_back({c.x0, c.top});
-          outline.push_back({c.x1, c.top});
-        }
-        for (auto c = piece.band.rbegin(); c != piece.band.rend(); ++c) {
-          outline.push_back({c->x1, c->bottom});
-          outline.push_back({c->x0, c->bottom});
-        }
-        image::Rgba tint = stroke.colour;
-        tint.a = static_cast<std::uint8_t>(tint.a * 0.25);
-        painter.fill_polygon(outline, tint);
+        // The band's edges: its series' line inside its extremes, so its ink spans exactly
+        // the lowest to the highest value.
         const double half = 0.5 * stroke.width;
         std::vector<Point> top, bottom;
         for (const BandColumn& c : piece.band) {
@@ -205,6 +218,7 @@ void draw_series(Painter& painter, const Panel& panel,
         painter.polyline(bottom, stroke);
       }
     }
+    const Series& series = panel.series[i];
     if (layout) layout->series.push_back(series.source.empty() ? series.label : series.source);
   }
   painter.unclip();

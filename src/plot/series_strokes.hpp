@@ -38,8 +38,13 @@ std::vector<SeriesPiece> split_dense(const std::vector<Point>& points, double sp
 // closer ones make a band.
 double dense_spacing(double line_width);
 
+// The opacity of a band's fill, as a share of its series' colour: light enough that two
+// overlapping bands stay a light tint of both, not a grey block.
+inline constexpr double kBandTint = 0.14;
+
 // Every series of the panel in its style (series_style(index) unless it has its own),
-// clipped to the frame; records each series drawn in the layout (when given).
+// clipped to the frame, the dense pieces as bands whose fills go under every line; records
+// each series drawn in the layout (when given).
 void draw_series(Painter& painter, const Panel& panel,
                  const std::vector<std::vector<Point>>& pixels, const Rect& frame, double line,
                  FigureLayout* layout);

@@ -114,7 +114,7 @@ YTitle fit_y_title(Painter& painter, const std::string& title, double panel_heig
                    double full_size, double floor, std::size_t max_lines) {
   const FittedText fitted =
       fit_text(painter, title, TextRule{full_size, floor, 0.96 * panel_height, max_lines});
-  return YTitle{fitted.lines, fitted.size};
+  return YTitle{fitted.lines, fitted.size, title, fitted.shortened};
 }
 
 void label_minor_ticks(YAxis& y) {
@@ -176,8 +176,9 @@ void draw_y_title(Painter& painter, const YTitle& title, const Rect& f, const Me
   for (std::size_t k = 0; k < title.lines.size(); ++k) {
     const double w = painter.measure(title.lines[k], title.size).width;
     const double baseline_x = m.margin() + shrink * (full.line_ascent + k * line);
+    const TextOrigin origin{title.given, title.shortened};
     painter.text(title.lines[k], baseline_x, 0.5 * (f.y0 + f.y1) + 0.5 * w, title.size, kText,
-                 TextRole::axis_label, panel_index, true);
+                 TextRole::axis_label, panel_index, true, &origin);
   }
 }
 

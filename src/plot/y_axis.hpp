@@ -50,6 +50,8 @@ std::string axis_title(const std::string& label, const std::string& unit, int ex
 struct YTitle {
   std::vector<std::string> lines;
   double size = 0.0;
+  std::string given;  // the title as given
+  bool shortened = false;
 };
 YTitle fit_y_title(Painter& painter, const std::string& title, double panel_height,
                    double full_size, double floor, std::size_t max_lines);

@@ -30,18 +30,22 @@ std::vector<plot::PlotEvent> plot_events(const core::RunResult& result) {
   return events;
 }
 
+plot::Figure run_figure(const plot::PlotSpec& spec, const core::RunResult& result,
+                        const core::Trajectory& rows) {
+  return plot::make_figure(spec, rows, plot_events(result));
+}
+
 std::vector<std::filesystem::path> write_run_plots(const std::vector<plot::PlotSpec>& specs,
                                                    const core::RunResult& result,
                                                    const core::Trajectory& rows,
                                                    const std::filesystem::path& dir,
                                                    std::optional<plot::Format> format) {
-  const std::vector<plot::PlotEvent> events = plot_events(result);
   std::vector<std::filesystem::path> written;
   for (const plot::PlotSpec& spec : specs) {
     if (sys::interrupted()) break;  // the run reports the plots written so far
     const std::filesystem::path path = plot::plot_path(spec, dir, format);
-    plot::write_plot(spec, rows, events, path,
-                     format.value_or(spec.format.value_or(plot::Format::png)));
+    plot::write_figure(run_figure(spec, result, rows), path,
+                       format.value_or(spec.format.value_or(plot::Format::png)), spec.dpi);
     written.push_back(path);
   }
   return written;

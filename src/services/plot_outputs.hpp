@@ -15,6 +15,12 @@ namespace stiction::services {
 // the next event a touch-down), for plot::make_figure.
 std::vector<plot::PlotEvent> plot_events(const core::RunResult& result);
 
+// A run's figure as `run` draws it: the spec over `rows` (the run's rows as run thins them
+// for its figures: StreamedRows::for_plots, or run_outputs.hpp's plot_rows of all of them)
+// with the result's events (plot_events). `run` writes it, `verify` compares it: one figure.
+plot::Figure run_figure(const plot::PlotSpec& spec, const core::RunResult& result,
+                        const core::Trajectory& rows);
+
 // Writes every spec into `dir`, drawing `rows` (the run's rows, possibly thinned) and
 // marking the result's events (plot::plot_path: its own format, or `format` when given, i.e.
 // --plot-format); returns the files written, in spec order. Stops between two plots on an

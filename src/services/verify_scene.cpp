@@ -17,12 +17,12 @@
 #include "plot/figure.hpp"
 #include "render/render_outputs.hpp"
 #include "render/scene_view.hpp"
+#include "services/owned_files.hpp"
+#include "services/plot_outputs.hpp"
 #include "services/render_loader.hpp"
 #include "services/run_outputs.hpp"
 #include "services/run_support.hpp"
-#include "services/owned_files.hpp"
 #include "services/verify_golden.hpp"
-#include "text/font.hpp"
 
 namespace stiction::services {
 namespace fs = std::filesystem;
@@ -236,16 +236,16 @@ class SceneVerifier {
     }
   }
 
+  // The figures `run` writes (plot_outputs.hpp: the same rows, thinned as run thins them, the
+  // same events, labels and layout), as PNG.
   void figures(const core::RunResult& result, json& next, SceneVerdict& verdict) {
-    text::Font font = text::Font::open_default();
-    const std::map<std::string, double> events = event_times(result);
+    const core::Trajectory rows = plot_rows(result.trajectory);
     for (const plot::PlotSpec& spec : job_.plots) {
       const std::string name = "figure_" + spec.name;
       const std::string file = name + ".png";
       next["figures"].push_back({{"file", file}, {"name", spec.name}});
       VerifyItem item = make_item("figure", name, "figure " + spec.name);
-      const image::Image actual =
-          plot::render(plot::make_figure(spec, result.trajectory, events), font);
+      const image::Image actual = plot::render(run_figure(spec, result, rows));
       image_item(item, actual, golden_ / file);
       verdict.items.push_back(std::move(item));
     }

@@ -213,7 +213,43 @@ TEST_CASE("verify: two runs of each bundled scene give identical frame and figur
     }
   }
   int bundled = 0;
-  for (const auto& entry : fs::directory_iterator(scenes)) bundled += entry.path().extension() == ".toml";
+  for (const auto& entry : fs::directory_iterator(scenes))
+    bundled += entry.path().extension() == ".toml";
   CHECK(scenes_seen == bundled);
   CHECK(images >= 3 * bundled);  // two frames and at least one figure each
+}
+
+TEST_CASE("verify: its figures are the ones run writes (the same pixels)") {
+  // The same rows (thinned as run thins them), the same events with their labels ("slide
+  // 2.45 s", not "ground.0 slip"), the same layout: services::run_figure for both.
+  const fs::path dir = scratch_dir("stiction_test_ci_verify_", "as_run");
+  for (const std::string scene : {"sphere_roll", "box_push_slide"}) {
+    const std::vector<std::string> cut{"--set", "simulation.duration=2.6"};
+    std::vector<std::string> run{"run", scene,     "--no-video", "--accuracy",
+                                 "off", "--quiet", "--out",      (dir / ("run_" + scene)).string()};
+    run.insert(run.end(), cut.begin(), cut.end());
+    const SplitOutcome r = run_split(run, dir);
+    INFO(r.out << r.err);
+    REQUIRE(r.code == 0);
+    std::vector<std::string> verify{"verify",   scene,  "--golden", "golden",
+                                    "--update", "--at", "0",        "--quiet"};
+    verify.insert(verify.end(), cut.begin(), cut.end());
+    const SplitOutcome v = run_split(verify, dir);
+    INFO(v.out << v.err);
+    REQUIRE(v.code == 0);
+    int figures = 0;
+    for (const auto& entry : fs::directory_iterator(dir / ("run_" + scene) / "plots")) {
+      const std::string name = entry.path().stem().string();
+      INFO(scene << ": " << name);
+      const fs::path golden = dir / "golden" / scene / ("figure_" + name + ".png");
+      REQUIRE(fs::exists(golden));
+      const stiction::image::Image a = stiction::image::read_png(entry.path());
+      const stiction::image::Image b = stiction::image::read_png(golden);
+      REQUIRE(a.width == b.width);
+      REQUIRE(a.height == b.height);
+      CHECK(a.pixels == b.pixels);
+      ++figures;
+    }
+    CHECK(figures >= 1);
+  }
 }

@@ -517,3 +517,50 @@ TEST_CASE("a comparison of one axis is titled by that signal, not its group", "[
   CHECK(one.panels[0].label == "v.x");
   CHECK(one.panels[0].caption == "ball.v: velocity of the centre (v.y = v.z = 0, not drawn)");
 }
+
+TEST_CASE("compare without --signals draws the signals that differ most", "[plot][compare]") {
+  // Two runs over 0..2 s (the second sampled at other times): ball.v.x differs by half its
+  // range, ball.p.x by a quarter, ball.v.z by 1%, ball.p.z and ground.f.z not at all.
+  auto run = [](double dt, double gap) {
+    core::Trajectory t({"t", "ball.p.x", "ball.p.z", "ball.v.x", "ball.v.z", "ground.f.z"});
+    for (double time = 0.0; time <= 2.0 + 1e-12; time += dt) {
+      const double row[] = {time,
+                            time + 0.25 * gap * time,
+                            0.1,
+                            std::sin(time) + 0.5 * gap * time,
+                            std::cos(3 * time) * (1.0 + 0.01 * gap),
+                            2.9};
+      t.append(row);
+    }
+    return t;
+  };
+  const core::Trajectory a = run(1e-3, 0.0), b = run(1.3e-3, 1.0);
+  const std::vector<plot::Run> runs{{"a", &a}, {"b", &b}};
+  const plot::PlotSpec spec = plot::default_comparison_spec(runs);
+  std::vector<std::string> drawn;
+  for (const plot::PanelSpec& p : spec.panels) {
+    drawn.insert(drawn.end(), p.signals.begin(), p.signals.end());
+  }
+  CHECK(spec.name == "compare");
+  CHECK(drawn == std::vector<std::string>{"ball.p.x", "ball.v.x"});
+  // Runs that agree everywhere: the first default figure of what they share.
+  const std::vector<plot::Run> same{{"a", &a}, {"a again", &a}};
+  const plot::PlotSpec fallback = plot::default_comparison_spec(same);
+  CHECK(!fallback.panels.empty());
+  // At most four signals in at most three panels, however many differ.
+  core::Trajectory many({"t", "s0.x", "s1.x", "s2.x", "s3.x", "s4.x", "s5.x"});
+  core::Trajectory others(many.columns());
+  for (int i = 0; i <= 100; ++i) {
+    const double t = 0.01 * i;
+    const double r1[] = {t, t, 2 * t, 3 * t, 4 * t, 5 * t, 6 * t};
+    const double r2[] = {t, -t, -2 * t, -3 * t, -4 * t, -5 * t, -6 * t};
+    many.append(r1);
+    others.append(r2);
+  }
+  const plot::PlotSpec capped = plot::default_comparison_spec({{"a", &many}, {"b", &others}});
+  std::size_t signals = 0;
+  for (const plot::PanelSpec& p : capped.panels) signals += p.signals.size();
+  CHECK(signals <= plot::kCompareSignals);
+  CHECK(capped.panels.size() <= plot::kComparePanels);
+  CHECK(signals >= 3);
+}
