@@ -26,6 +26,7 @@
 #include "components/impedance/friction_law.hpp"
 #include "components/impedance/kikuuwe_contact.hpp"
 #include "core/simulation.hpp"
+#include "scene/plausibility.hpp"
 #include "scene/scene.hpp"
 
 using namespace stiction;
@@ -602,5 +603,22 @@ TEST_CASE(
       CHECK(what.find("ground." + bad.key) != std::string::npos);
       CHECK(what.find(bad.text) != std::string::npos);
     }
+  }
+}
+
+TEST_CASE("anisotropic friction: the plausibility check reads the larger of [mu_1, mu_2]",
+          "[anisotropic_friction]") {
+  for (const char* mu : {"[0.3, 25.0]", "[25.0, 0.3]", "[0.3, 0.6]"}) {
+    Block b;
+    b.mu = mu;
+    b.duration = 0.01;
+    auto scene = scene::load_scene(
+        scene::SceneSource::from_text(block_scene(b), "generated_anisotropic.toml"));
+    const auto warnings = scene::plausibility_warnings(scene);
+    const bool warned = std::any_of(warnings.begin(), warnings.end(), [](const auto& w) {
+      return w.key == "impedances.ground.mu";
+    });
+    INFO(mu);
+    CHECK(warned == (std::string(mu) != "[0.3, 0.6]"));
   }
 }
