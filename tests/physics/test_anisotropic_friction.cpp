@@ -51,6 +51,8 @@ struct Block {
   std::string frame;  // friction_axes_frame, "" for none
   Vec3 v0 = Vec3::Zero();
   std::string push;  // force expressions "[fx, fy, fz]", "" for none
+  double belt_speed = 0.0;  // a belt along belt_direction when > 0
+  Vec3 belt_direction = Vec3::UnitX();
   bool box = false;
   double yaw = 0.0;  // the box's orientation about z
   const char* integrator = "rk4";
@@ -94,6 +96,10 @@ std::string block_scene(const Block& b) {
     s << "friction_axes = [" << vec(b.axis1) << ", " << vec(b.axis2) << "]\n";
   }
   if (!b.frame.empty()) s << "friction_axes_frame = \"" << b.frame << "\"\n";
+  if (b.belt_speed > 0.0) {
+    s << "belt_speed = " << b.belt_speed << "\nbelt_direction = " << vec(b.belt_direction)
+      << "\n";
+  }
   if (!b.push.empty()) {
     s << "[impedances.push]\ntype = \"force_source\"\nbody = \"block\"\nforce = " << b.push << "\n";
   }
@@ -421,6 +427,55 @@ TEST_CASE(
   }
   figure("breakaway", "first moved row before r t = N mu(phi), steps (max)", worst_early);
   figure("breakaway", "first moved row after r t = N mu(phi), steps (max)", worst_late);
+}
+
+TEST_CASE(
+    "anisotropic friction: a block dropped on a belt meets the elliptic law's force at its "
+    "slip relative to the belt, and is carried along",
+    "[anisotropic_friction]") {
+  // On a belt at constant speed the slip is the velocity relative to the belt (a Galilean
+  // frame): the block starts at rest, slips at -v_b d, and the law acts on that slip.
+  std::mt19937 rng(3827);
+  double worst = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    Block b;
+    b.mass = uniform(rng, 0.3, 3.0);
+    const double mu1 = uniform(rng, 0.1, 0.8), mu2 = uniform(rng, 0.1, 0.8);
+    b.mu = mu_text(mu1, mu2);
+    const double psi = uniform(rng, 0.0, 2.0 * M_PI), phi = uniform(rng, 0.0, 2.0 * M_PI);
+    const Vec3 a1(std::cos(psi), std::sin(psi), 0.0), a2(-std::sin(psi), std::cos(psi), 0.0);
+    b.axis1 = a1;
+    b.axis2 = a2;
+    b.belt_speed = uniform(rng, 0.3, 1.0);
+    b.belt_direction = std::cos(phi) * a1 + std::sin(phi) * a2;
+    b.duration = 3.0 * b.belt_speed / (kG * std::min(mu1, mu2));
+    const core::RunResult r = run(block_scene(b));
+    INFO("case " << k << ": m " << b.mass << ", mu " << b.mu << ", psi " << psi << ", phi "
+                 << phi << ", belt " << b.belt_speed);
+    REQUIRE_FALSE(r.instability);
+    const auto& tr = r.trajectory;
+    const int e0 = *tr.find("ground.e.0"), e1 = *tr.find("ground.e.1");
+    int sliding = 0;
+    for (int row = row_at(tr, 0.02); row < tr.row_count(); ++row) {
+      const Vec3 slip = vec3_at(tr, "ground.slip", row);
+      if (slip.norm() < 0.05 * b.belt_speed) break;  // nearly carried
+      const Vec3 f = vec3_at(tr, "ground.f", row);
+      const Vec3 f_t(f.x(), f.y(), 0.0);
+      const double N = tr.at(row, *tr.find("ground.n_force"));
+      const Vec3 e(tr.at(row, e0), tr.at(row, e1), 0.0);
+      const Vec3 w = slip + (kK * e + f_t) / (2.0 * std::sqrt(kK * b.mass) + b.dt * kK);
+      const Vec3 at_w = elliptic_force(w, N, mu1, mu2, a1, a2);
+      const double error = (f_t - at_w).norm() / at_w.norm();
+      CHECK(error <= 1e-9);
+      worst = std::max(worst, error);
+      ++sliding;
+    }
+    CHECK(sliding > 10);
+    // Carried by the belt in the end.
+    const Vec3 v = vec3_at(tr, "block.v", tr.row_count() - 1);
+    CHECK((v - b.belt_speed * b.belt_direction).norm() <= 1e-6 * b.belt_speed);
+  }
+  figure("belt", "force vs the law at the anchor's slip, relative (max)", worst);
 }
 
 TEST_CASE(
