@@ -50,7 +50,7 @@ struct Block {
   bool write_axes = true;
   std::string frame;  // friction_axes_frame, "" for none
   Vec3 v0 = Vec3::Zero();
-  std::string push;  // force expressions "[fx, fy, fz]", "" for none
+  std::string push;         // force expressions "[fx, fy, fz]", "" for none
   double belt_speed = 0.0;  // a belt along belt_direction when > 0
   Vec3 belt_direction = Vec3::UnitX();
   bool box = false;
@@ -97,8 +97,7 @@ std::string block_scene(const Block& b) {
   }
   if (!b.frame.empty()) s << "friction_axes_frame = \"" << b.frame << "\"\n";
   if (b.belt_speed > 0.0) {
-    s << "belt_speed = " << b.belt_speed << "\nbelt_direction = " << vec(b.belt_direction)
-      << "\n";
+    s << "belt_speed = " << b.belt_speed << "\nbelt_direction = " << vec(b.belt_direction) << "\n";
   }
   if (!b.push.empty()) {
     s << "[impedances.push]\ntype = \"force_source\"\nbody = \"block\"\nforce = " << b.push << "\n";
@@ -148,6 +147,26 @@ std::string mu_text(double mu1, double mu2) {
   s.precision(17);
   s << "[" << mu1 << ", " << mu2 << "]";
   return s.str();
+}
+
+// A random law on a level floor: mu_1 and mu_2 drawn in [lo, hi], the axes turned by a random
+// psi about z, written into b.
+struct Law {
+  double mu1, mu2, psi;
+  Vec3 a1, a2;
+};
+
+Law random_law(std::mt19937& rng, Block& b, double lo, double hi) {
+  Law l;
+  l.mu1 = uniform(rng, lo, hi);
+  l.mu2 = uniform(rng, lo, hi);
+  b.mu = mu_text(l.mu1, l.mu2);
+  l.psi = uniform(rng, 0.0, 2.0 * M_PI);
+  l.a1 = Vec3(std::cos(l.psi), std::sin(l.psi), 0.0);
+  l.a2 = Vec3(-std::sin(l.psi), std::cos(l.psi), 0.0);
+  b.axis1 = l.a1;
+  b.axis2 = l.a2;
+  return l;
 }
 
 }  // namespace
@@ -255,13 +274,12 @@ TEST_CASE(
   for (int k = 0; k < 20; ++k) {
     Block b;
     b.mass = uniform(rng, 0.3, 5.0);
-    const double mu1 = uniform(rng, 0.1, 0.8), mu2 = uniform(rng, 0.1, 0.8);
-    b.mu = mu_text(mu1, mu2);
     // The axes turned by psi about z, the launch at phi to axis 1.
-    const double psi = uniform(rng, 0.0, 2.0 * M_PI), phi = uniform(rng, 0.0, 2.0 * M_PI);
-    const Vec3 a1(std::cos(psi), std::sin(psi), 0.0), a2(-std::sin(psi), std::cos(psi), 0.0);
-    b.axis1 = a1;
-    b.axis2 = k % 2 == 0 ? a2 : Vec3(-a2);  // the ellipse does not care about the sign
+    const Law law = random_law(rng, b, 0.1, 0.8);
+    const double mu1 = law.mu1, mu2 = law.mu2, psi = law.psi;
+    const Vec3 a1 = law.a1, a2 = law.a2;
+    const double phi = uniform(rng, 0.0, 2.0 * M_PI);
+    if (k % 2 == 1) b.axis2 = -a2;  // the ellipse does not care about the sign
     const double speed = uniform(rng, 0.5, 2.0);
     b.v0 = speed * (std::cos(phi) * a1 + std::sin(phi) * a2);
     // Slides until about a third of its speed is left (the slower decay is g min mu).
@@ -384,11 +402,9 @@ TEST_CASE(
       b.dt = std::string(integrator) == "implicit" ? 1e-3 : 1e-4;
       b.output_rate = 1.0 / b.dt;
       b.mass = uniform(rng, 0.3, 5.0);
-      const double mu1 = uniform(rng, 0.1, 0.8), mu2 = uniform(rng, 0.1, 0.8);
-      b.mu = mu_text(mu1, mu2);
-      const double psi = uniform(rng, 0.0, 2.0 * M_PI), phi = uniform(rng, 0.0, 2.0 * M_PI);
-      b.axis1 = Vec3(std::cos(psi), std::sin(psi), 0.0);
-      b.axis2 = Vec3(-std::sin(psi), std::cos(psi), 0.0);
+      const Law law = random_law(rng, b, 0.1, 0.8);
+      const double mu1 = law.mu1, mu2 = law.mu2;
+      const double phi = uniform(rng, 0.0, 2.0 * M_PI);
       const Vec3 d = std::cos(phi) * b.axis1 + std::sin(phi) * b.axis2;
       const double limit = b.mass * kG * directional_mu(mu1, mu2, phi);
       const double t_break = uniform(rng, 0.3, 0.8);
@@ -440,18 +456,16 @@ TEST_CASE(
   for (int k = 0; k < 4; ++k) {
     Block b;
     b.mass = uniform(rng, 0.3, 3.0);
-    const double mu1 = uniform(rng, 0.1, 0.8), mu2 = uniform(rng, 0.1, 0.8);
-    b.mu = mu_text(mu1, mu2);
-    const double psi = uniform(rng, 0.0, 2.0 * M_PI), phi = uniform(rng, 0.0, 2.0 * M_PI);
-    const Vec3 a1(std::cos(psi), std::sin(psi), 0.0), a2(-std::sin(psi), std::cos(psi), 0.0);
-    b.axis1 = a1;
-    b.axis2 = a2;
+    const Law law = random_law(rng, b, 0.1, 0.8);
+    const double mu1 = law.mu1, mu2 = law.mu2, psi = law.psi;
+    const Vec3 a1 = law.a1, a2 = law.a2;
+    const double phi = uniform(rng, 0.0, 2.0 * M_PI);
     b.belt_speed = uniform(rng, 0.3, 1.0);
     b.belt_direction = std::cos(phi) * a1 + std::sin(phi) * a2;
     b.duration = 3.0 * b.belt_speed / (kG * std::min(mu1, mu2));
     const core::RunResult r = run(block_scene(b));
-    INFO("case " << k << ": m " << b.mass << ", mu " << b.mu << ", psi " << psi << ", phi "
-                 << phi << ", belt " << b.belt_speed);
+    INFO("case " << k << ": m " << b.mass << ", mu " << b.mu << ", psi " << psi << ", phi " << phi
+                 << ", belt " << b.belt_speed);
     REQUIRE_FALSE(r.instability);
     const auto& tr = r.trajectory;
     const int e0 = *tr.find("ground.e.0"), e1 = *tr.find("ground.e.1");
@@ -670,9 +684,8 @@ TEST_CASE("anisotropic friction: the plausibility check reads the larger of [mu_
     auto scene = scene::load_scene(
         scene::SceneSource::from_text(block_scene(b), "generated_anisotropic.toml"));
     const auto warnings = scene::plausibility_warnings(scene);
-    const bool warned = std::any_of(warnings.begin(), warnings.end(), [](const auto& w) {
-      return w.key == "impedances.ground.mu";
-    });
+    const bool warned = std::any_of(warnings.begin(), warnings.end(),
+                                    [](const auto& w) { return w.key == "impedances.ground.mu"; });
     INFO(mu);
     CHECK(warned == (std::string(mu) != "[0.3, 0.6]"));
   }
