@@ -165,6 +165,93 @@ std::vector<RollingElement> read_rolling_resistance(TableReader& table, double s
   return out;
 }
 
+// `friction_axes = [[x, y, z], [x, y, z]]` and `friction_axes_frame = "world" | "body"`
+// (issue 38 item 2): the directions of mu_1 and mu_2 of `mu = [mu_1, mu_2]`, two orthogonal
+// directions in the surface. World axes are taken on the surface at rest (a tilting surface
+// carries them along); body axes turn with the body and must lie in the surface at its
+// initial pose. Without the key: the surface's own tangents (t1 = world x on the plane, or
+// world y when the normal is close to x; t2 = n x t1). Returns mu_1's direction (world or
+// body frame; zero for the surface's t1).
+struct FrictionAxes {
+  Vec3 first = Vec3::Zero();
+  bool body = false;
+};
+
+std::string degrees_text(double radians) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", radians * 180.0 / M_PI);
+  return text;
+}
+
+FrictionAxes read_friction_axes(TableReader& table, const FrictionKeys& friction, const Vec3& n,
+                                const core::Admittance& admittance, const core::Body& body) {
+  FrictionAxes out;
+  if (friction.kinetic_2 < 0.0) {
+    for (const char* key : {"friction_axes", "friction_axes_frame"}) {
+      if (table.has(key)) table.fail(key, "needs `mu = [mu_1, mu_2]` (anisotropic friction)");
+    }
+    return out;
+  }
+  const std::string frame = table.string("friction_axes_frame", "world");
+  if (frame != "world" && frame != "body") {
+    table.fail("friction_axes_frame", "expected \"world\" or \"body\"");
+  }
+  out.body = frame == "body";
+  if (out.body && !body.can_rotate()) {
+    table.fail("friction_axes_frame", "a point_mass has no orientation: use \"world\" axes");
+  }
+  const toml::node* node = table.node("friction_axes");
+  if (node == nullptr) {
+    if (out.body) table.fail("friction_axes_frame", "body-fixed axes need `friction_axes`");
+    return out;
+  }
+  const toml::array* a = node->as_array();
+  std::array<Vec3, 2> axes;
+  bool ok = a != nullptr && a->size() == 2;
+  for (std::size_t i = 0; ok && i < 2; ++i) {
+    const toml::array* xyz = (*a)[i].as_array();
+    ok = xyz != nullptr && xyz->size() == 3;
+    for (std::size_t j = 0; ok && j < 3; ++j) {
+      ok = (*xyz)[j].is_number();
+      if (ok)
+        axes[i][static_cast<int>(j)] = finite_number((*xyz)[j], table.path() + ".friction_axes");
+    }
+  }
+  if (!ok) table.fail("friction_axes", "expected two directions [[x, y, z], [x, y, z]]");
+  for (const Vec3& axis : axes) {
+    if (!(axis.norm() > 0.0)) table.fail("friction_axes", "each axis must be a non-zero direction");
+  }
+  const double cosine = axes[0].dot(axes[1]) / (axes[0].norm() * axes[1].norm());
+  if (!(std::abs(cosine) <= 1e-6)) {
+    std::string message = "the two axes must be orthogonal (they are ";
+    message += degrees_text(std::acos(std::clamp(cosine, -1.0, 1.0)));
+    message += " degrees apart)";
+    table.fail("friction_axes", message);
+  }
+  // In the surface: world axes as given, body axes at the body's initial pose.
+  core::Quat q0 = core::Quat::Identity();
+  if (out.body) {
+    core::Vec y(admittance.state_size());
+    admittance.initial_state(y);
+    q0 = body.motion(y).q;
+  }
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Vec3 world = q0 * axes[i];
+    const double sine = n.dot(world) / world.norm();
+    if (!(std::abs(sine) <= 1e-6)) {
+      std::string message = "axis ";
+      message += std::to_string(i + 1);
+      message += " is not in the surface (";
+      message += degrees_text(std::asin(std::clamp(sine, -1.0, 1.0)));
+      message += out.body ? " degrees out of its plane at the body's initial pose)"
+                          : " degrees out of its plane)";
+      table.fail("friction_axes", message);
+    }
+  }
+  out.first = axes[0];
+  return out;
+}
+
 }  // namespace
 
 void ComponentBuilder::count_contact_elements(TableReader& table, std::size_t count) {
@@ -195,11 +282,25 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   p.offset = table.number("offset", p.offset);
   p.stiffness = table.positive("stiffness", p.stiffness);
   p.damping = table.non_negative("damping", p.damping);
-  const FrictionKeys friction = read_contact_friction(table, p.mu);
+  const FrictionKeys friction = read_contact_friction(table, p.mu, true);
   p.mu = friction.kinetic;
   p.mu_static = friction.static_level;
   p.stribeck_velocity = friction.stribeck_velocity;
   p.viscous = friction.viscous;
+  const FrictionAxes axes = read_friction_axes(table, friction, p.normal, *info.admittance, *b);
+  if (friction.anisotropic()) {
+    p.mu_2 = friction.kinetic_2;
+    p.body_axes = axes.body;
+    // World axes as given; body axes: their direction at t = 0 is the fallback (an axis
+    // turned along the normal).
+    if (axes.body) {
+      core::Vec y(info.admittance->state_size());
+      info.admittance->initial_state(y);
+      p.friction_axis = b->motion(y).q * axes.first;
+    } else {
+      p.friction_axis = axes.first;
+    }
+  }
   if (table.has("tangential_stiffness"))
     p.tangential_stiffness = table.positive("tangential_stiffness", 0.0);
   if (table.has("tangential_damping"))
@@ -316,6 +417,12 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
   const bool settle = table.boolean("settle", false);
   const double threshold = table.positive("stick_threshold", 1e-3);
   if (rim) reject_for_cylinder(table, moving, settle);
+  if (p.body_axes && (moving || rim)) {
+    table.fail("friction_axes_frame",
+               moving ? "body-fixed axes need a fixed surface (no `belt_speed` or `tilt`)"
+                      : "body-fixed axes are not supported for a cylinder's rim contacts yet "
+                        "(use \"world\")");
+  }
   const std::vector<RollingElement> rolling =
       read_rolling_resistance(table, info.sphere_radius, *b, p, radius,
                               listed || several || moving || rim);
@@ -400,7 +507,9 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
         map = std::make_unique<components::CylinderRimMap>(*b, *info.cylinder, p.normal,
                                                            static_cast<int>(i));
       } else {
-        map = std::make_unique<components::ContactPointMap>(*b, radius, p.normal, points[i]);
+        auto point = std::make_unique<components::ContactPointMap>(*b, radius, p.normal, points[i]);
+        if (p.body_axes) point->carry_axis(axes.first);
+        map = std::move(point);
       }
     }
     if (settling != nullptr) {

@@ -242,7 +242,14 @@ void check_gravity_and_contacts(const Scene& scene, Collector& out) {
   std::vector<std::string> away;  // contacts gravity pulls bodies away from
   for (const auto& [path, t] : components(doc, "impedances")) {
     if (type_of(*t) != "kikuuwe_contact") continue;
-    const auto mu = number_of(t->get("mu"));
+    // One coefficient, or the larger of an anisotropic pair [mu_1, mu_2].
+    std::optional<double> mu = number_of(t->get("mu"));
+    if (const toml::array* pair = t->get("mu") != nullptr ? t->get("mu")->as_array() : nullptr) {
+      for (const toml::node& entry : *pair) {
+        const auto m = number_of(&entry);
+        if (m && (!mu || *m > *mu)) mu = m;
+      }
+    }
     if (mu && *mu > kMaxMu) {
       out.warn(t->get("mu"), *t, path + ".mu",
                "mu = " + number_text(*mu) + " is above " + number_text(kMaxMu) +

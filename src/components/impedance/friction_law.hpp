@@ -30,6 +30,7 @@
 // promise that here).
 #pragma once
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -112,13 +113,54 @@ struct FrictionLevels {
   }
 };
 
+// The point of the ellipse {x : (x_1 / a_1)^2 + (x_2 / a_2)^2 <= 1} (semi-axes a_i > 0)
+// nearest to z in the Euclidean norm, for z outside it (issue 38 item 2). It is
+// x_i = a_i^2 z_i / (a_i^2 + t) with t > 0 the root of
+//   S(t) = sum_i (a_i z_i / (a_i^2 + t))^2 = 1,
+// found by Newton's method on phi(t) = S(t)^(-1/2) - 1 (increasing, and linear when a_1 =
+// a_2) inside the bracket [|c| - max a_i^2, |c| - min a_i^2], c_i = a_i z_i, where S's bounds
+// |c|^2 / (a_max^2 + t)^2 <= S(t) <= |c|^2 / (a_min^2 + t)^2 put the root; bisection where a
+// Newton step would leave the bracket.
+inline Eigen::Vector2d nearest_on_ellipse(const Eigen::Vector2d& z, double a1, double a2) {
+  const double b1 = a1 * a1, b2 = a2 * a2;
+  const double c1 = a1 * z.x(), c2 = a2 * z.y();
+  const double c = std::hypot(c1, c2);
+  if (!(c > 0.0)) return Eigen::Vector2d::Zero();  // semi-axes or z underflowed: no force
+  double lo = std::max(0.0, c - std::max(b1, b2)), hi = c - std::min(b1, b2);
+  double t = lo;
+  for (int k = 0; k < 100 && hi > lo; ++k) {
+    const double r1 = c1 / (b1 + t), r2 = c2 / (b2 + t);
+    const double S = r1 * r1 + r2 * r2;
+    const double phi = 1.0 / std::sqrt(S) - 1.0;
+    if (phi == 0.0) break;
+    (phi < 0.0 ? lo : hi) = t;
+    const double dphi = (r1 * r1 / (b1 + t) + r2 * r2 / (b2 + t)) / (S * std::sqrt(S));
+    double next = t - phi / dphi;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - t) <= 4e-16 * t) {
+      t = next;
+      break;
+    }
+    t = next;
+  }
+  return {b1 * z.x() / (b1 + t), b2 * z.y() / (b2 + t)};
+}
+
 // Friction coefficients of a contact: the levels are the coefficients times the normal force
 // N, the viscous coefficient acts only while the contact carries a load (N > 0).
+// Anisotropic friction (mu_2 >= 0, issue 38 item 2): the coefficient is mu along the unit
+// direction `axis` of the surface (coordinates along the contact's tangents t1, t2) and mu_2
+// across it, with the elliptic limit {f : (f_a / mu)^2 + (f_b / mu_2)^2 <= N^2}; only the
+// plain kinetic level goes with it (contact_anisotropic_friction checks).
 struct ContactFriction {
   double mu = 0.1;                 // kinetic
   double mu_static = 0.1;          // >= mu
   double stribeck_velocity = 0.0;  // m/s, 0: none
   double viscous = 0.0;            // N s/m
+  double mu_2 = -1.0;              // across `axis`; < 0: isotropic (mu everywhere)
+  Eigen::Vector2d axis{1.0, 0.0};  // the direction of mu, along t1, t2 (unit)
+
+  bool anisotropic() const { return mu_2 >= 0.0; }
 
   FrictionLevels at(double normal_force) const {
     return {mu * normal_force, mu_static * normal_force, stribeck_velocity,
@@ -137,6 +179,33 @@ inline ContactFriction contact_friction(double mu, double mu_static, double stri
     throw std::invalid_argument(
         "contact: need 0 <= mu <= mu_static, stribeck_velocity >= 0 and viscous >= 0, finite");
   }
+  return c;
+}
+
+// An anisotropic contact's coefficients: mu along `axis` (a direction in the t1, t2
+// coordinates of the surface, normalized here) and mu_2 across it, both > 0 and finite, with
+// the plain kinetic law only (a static level, a Stribeck curve or viscous friction over an
+// ellipse is not defined here). mu_2 == mu gives the isotropic law itself (bit for bit).
+// std::invalid_argument otherwise.
+inline ContactFriction contact_anisotropic_friction(const ContactFriction& isotropic, double mu_2,
+                                                    const Eigen::Vector2d& axis) {
+  ContactFriction c = isotropic;
+  if (mu_2 < 0.0 || mu_2 == c.mu) return c;
+  if (!(c.mu > 0.0 && mu_2 > 0.0 && std::isfinite(c.mu) && std::isfinite(mu_2))) {
+    throw std::invalid_argument(
+        "contact: anisotropic friction needs mu_1 > 0 and mu_2 > 0, finite");
+  }
+  if (!(c.mu_static == c.mu && c.stribeck_velocity == 0.0 && c.viscous == 0.0)) {
+    throw std::invalid_argument(
+        "contact: anisotropic friction takes the kinetic level only (no mu_static, "
+        "stribeck_velocity or viscous)");
+  }
+  const double norm = axis.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm)) {
+    throw std::invalid_argument("contact: the friction axis must lie in the surface");
+  }
+  c.mu_2 = mu_2;
+  c.axis = axis / norm;
   return c;
 }
 

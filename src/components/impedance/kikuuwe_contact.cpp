@@ -15,7 +15,7 @@ using core::VecRef;
 KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& params)
     : Impedance(std::move(name)),
       ContactCapabilities(
-          params.stiffness, params.damping, std::max(params.mu, params.mu_static),
+          params.stiffness, params.damping, std::max({params.mu, params.mu_static, params.mu_2}),
           params.tangential_stiffness >= 0.0 ? params.tangential_stiffness : params.stiffness),
       params_(params) {
   const auto normal = core::safe_normalized(params_.normal);
@@ -34,7 +34,31 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
   coefficients_ = {params_.stiffness, params_.damping, kt_, bt_,
                    contact_friction(params_.mu, params_.mu_static, params_.stribeck_velocity,
                                     params_.viscous)};
+  // Anisotropic: mu's direction along t1, t2 (t1 itself by default).
+  const Vec3 axis = params_.friction_axis;
+  const Eigen::Vector2d in_plane = axis == Vec3::Zero()
+                                       ? Eigen::Vector2d(1.0, 0.0)
+                                       : Eigen::Vector2d(t1_.dot(axis), t2_.dot(axis));
+  if (params_.mu_2 >= 0.0 && !(in_plane.norm() > 1e-9 * axis.norm())) {
+    throw std::invalid_argument("contact: the friction axis must not be along the normal");
+  }
+  coefficients_.friction =
+      contact_anisotropic_friction(coefficients_.friction, params_.mu_2, in_plane);
   bounded_ = params_.extent.bounded();
+}
+
+void KikuuweContact::evaluate_body_axes(ConstVecRef x_hat, ConstVecRef y, double tau, VecRef u,
+                                        VecRef y_dot) const {
+  // mu's direction from x_hat, along t1, t2 (unit); the direction at t = 0 when the axis has
+  // turned along the normal.
+  const Vec3 a = x_hat.segment<3>(6);
+  Eigen::Vector2d axis(t1_.dot(a), t2_.dot(a));
+  const double norm = axis.norm();
+  axis = norm > 1e-9 * a.norm() ? Eigen::Vector2d(axis / norm) : coefficients_.friction.axis;
+  const Vec3 v_c = x_hat.segment<3>(3);
+  const Vec3 on_body = contact_law_along(frame_, coefficients_, normal_force(x_hat), v_c,
+                                         y.head<2>(), tau, axis, y_dot.head<2>());
+  u.head<3>() = -on_body;
 }
 
 int KikuuweContact::regime(ConstVecRef x_hat, ConstVecRef y, double tau) const {

@@ -31,6 +31,16 @@ struct KikuuweContactParams {
   double mu_static = -1.0;         // static coefficient, >= mu; < 0: equal to mu
   double stribeck_velocity = 0.0;  // m/s, 0: none (friction_law.hpp)
   double viscous = 0.0;            // N s/m, while sliding
+  // Anisotropic friction (issue 38 item 2; contact_law.hpp's elliptic limit): mu along
+  // `friction_axis`, mu_2 across it in the surface; mu_2 < 0 or mu_2 == mu: isotropic.
+  double mu_2 = -1.0;
+  // mu's direction, world, in the surface plane at rest (its part along the normal is
+  // dropped); zero: the surface's first tangent t1.
+  core::Vec3 friction_axis = core::Vec3::Zero();
+  // Body-fixed axes: the map appends mu's direction in world coordinates to x_hat (input
+  // [p_c, v_c, axis], 9 entries; contact_point_map.hpp), taken in the surface plane at every
+  // evaluation; `friction_axis` is then only the fallback for an axis along the normal.
+  bool body_axes = false;
   // Tangential stiffness/damping of the friction element; default: equal to the normal ones
   // as in the paper.
   double tangential_stiffness = -1.0;
@@ -43,7 +53,7 @@ class KikuuweContact final : public core::Impedance, public ContactCapabilities 
  public:
   KikuuweContact(std::string name, const KikuuweContactParams& params);
   std::string_view type() const override { return "kikuuwe_contact"; }
-  int input_size() const override { return 6; }
+  int input_size() const override { return params_.body_axes ? 9 : 6; }
   int output_size() const override { return 3; }
   int state_size() const override { return 2; }
   std::vector<std::string> state_labels() const override { return {"e.0", "e.1"}; }
@@ -52,6 +62,7 @@ class KikuuweContact final : public core::Impedance, public ContactCapabilities 
   // Inline: contact couplings fuse it into their straight code (core/coupling.hpp).
   void evaluate(double /*t*/, core::ConstVecRef x_hat, core::ConstVecRef y, double tau,
                 core::VecRef u, core::VecRef y_dot) const override {
+    if (params_.body_axes) return evaluate_body_axes(x_hat, y, tau, u, y_dot);
     const core::Vec3 v_c = x_hat.segment<3>(3);
     const core::Vec3 on_body = contact_law(frame_, coefficients_, normal_force(x_hat), v_c,
                                            y.head<2>(), tau, y_dot.head<2>());
@@ -72,6 +83,8 @@ class KikuuweContact final : public core::Impedance, public ContactCapabilities 
                               core::VecRef y_dot) const override;
   double contact_normal_force(core::ConstVecRef x_hat) const override { return normal_force(x_hat); }
   const KikuuweContactParams& params() const { return params_; }
+  // The friction coefficients (an anisotropic law's axis along t1, t2 included).
+  const ContactFriction& friction() const { return coefficients_.friction; }
   const core::Vec3& tangent1() const { return t1_; }
   const core::Vec3& tangent2() const { return t2_; }
   const core::Vec3& normal() const { return n_; }
@@ -84,6 +97,11 @@ class KikuuweContact final : public core::Impedance, public ContactCapabilities 
     return components::contact_normal_force(coefficients_, params_.offset - n_.dot(p_c),
                                 n_.dot(core::Vec3(x_hat.segment<3>(3))));
   }
+
+  // evaluate() with body-fixed axes (x_hat of 9 entries; never inlined into the fused
+  // couplings, which carry 6).
+  [[gnu::noinline]] void evaluate_body_axes(core::ConstVecRef x_hat, core::ConstVecRef y,
+                                            double tau, core::VecRef u, core::VecRef y_dot) const;
 
   KikuuweContactParams params_;
   core::Vec3 n_, t1_, t2_;

@@ -14,7 +14,7 @@ MovingContact::MovingContact(std::string name, const KikuuweContactParams& param
                              const SurfaceMotion& motion, double radius)
     : Impedance(std::move(name)),
       ContactCapabilities(
-          params.stiffness, params.damping, std::max(params.mu, params.mu_static),
+          params.stiffness, params.damping, std::max({params.mu, params.mu_static, params.mu_2}),
           params.tangential_stiffness > 0.0 ? params.tangential_stiffness : params.stiffness),
       params_(params),
       motion_(motion),
@@ -26,8 +26,10 @@ MovingContact::MovingContact(std::string name, const KikuuweContactParams& param
       params_.stiffness, params_.damping,
       params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness,
       params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping,
-      contact_friction(params_.mu, params_.mu_static, params_.stribeck_velocity,
-                       params_.viscous)};
+      fixed.friction()};  // an anisotropic law's axis turns with the surface's frame
+  if (params_.body_axes) {
+    throw std::invalid_argument("contact: body-fixed friction axes need a fixed surface");
+  }
   if (!(radius_ >= 0.0)) throw std::invalid_argument("contact: radius must be >= 0");
   if (motion_.tilt && !(motion_.tilt_axis.norm() > 0.0))
     throw std::invalid_argument("contact: zero tilt axis");

@@ -67,7 +67,8 @@ ContactPointMap::ContactPointMap(const core::Body& body, double radius, const co
 std::unique_ptr<core::Coupling> ContactPointMap::direct_coupling(const core::Impedance& impedance,
                                                                  const core::Slot& state) const {
   const auto* contact = dynamic_cast<const KikuuweContact*>(&impedance);
-  if (contact == nullptr) return nullptr;
+  // The fused couplings carry [p_c, v_c] only: a body-fixed friction axis takes the generic path.
+  if (contact == nullptr || carries_axis_ || contact->input_size() != 6) return nullptr;
   if (const auto* body = dynamic_cast<const RigidBody*>(&body_)) {
     return std::make_unique<KikuuweContactCoupling<RigidBody>>(*this, *body, *contact, state);
   }

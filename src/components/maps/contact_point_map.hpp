@@ -3,6 +3,8 @@
 // surface, p + R local - radius n (local 0, radius 0: the body origin, e.g. a point mass;
 // a box corner: local the corner, radius 0). x_hat = [p_c (3), v_c (3)] with
 // v_c = v + w x (p_c - p); the body receives -u at p_c (force and the matching torque).
+// With a body-fixed friction axis (an anisotropic contact's, kikuuwe_contact.hpp), x_hat
+// also carries that axis in world coordinates: [p_c, v_c, R axis] (9 entries).
 #pragma once
 
 #include "core/body.hpp"
@@ -14,12 +16,18 @@ class ContactPointMap final : public core::CoordinateMap {
  public:
   ContactPointMap(const core::Body& body, double radius, const core::Vec3& normal,
                   const core::Vec3& local = core::Vec3::Zero());
-  int motion_size() const override { return 6; }
+  // Appends R axis (world) to x_hat: a body-fixed friction axis.
+  void carry_axis(const core::Vec3& axis) {
+    axis_ = axis;
+    carries_axis_ = true;
+  }
+  int motion_size() const override { return carries_axis_ ? 9 : 6; }
   int force_size() const override { return 3; }
   std::vector<const core::Admittance*> admittances() const override { return {&body_}; }
   void bind(const std::vector<core::Slot>& slots) override { slot_ = slots.at(0); }
   void motion(core::ConstVecRef x, core::VecRef x_hat) const override {
-    motion_of(body_, x.data(), x_hat);
+    const core::BodyMotion m = motion_of(body_, x.data(), x_hat);
+    if (carries_axis_) x_hat.segment<3>(6) = m.q * axis_;
   }
   void apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const override {
     apply_to(body_, body_.motion(x.segment(slot_.state_offset, slot_.state_size)), u,
@@ -60,9 +68,11 @@ class ContactPointMap final : public core::CoordinateMap {
   }
 
   const core::Body& body_;
-  core::Vec3 offset_;  // -radius n, world frame
-  core::Vec3 local_;   // the body-frame point the contact sits about
-  bool body_point_;    // local_ != 0: the lever turns with the body
+  core::Vec3 offset_;                     // -radius n, world frame
+  core::Vec3 local_;                      // the body-frame point the contact sits about
+  bool body_point_;                       // local_ != 0: the lever turns with the body
+  core::Vec3 axis_ = core::Vec3::Zero();  // a body-fixed friction axis (body frame)
+  bool carries_axis_ = false;
   core::Slot slot_;
 };
 
