@@ -61,7 +61,8 @@ run fuzz_scene "$scene" scene -dict=fuzz/toml.dict
 run fuzz_toml_structure "$structure" structure -max_len=512 -len_control=0
 run fuzz_pairs "$pairs" pairs -max_len=1024
 run fuzz_urdf "$urdf" urdf -max_len=2048
-run fuzz_sweep_plan "$sweep" sweep -dict=fuzz/sweep.dict -max_len=512
+# A plan at the documented maximum (1000000 points) takes seconds instrumented: 30 s an input.
+run fuzz_sweep_plan "$sweep" sweep -dict=fuzz/sweep.dict -max_len=512 -timeout=30
 if [ "$python_seconds" -gt 0 ]; then
   echo "== fuzz_python for $python_seconds s (seed 1)" >&2
   PYTHONPATH=build/python STICTION_CACHE_DIR=off "$python" fuzz/fuzz_python.py --seed 1 \

@@ -1,6 +1,6 @@
 // libFuzzer target over contacts between bodies (issue 39 item 8): the bytes are a recipe
 // (fuzz/pairs_recipe.hpp) for a scene of spheres and boxes with pair contacts, hostile
-// numbers, coincident and nested bodies and up to 4950 pairs. Each input must end in an
+// numbers, coincident and nested bodies and up to 2016 pairs. Each input must end in an
 // InputError, or a built scene that then steps briefly (fuzz/step_fuzz_scene.hpp) and ends
 // unstable, on a model fault, or with only finite numbers: never a crash, a sanitizer report,
 // a hang, or a finished run with a non-finite number (NonFiniteFinish, not caught here).
