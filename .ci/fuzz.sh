@@ -2,15 +2,15 @@
 # Builds the libFuzzer targets with clang (build-fuzz/) and fuzzes for the given number of
 # seconds in all (default 60), split among them (docs/sanitizers_fuzzing.md has the figures
 # of longer runs):
-#   fuzz_scene           1/3: scene files with optional URDF and --set lines, mutated as bytes
+#   fuzz_scene           1/3 (21 of 60 s): scene files with optional URDF and --set lines, mutated as bytes
 #                        with the dictionary fuzz/toml.dict, seeded with scenes/*.toml,
 #                        fuzz/seeds/ and the earlier findings in fuzz/regressions/;
-#   fuzz_toml_structure  1/8: deep and huge TOML structure appended to the bundled scenes;
-#   fuzz_pairs           1/6: bodies in contact with one another (pair contacts), stepped;
-#   fuzz_urdf            1/6: URDF robots with meshes, limits and odd inertias, stepped, no
+#   fuzz_toml_structure  1/10: deep and huge TOML structure appended to the bundled scenes;
+#   fuzz_pairs           2/15: bodies in contact with one another (pair contacts), stepped;
+#   fuzz_urdf            2/15: URDF robots with meshes, limits and odd inertias, stepped, no
 #                        file opened outside the input's folder;
-#   fuzz_sweep_plan      1/15: sweep plans (--vary, --zip, --shard, Slurm variables);
-#   fuzz/fuzz_python.py  the rest: the Python module's elements and laws (fixed seed), when
+#   fuzz_sweep_plan      1/20: sweep plans (--vary, --zip, --shard, Slurm variables);
+#   fuzz/fuzz_python.py  1/10: the Python module's elements and laws (fixed seed), when
 #                        the Release build has built the module (build/python); otherwise
 #                        its share goes to fuzz_scene.
 # A crash, a sanitizer report, a timeout (10 s per input), an out-of-memory (2 GB) or, for
@@ -40,7 +40,7 @@ export LSAN_OPTIONS="suppressions=$PWD/.ci/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 common=(-timeout=10 -rss_limit_mb=2048 -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1)
 
-python_seconds=$((seconds * 2 / 15))
+python_seconds=$((seconds / 10))
 module=$(ls build/python/stiction/_stiction*.so 2>/dev/null | head -n 1 || true)
 python=/usr/bin/python3
 [ -x "$python" ] || python=python3
@@ -48,8 +48,11 @@ if [ -z "$module" ]; then
   echo "== fuzz_python skipped: no build/python/stiction/_stiction*.so (the Release build makes it)" >&2
   python_seconds=0
 fi
-structure=$((seconds / 8)) pairs=$((seconds / 6)) urdf=$((seconds / 6)) sweep=$((seconds / 15))
-scene=$((seconds - structure - pairs - urdf - sweep - python_seconds))
+# libFuzzer finishes the input it is on and starts with its corpus: each target overruns its
+# share by 1-6 s (a stepped pile of bodies takes seconds instrumented), so 2/15 of the time
+# is left as a margin and the whole step stays near SECONDS.
+structure=$((seconds / 10)) pairs=$((seconds * 2 / 15)) urdf=$((seconds * 2 / 15)) sweep=$((seconds / 20))
+scene=$((seconds - seconds * 2 / 15 - structure - pairs - urdf - sweep - python_seconds))
 run() {  # NAME SECONDS CORPUS [OPTIONS...]
   local name=$1 time=$2 corpus=$3
   shift 3
