@@ -62,8 +62,11 @@ run() {  # NAME SECONDS CORPUS [OPTIONS...]
 }
 run fuzz_scene "$scene" scene -dict=fuzz/toml.dict
 run fuzz_toml_structure "$structure" structure -max_len=512 -len_control=0
-run fuzz_pairs "$pairs" pairs -max_len=1024
-run fuzz_urdf "$urdf" urdf -max_len=2048
+# One implicit step of a pile of boxes cannot be cut short: 0.1 s in Release, 3 s
+# instrumented, 10-15 s on a loaded machine (2 boxes, dt = 0.1 s, 2026-12-06): 30 s an input,
+# which still fails a step that never ends.
+run fuzz_pairs "$pairs" pairs -max_len=1024 -timeout=30
+run fuzz_urdf "$urdf" urdf -max_len=2048 -timeout=30
 # A plan at the documented maximum (1000000 points) takes seconds instrumented: 30 s an input.
 run fuzz_sweep_plan "$sweep" sweep -dict=fuzz/sweep.dict -max_len=512 -timeout=30
 if [ "$python_seconds" -gt 0 ]; then
