@@ -1,6 +1,8 @@
 // What the fuzz targets do with one input, shared with the regression test that replays
-// the findings (tests/reliability/test_fuzz_regressions.cpp). Returns true if the scene was built,
-// false if it was refused with a scene::InputError; anything else propagates.
+// the findings (tests/reliability/test_fuzz_regressions.cpp). load_fuzz_scene returns the
+// scene built (fuzz_pairs and fuzz_urdf then step it: fuzz/step_fuzz_scene.hpp), or nothing
+// if it was refused with a scene::InputError; load_fuzz_input says which; anything else
+// propagates. STICTION_FUZZ_VERBOSE=1 prints each refusal's message to stderr.
 //
 // An input is a scene file, optionally followed by a line "%%urdf" and a URDF text, then
 // optionally by a line "%%" and one --set assignment per line. With a URDF, the scene and
