@@ -1,6 +1,8 @@
 // What the fuzz targets do with one input, shared with the regression test that replays
-// the findings (tests/reliability/test_fuzz_regressions.cpp). Returns true if the scene was built,
-// false if it was refused with a scene::InputError; anything else propagates.
+// the findings (tests/reliability/test_fuzz_regressions.cpp). load_fuzz_scene returns the
+// scene built (fuzz_pairs and fuzz_urdf then step it: fuzz/step_fuzz_scene.hpp), or nothing
+// if it was refused with a scene::InputError; load_fuzz_input says which; anything else
+// propagates. STICTION_FUZZ_VERBOSE=1 prints each refusal's message to stderr.
 //
 // An input is a scene file, optionally followed by a line "%%urdf" and a URDF text, then
 // optionally by a line "%%" and one --set assignment per line. With a URDF, the scene and
@@ -9,13 +11,16 @@
 // `file = "fuzz.urdf"` reads the fuzzed text through the scene builder as `run` does.
 #pragma once
 
+#include <toml++/toml.h>
+
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <toml++/toml.h>
 
 #include "core/run_limits.hpp"
 #include "fuzz/scratch_directory.hpp"
@@ -30,7 +35,9 @@ inline void write_scratch_file(const std::filesystem::path& path, const std::str
   out << text;
 }
 
-inline bool load_fuzz_input(const std::string& input) {
+// The scene an input builds (evaluated once at its initial state), or nothing when it is
+// refused with a scene::InputError or breaks the run limits as `run` would refuse it.
+inline std::optional<scene::Scene> load_fuzz_scene(const std::string& input) {
   std::string document = input;
   std::vector<std::string> overrides;
   if (const std::size_t split = input.find("\n%%\n"); split != std::string::npos) {
@@ -58,16 +65,19 @@ inline bool load_fuzz_input(const std::string& input) {
     }
     for (const std::string& o : overrides) scene::apply_override(parsed, o);
     scene::Scene scene = scene::build_scene(std::move(parsed), origin);
-    if (core::check_run_limits(scene.run)) return false;
+    if (core::check_run_limits(scene.run)) return std::nullopt;
     // Evaluate the network once at its initial state: components reject what they cannot
     // represent at construction, and must not crash on what they accepted.
     const core::Vec x = scene.network->initial_state();
     core::Vec x_dot(x.size());
     scene.network->derivative(0.0, x, scene.run.dt, x_dot);
-    return true;
-  } catch (const scene::InputError&) {
-    return false;
+    return scene;
+  } catch (const scene::InputError& e) {
+    if (std::getenv("STICTION_FUZZ_VERBOSE") != nullptr) std::fprintf(stderr, "%s\n", e.what());
+    return std::nullopt;
   }
 }
+
+inline bool load_fuzz_input(const std::string& input) { return load_fuzz_scene(input).has_value(); }
 
 }  // namespace stiction::fuzz

@@ -25,8 +25,12 @@ std::shared_ptr<py::object> keep(py::object object);
 // py::error_already_set.
 [[noreturn]] void raise(PyObject* type, const std::string& message);
 
+// repr(value) for a message, at most about 200 characters; the type's name when repr fails.
+std::string value_text(py::handle value);
+
 // Reads `n` doubles from `value` (a number when n == 1, else a sequence or NumPy array of n
-// numbers) into `out`. `what` names the value in the TypeError ("source 'motor' returned").
+// numbers) into `out`. `what` names the value in the TypeError ("source 'motor' returned");
+// an int beyond a double's range is an OverflowError that names it too.
 void read_values(py::handle value, double* out, int n, const std::string& what);
 
 }  // namespace stiction::python

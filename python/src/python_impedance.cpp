@@ -10,21 +10,31 @@
 #include <vector>
 
 #include "core/capabilities.hpp"
-#include "scene/components.hpp"
 #include "python_callbacks.hpp"
+#include "scene/components.hpp"
 
 namespace stiction::python {
 
 namespace {
 
-// A size the object states (an attribute or a property): an int >= 0.
+// The largest size an element may state: far above any wiring (2 or 6 inputs, 1 or 3
+// outputs) or any state a Python element steps at a useful speed.
+constexpr long long kMaxElementSize = 1'000'000;
+
+// A size the object states (an attribute or a property): an int in 0..kMaxElementSize
+// (an int too large for C++ was "Unable to cast Python instance to C++ type": issue 39,
+// found by fuzz/fuzz_python.py).
 int size_of(const py::object& element, const char* name, const std::string& where) {
   const py::object value = element.attr(name);
-  if (!py::isinstance<py::int_>(value) || value.cast<long>() < 0) {
-    throw std::invalid_argument(where + "." + name + " must be an int >= 0, got " +
-                                std::string(py::repr(value)));
+  int overflow = 0;
+  const long long size =
+      py::isinstance<py::int_>(value) ? PyLong_AsLongLongAndOverflow(value.ptr(), &overflow) : -1;
+  if (PyErr_Occurred() != nullptr) PyErr_Clear();
+  if (overflow != 0 || size < 0 || size > kMaxElementSize) {
+    throw std::invalid_argument(where + "." + name + " must be an int in 0.." +
+                                std::to_string(kMaxElementSize) + ", got " + value_text(value));
   }
-  return value.cast<int>();
+  return static_cast<int>(size);
 }
 
 // An array of n doubles owned by the element, handed to Python read-only: a callback that

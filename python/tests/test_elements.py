@@ -258,6 +258,37 @@ def test_mistakes_are_scene_errors_naming_the_component():
         stiction.Scene.from_toml(text, elements={"joint": PointSpring(1.0, 0.0)})
 
 
+def test_hostile_returns_and_sizes_are_errors_naming_the_callback():
+    # Found by fuzz/fuzz_python.py (issue 39 item 8): a NumPy array of strings returned by a
+    # law or an element raised pybind11's "Internal error: pybind11::error_already_set called
+    # while Python error indicator not set", an int beyond a double an OverflowError naming
+    # nothing, and a size of 10**20 "Unable to cast Python instance to C++ type".
+    scene = stiction.Scene("pd_arm").set_source("controller", lambda t, s: np.array(["a"]))
+    with pytest.raises(TypeError, match=r"source 'controller' returned array\(\['a'\].*dtype <U1.*expected a number"):
+        stiction.run(scene, accuracy=False, force_step=True, duration=0.01)
+    scene.set_source("controller", lambda t, s: 10 ** 400)
+    with pytest.raises(OverflowError, match=r"source 'controller' returned 1000.*beyond the range of a double"):
+        stiction.run(scene, accuracy=False, force_step=True, duration=0.01)
+    scene.set_source("controller", lambda t, s: 10 ** 5000)  # its repr() fails: the type is named
+    with pytest.raises(OverflowError, match=r"source 'controller' returned a int, beyond"):
+        stiction.run(scene, accuracy=False, force_step=True, duration=0.01)
+
+    class Strings(ViscousCoulomb):
+        def evaluate(self, t, x_hat, y, tau):
+            return np.array(["x"]), (0.0,)
+
+    text = ARM_WITH_JOINT.format(duration=0.01, released=2.0, T0=1.0)
+    with pytest.raises(TypeError, match=r"array\(\['x'\].*expected a number"):
+        stiction.run(stiction.Scene.from_toml(text, elements={"joint": Strings}), accuracy=False,
+                     force_step=True)
+
+    class Huge(ViscousCoulomb):
+        output_size = 10 ** 20
+
+    with pytest.raises(stiction.SceneError, match=r"output_size must be an int in 0\.\.1000000, got 1000"):
+        stiction.Scene.from_toml(text, elements={"joint": Huge})
+
+
 def test_every_build_gets_a_fresh_element():
     made = []
 
