@@ -13,6 +13,7 @@
 #include "core/network.hpp"
 #include "core/simulation.hpp"
 #include "core/trajectory.hpp"
+#include "trajectory_rows.hpp"
 
 namespace stiction::testing {
 
@@ -70,13 +71,6 @@ inline SphereCase random_sphere(std::mt19937& rng) {
   return c;
 }
 
-// Column `name` of a trajectory at the first row at or after t.
-inline double column_at(const core::Trajectory& tr, const std::string& name, double t) {
-  const auto col = *tr.find(name);
-  int row = 0;
-  while (row + 1 < tr.row_count() && tr.at(row, 0) < t - 1e-9) ++row;
-  return tr.at(row, col);
-}
 
 inline double first_stick_time(const core::RunResult& result) {
   for (const auto& h : result.slip_events) {

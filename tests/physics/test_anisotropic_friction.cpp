@@ -28,8 +28,11 @@
 #include "core/simulation.hpp"
 #include "scene/plausibility.hpp"
 #include "scene/scene.hpp"
+#include "trajectory_rows.hpp"
 
 using namespace stiction;
+using testing::column_at;
+using testing::row_at;
 using core::Vec3;
 
 namespace {
@@ -110,11 +113,6 @@ core::RunResult run(const std::string& text) {
   return core::simulate(*scene.network, scene.run);
 }
 
-int row_at(const core::Trajectory& tr, double t) {
-  int row = 0;
-  while (row + 1 < tr.row_count() && tr.at(row, 0) < t - 1e-9) ++row;
-  return row;
-}
 
 Vec3 vec3_at(const core::Trajectory& tr, const std::string& name, int row) {
   return {tr.at(row, *tr.find(name + ".x")), tr.at(row, *tr.find(name + ".y")),

@@ -23,8 +23,11 @@
 #include "components/impedance/pair_contact.hpp"
 #include "core/simulation.hpp"
 #include "scene/scene.hpp"
+#include "trajectory_rows.hpp"
 
 using namespace stiction;
+using testing::column_at;
+using testing::row_at;
 
 namespace {
 
@@ -89,16 +92,6 @@ core::RunResult run(const std::string& text) {
   return core::simulate(*scene.network, scene.run);
 }
 
-// The first row at or after t.
-int row_at(const core::Trajectory& tr, double t) {
-  int row = 0;
-  while (row + 1 < tr.row_count() && tr.at(row, 0) < t - 1e-9) ++row;
-  return row;
-}
-
-double column_at(const core::Trajectory& tr, const std::string& name, double t) {
-  return tr.at(row_at(tr, t), *tr.find(name));
-}
 
 // The anchor of the friction element along x: position less the spring's elongation. It
 // stays constant, to rounding, exactly while the element is stuck (e_dot == v).

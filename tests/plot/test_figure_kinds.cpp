@@ -25,9 +25,12 @@
 #include "plot/plot_spec.hpp"
 #include "render/inset_plot.hpp"
 #include "services/study.hpp"
+#include "word_runs.hpp"
 
 using namespace stiction;
 namespace fs = std::filesystem;
+
+using stiction::testing::word_runs;
 
 namespace {
 
@@ -43,22 +46,6 @@ const std::vector<std::string> kWords{
     "trajectory",   "stiffness",   "damping",    "coulomb",     "stribeck", "viscous",
     "quaternion",   "orientation", "rotation",   "translation", "left",     "right",
     "front",        "rear",        "upper",      "lower",       "inner",    "outer"};
-
-// The ASCII letter-and-digit runs of a text: its words as the check sees them.
-std::vector<std::string> word_runs(const std::string& text) {
-  std::vector<std::string> runs;
-  std::string current;
-  for (char c : text) {
-    if (std::isalnum(static_cast<unsigned char>(c))) {
-      current += c;
-    } else if (!current.empty()) {
-      runs.push_back(current);
-      current.clear();
-    }
-  }
-  if (!current.empty()) runs.push_back(current);
-  return runs;
-}
 
 class Generator {
  public:

@@ -14,11 +14,14 @@
 
 #include "plot/cairo_font.hpp"
 #include "plot/text_fit.hpp"
+#include "word_runs.hpp"
 
 using namespace stiction;
 using plot::fit_text;
 using plot::FittedText;
 using plot::TextRule;
+
+using stiction::testing::word_runs;
 
 namespace {
 
@@ -33,21 +36,6 @@ struct Measuring {
   plot::Painter painter{cr.get(), font, layout};
   double width(const std::string& s, double size) { return painter.measure(s, size).width; }
 };
-
-std::vector<std::string> word_runs(const std::string& text) {
-  std::vector<std::string> runs;
-  std::string current;
-  for (char c : text) {
-    if (std::isalnum(static_cast<unsigned char>(c))) {
-      current += c;
-    } else if (!current.empty()) {
-      runs.push_back(current);
-      current.clear();
-    }
-  }
-  if (!current.empty()) runs.push_back(current);
-  return runs;
-}
 
 bool whole_words(const FittedText& fitted, const std::string& original) {
   const std::vector<std::string> given = word_runs(original);

@@ -25,34 +25,20 @@
 #include "services/plot_outputs.hpp"
 #include "services/run_outputs.hpp"
 #include "services/study.hpp"
+#include "word_runs.hpp"
 
 using namespace stiction;
 
-namespace {
+using stiction::testing::word_runs;
 
-// The ASCII letter-and-digit runs of a text: its words as the check sees them ("…", spaces,
-// brackets, '_' and '.' separate them).
-std::vector<std::string> words_of(const std::string& text) {
-  std::vector<std::string> runs;
-  std::string current;
-  for (char c : text) {
-    if (std::isalnum(static_cast<unsigned char>(c))) {
-      current += c;
-    } else if (!current.empty()) {
-      runs.push_back(current);
-      current.clear();
-    }
-  }
-  if (!current.empty()) runs.push_back(current);
-  return runs;
-}
+namespace {
 
 // What is wrong with one drawn string against what it was given ("" when nothing is): a word
 // that is not a whole word of the given text, words out of order, or words left out of a
 // string not marked shortened (it must then be consecutive words of it: a line of a wrapped
 // text, or all of it).
 std::string cut(const plot::TextBox& t) {
-  const std::vector<std::string> drawn = words_of(t.text), given = words_of(t.given);
+  const std::vector<std::string> drawn = word_runs(t.text), given = word_runs(t.given);
   // Every word a whole word of the given text, in order (a subsequence).
   std::size_t at = 0;
   for (const std::string& w : drawn) {
