@@ -73,8 +73,9 @@ void ImplicitEulerStepper::build_islands(Network& network) {
     }
     s.share = static_cast<double>(s.island.states.size()) / dim;
     const auto n = static_cast<Eigen::Index>(s.solved.size());
-    s.matrix = Eigen::MatrixXd::Identity(n, n);
-    s.lu = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+    set_pattern(network, s);
+    s.matrix = Eigen::MatrixXd::Identity(s.sparse ? 0 : n, s.sparse ? 0 : n);
+    s.lu = Eigen::PartialPivLU<Eigen::MatrixXd>(s.sparse ? 0 : n);
     s.residual = Vec::Zero(n);
     s.delta = Vec::Zero(n);
     s.probe_delta = Vec::Zero(n);
@@ -200,30 +201,102 @@ double ImplicitEulerStepper::scaled_norm(const IslandSolve& s, const Vec& correc
   return std::isfinite(norm) ? norm : std::numeric_limits<double>::infinity();
 }
 
-void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, double t_eval,
-                                          double h) {
-  s.matrix.setIdentity();
-  for (int e : s.island.states) probe_[e] = eval_[e];
+void ImplicitEulerStepper::set_pattern(Network& network, IslandSolve& s) const {
   const auto n = static_cast<Eigen::Index>(s.solved.size());
+  if (compress_) {
+    s.pattern = jacobian_pattern(network, s.island, s.solved);
+  } else {
+    s.pattern = JacobianPattern{};
+    std::vector<int> all(static_cast<std::size_t>(n));
+    for (Eigen::Index k = 0; k < n; ++k) all[static_cast<std::size_t>(k)] = static_cast<int>(k);
+    for (Eigen::Index k = 0; k < n; ++k) s.pattern.groups.push_back({static_cast<int>(k)});
+    s.pattern.rows.assign(static_cast<std::size_t>(n), all);
+  }
+  s.sparse = n >= sparse_unknowns_ && static_cast<double>(s.pattern.nonzeros()) <=
+                                          kSparseFill * static_cast<double>(n) * static_cast<double>(n);
+  if (!s.sparse) return;
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(s.pattern.nonzeros()));
   for (Eigen::Index k = 0; k < n; ++k) {
-    const int j = s.solved[static_cast<std::size_t>(k)];
-    // About sqrt(eps) relative, taken as the difference actually stored, so that the
-    // quotient divides by the step the state really made.
-    probe_[j] += 1.5e-8 * std::max(std::abs(eval_[j]), 1e-3);
-    const double delta = probe_[j] - eval_[j];
-    evaluate_part(network, s, t_eval, probe_, h, f_probe_);
-    probe_[j] = eval_[j];
-    for (Eigen::Index r = 0; r < n; ++r) {
-      const int i = s.solved[static_cast<std::size_t>(r)];
-      s.matrix(r, k) -= h * (f_probe_[i] - f_[i]) / delta;
+    for (int r : s.pattern.rows[static_cast<std::size_t>(k)]) entries.emplace_back(r, k, 0.0);
+  }
+  s.sparse_matrix.resize(n, n);
+  s.sparse_matrix.setFromTriplets(entries.begin(), entries.end());
+  s.sparse_matrix.makeCompressed();
+  // refresh_matrix writes column k's q-th entry for the pattern's q-th row of k: the
+  // structure must list them in that order.
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const auto& rows = s.pattern.rows[static_cast<std::size_t>(k)];
+    const int first = s.sparse_matrix.outerIndexPtr()[k];
+    for (std::size_t q = 0; q < rows.size(); ++q) {
+      if (s.sparse_matrix.innerIndexPtr()[first + static_cast<int>(q)] != rows[q]) {
+        throw std::logic_error("implicit: a sparse matrix's structure differs from its pattern");
+      }
     }
   }
-  s.lu.compute(s.matrix);
+  s.sparse_lu = std::make_unique<Eigen::SparseLU<Eigen::SparseMatrix<double>>>();
+  s.sparse_lu->analyzePattern(s.sparse_matrix);
+}
+
+int ImplicitEulerStepper::sparse_islands() const {
+  int count = 0;
+  for (const IslandSolve& s : islands_) count += s.sparse && s.sparse_factored ? 1 : 0;
+  return count;
+}
+
+void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, double t_eval,
+                                          double h) {
+  const auto n = static_cast<Eigen::Index>(s.solved.size());
+  if (s.sparse) {
+    s.sparse_matrix.coeffs().setZero();
+  } else {
+    s.matrix.setIdentity();
+  }
+  for (int e : s.island.states) probe_[e] = eval_[e];
+  column_steps_.resize(static_cast<std::size_t>(n));
+  double* values = s.sparse ? s.sparse_matrix.valuePtr() : nullptr;
+  const int* outer = s.sparse ? s.sparse_matrix.outerIndexPtr() : nullptr;
+  for (const std::vector<int>& group : s.pattern.groups) {
+    for (int k : group) {
+      const int j = s.solved[static_cast<std::size_t>(k)];
+      // About sqrt(eps) relative, taken as the difference actually stored, so that the
+      // quotient divides by the step the state really made.
+      probe_[j] += 1.5e-8 * std::max(std::abs(eval_[j]), 1e-3);
+      column_steps_[static_cast<std::size_t>(k)] = probe_[j] - eval_[j];
+    }
+    evaluate_part(network, s, t_eval, probe_, h, f_probe_);
+    ++matrix_evaluations_;
+    for (int k : group) {
+      const int j = s.solved[static_cast<std::size_t>(k)];
+      probe_[j] = eval_[j];
+      const double delta = column_steps_[static_cast<std::size_t>(k)];
+      const auto& rows = s.pattern.rows[static_cast<std::size_t>(k)];
+      for (std::size_t q = 0; q < rows.size(); ++q) {
+        const int r = rows[q];
+        const int i = s.solved[static_cast<std::size_t>(r)];
+        const double change = h * (f_probe_[i] - f_[i]) / delta;
+        if (values != nullptr) {
+          values[outer[k] + static_cast<int>(q)] = (r == k ? 1.0 : 0.0) - change;
+        } else {
+          s.matrix(r, k) -= change;
+        }
+      }
+    }
+  }
+  if (s.sparse) {
+    s.sparse_lu->factorize(s.sparse_matrix);
+    s.sparse_factored = s.sparse_lu->info() == Eigen::Success;
+    // A singular pivot under the sparse ordering: the dense LU with partial pivoting takes
+    // this matrix (as it takes every matrix of a small island).
+    if (!s.sparse_factored) s.lu.compute(Eigen::MatrixXd(s.sparse_matrix));
+  } else {
+    s.lu.compute(s.matrix);
+  }
   // A small island's corrections are one product with the inverse: Eigen's two triangular
   // solves cost more in their blocking than in their arithmetic at 13 unknowns (28% of a
   // step of 1000 spheres). Simplified Newton corrects the inverse's rounding as it does
   // the matrix's age.
-  if (n <= kInverseUnknowns) s.inverse = s.lu.inverse();
+  if (!s.sparse && n <= kInverseUnknowns) s.inverse = s.lu.inverse();
   s.lu_valid = true;
   s.lu_h = h;
   ++matrices_formed_;
@@ -337,7 +410,9 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
 }
 
 void ImplicitEulerStepper::correct(IslandSolve& s) {
-  if (s.residual.size() <= kInverseUnknowns) {
+  if (s.sparse && s.sparse_factored) {
+    s.delta = s.sparse_lu->solve(s.residual);
+  } else if (!s.sparse && s.residual.size() <= kInverseUnknowns) {
     s.delta.noalias() = s.inverse * s.residual;
   } else {
     s.delta.noalias() = s.lu.solve(s.residual);

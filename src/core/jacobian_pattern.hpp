@@ -1,0 +1,45 @@
+// The structure of an island's Jacobian dF/dx from the network's wiring, for compressed
+// finite differences (Curtis, Powell & Reid, 1974) and a sparse factorization (issue 36
+// item 3).
+//
+// An admittance's rate depends on its own state and its input; its input is the sum of the
+// forces of the impedances whose maps move it; an impedance's force and state rate depend on
+// the admittances its map moves and its own state (core/coupling.hpp). So the state entries
+// an element touches (the admittances its map moves, its own state) form a clique: each can
+// change the rate of each. No other entry can: a body's state changes only the rates of the
+// bodies it shares an element with, and theirs to the bit stay as they were.
+//
+// Blocks are the state slices of the island's admittances and impedances. Two blocks whose
+// row sets (the blocks they can change) do not meet are perturbed in one evaluation: their
+// differences land in disjoint rows. A tower of boxes (each touching the ones next to it)
+// needs about three evaluations per unknown of a box instead of one per unknown of the tower;
+// a pile with every pair in contact is one clique and gains nothing. Since an evaluation
+// changes no row outside its perturbed blocks' row sets by even a bit, the compressed
+// matrix equals the one-column-at-a-time matrix to the bit.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace stiction::core {
+
+class Network;
+struct Island;
+
+struct JacobianPattern {
+  // Columns (indices into the island's solved entries) perturbed together, one evaluation
+  // each.
+  std::vector<std::vector<int>> groups;
+  // Per column: the rows (indices into the solved entries, ascending) its difference can
+  // change. Always holds the column's own row.
+  std::vector<std::vector<int>> rows;
+  // Entries of the pattern: the sum of the rows' sizes.
+  Eigen::Index nonzeros() const;
+};
+
+// solved: the island's solved state entries (ascending; ImplicitEulerStepper's
+// IslandSolve::solved).
+JacobianPattern jacobian_pattern(const Network& network, const Island& island,
+                                 const std::vector<int>& solved);
+
+}  // namespace stiction::core
