@@ -142,9 +142,17 @@ std::string pinch_scene(const Case& c) {
 
 class StictionPeer final : public Peer {
  public:
-  StictionPeer(std::string integrator, double dt) : integrator_(std::move(integrator)), dt_(dt) {}
+  // tolerance > 0: an error-controlled integrator (sdirk2, sdirk4), dt its first step and the
+  // interval at which the bench reads it.
+  StictionPeer(std::string integrator, double dt, double tolerance = 0.0)
+      : integrator_(std::move(integrator)), dt_(dt), tolerance_(tolerance) {}
   std::string engine() const override { return "stiction"; }
-  std::string settings() const override { return integrator_; }
+  std::string settings() const override {
+    if (!(tolerance_ > 0.0)) return integrator_;
+    char text[64];
+    std::snprintf(text, sizeof text, "%s tol %.0e", integrator_.c_str(), tolerance_);
+    return text;
+  }
   double dt() const override { return dt_; }
   bool in_hold_benchmark() const override {
     return (integrator_ == "rk4" && dt_ == 1e-4) ||
@@ -167,7 +175,7 @@ class StictionPeer final : public Peer {
       default:
         scene_ = scene::load_scene(scene_file(c.problem));
     }
-    stepper_ = core::make_stepper(integrator_, scene_.network->state_dim(), dt_);
+    stepper_ = core::make_stepper(integrator_, scene_.network->state_dim(), dt_, tolerance_);
     x_ = scene_.network->initial_state();
     t_ = 0.0;
     steps_ = 0;
@@ -212,6 +220,7 @@ class StictionPeer final : public Peer {
  private:
   std::string integrator_;
   double dt_;
+  double tolerance_;
   scene::Scene scene_;
   std::unique_ptr<core::Stepper> stepper_;
   core::Vec x_;
@@ -224,7 +233,7 @@ class StictionPeer final : public Peer {
 
 bool available(const std::string& integrator) {
   try {
-    core::make_stepper(integrator, 13, 1e-3);
+    core::make_stepper(integrator, 13, 1e-3, 1e-6);
     return true;
   } catch (const std::invalid_argument&) {
     return false;
@@ -242,6 +251,12 @@ void add_stiction_peers(Peers& peers) {
   }
   for (double dt : {1e-3, 1.0 / 240, 1.0 / 60}) {
     peers.push_back(std::make_unique<StictionPeer>("implicit", dt));
+  }
+  // The error-controlled implicit methods (issue 36 item 2), read every 1/60 s.
+  if (available("sdirk2")) {
+    for (const char* name : {"sdirk2", "sdirk4"}) {
+      peers.push_back(std::make_unique<StictionPeer>(name, 1.0 / 60, 1e-6));
+    }
   }
 }
 
