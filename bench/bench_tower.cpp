@@ -62,10 +62,20 @@ void tower(benchmark::State& state, bool compress, bool sparse) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(tower, columns_dense, false, false)->Arg(10)->Arg(30)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(tower, columns_dense, false, false)
+    ->Arg(10)
+    ->Arg(30)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(tower, compressed_dense, true, false)
-    ->Arg(10)->Arg(30)->Arg(100)->Unit(benchmark::kMillisecond);
+    ->Arg(10)
+    ->Arg(30)
+    ->Arg(100)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(tower, compressed_sparse, true, true)
-    ->Arg(10)->Arg(30)->Arg(100)->Arg(300)->Unit(benchmark::kMillisecond);
+    ->Arg(10)
+    ->Arg(30)
+    ->Arg(100)
+    ->Arg(300)
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -124,10 +124,10 @@ std::string pinch_scene(const Case& c) {
                   "normal = [0.0, -1.0, 0.0]\noffset = %.17g\n"
                   "stiffness = %.17g\ndamping = %.17g\nmu = 0.0\npoints = %s\n",
                   name, k.finger_mass, vec(k.finger[0], k.finger[1], k.finger[2]).c_str(),
-                  vec(side * (k.finger_x() - 0.25 * force / k.stiffness), 0.0, k.height).c_str(), name, name, k.stiffness,
-                  k.damping, corners(2, -1.0).c_str(), name, name, -hy, k.stiffness, k.damping,
-                  corners(1, -1.0).c_str(), name, name, -hy, k.stiffness, k.damping,
-                  corners(1, 1.0).c_str());
+                  vec(side * (k.finger_x() - 0.25 * force / k.stiffness), 0.0, k.height).c_str(),
+                  name, name, k.stiffness, k.damping, corners(2, -1.0).c_str(), name, name, -hy,
+                  k.stiffness, k.damping, corners(1, -1.0).c_str(), name, name, -hy, k.stiffness,
+                  k.damping, corners(1, 1.0).c_str());
     text += block;
     std::snprintf(block, sizeof block,
                   "[impedances.%s_pinch]\ntype = \"kikuuwe_contact\"\nbody = \"block\"\n"
@@ -186,9 +186,10 @@ class StictionPeer final : public Peer {
       const std::string& name = network.admittances()[a]->name();
       for (int i = 0; i < c.count; ++i) {
         const bool match = c.problem == Problem::spheres ? name == sphere_name(i)
-                           : c.problem == Problem::pinch
-                               ? name == (i == 0 ? "block" : i == 1 ? "left" : "right")
-                               : true;
+                           : c.problem == Problem::pinch ? name == (i == 0   ? "block"
+                                                                    : i == 1 ? "left"
+                                                                             : "right")
+                                                         : true;
         if (match) bodies_[i] = network.admittance_slot(a).state_offset;
       }
     }
@@ -227,7 +228,7 @@ class StictionPeer final : public Peer {
   double t_ = 0.0;
   long steps_ = 0;
   Problem problem_ = Problem::sphere;
-  std::vector<int> bodies_;                  // state offset of each body
+  std::vector<int> bodies_;                // state offset of each body
   const core::JointSpace* arm_ = nullptr;  // the pendulum's arm
 };
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "core/islands.hpp"
 #include "core/stability.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
@@ -23,6 +24,39 @@ std::string labels_of(const core::LayoutEntry& entry) {
   std::string out;
   for (const auto& l : entry.labels) out += (out.empty() ? "" : " ") + l;
   return out;
+}
+
+// One line of a listing: where (a state range, or empty), which component, and what it says.
+struct AlikeLine {
+  std::string where, component, text;
+};
+
+// The lines, with each run of lines that say the same of different components (1000 spheres,
+// each with its floor contact) printed as its first line and one line naming the rest.
+void print_alike(const std::vector<AlikeLine>& lines, int where_width) {
+  for (std::size_t i = 0; i < lines.size();) {
+    std::size_t end = i + 1;
+    while (end < lines.size() && lines[end].text == lines[i].text) ++end;
+    const AlikeLine& l = lines[i];
+    if (where_width > 0) {
+      std::printf("  %-*s %s %s\n", where_width, l.where.c_str(), l.component.c_str(),
+                  l.text.c_str());
+    } else {
+      std::printf("  %s %s\n", l.component.c_str(), l.text.c_str());
+    }
+    const std::size_t more = end - i - 1;
+    if (more == 1) {
+      std::printf("  %-*s %s: the same\n", where_width, lines[i + 1].where.c_str(),
+                  lines[i + 1].component.c_str());
+    } else if (more > 1) {
+      const AlikeLine& last = lines[end - 1];
+      std::printf("  %-*s the same for %zu more, %s%s%s to %s%s%s\n", std::max(where_width, 1), "",
+                  more, lines[i + 1].component.c_str(), lines[i + 1].where.empty() ? "" : " ",
+                  lines[i + 1].where.c_str(), last.component.c_str(), last.where.empty() ? "" : " ",
+                  last.where.c_str());
+    }
+    i = end;
+  }
 }
 
 // A fixed-step integrator's figures, each named for what it is: the step above which a run
@@ -76,39 +110,49 @@ void print_text(const scene::Scene& scene, const CheckReport& report) {
                   : (std::to_string(report.verify.at.size()) + " frame times").c_str());
 
   std::printf("\nstate layout (%d numbers):\n", network.state_dim());
+  std::vector<AlikeLine> layout;
   for (const core::LayoutEntry& e : network.layout()) {
     if (e.size == 0) {
-      std::printf("  %-9s %s (%s): no state\n", "-", e.component.c_str(), e.type.c_str());
+      layout.push_back({"-", e.component, "(" + e.type + "): no state"});
       continue;
     }
     std::string range = "[";  // appended piecewise: GCC 12 -Wrestrict false positive
     range += std::to_string(e.offset) + ".." + std::to_string(e.offset + e.size - 1) + "]";
-    std::printf("  %-9s %s (%s): %s\n", range.c_str(), e.component.c_str(), e.type.c_str(),
-                labels_of(e).c_str());
+    layout.push_back({range, e.component, "(" + e.type + "): " + labels_of(e)});
   }
+  print_alike(layout, 9);
+  const std::vector<core::Island> islands = core::find_islands(network);
+  std::size_t largest = 0;
+  for (const core::Island& i : islands) largest = std::max(largest, i.states.size());
+  std::printf(
+      "islands (bodies no element couples, stepped and analysed apart): %zu, the "
+      "largest with %zu states\n",
+      islands.size(), largest);
 
   std::printf(
       "\nstiffest elements, each alone against its effective mass (linearized at the "
       "initial state; the whole network's limits are below):\n");
+  std::vector<AlikeLine> stiff;
   for (const StiffElement& s : report.stiff) {
+    const std::string head = "(" + s.type + "): K = " + text::shortest(s.stiffness);
     if (s.over_budget) {
-      std::printf("  %s (%s): K = %s; its effective mass was not computed (bounded work: the "
-                  "elements above took the budget)\n",
-                  s.component.c_str(), s.type.c_str(), text::shortest(s.stiffness).c_str());
-      continue;
+      stiff.push_back({"", s.component,
+                       head + "; its effective mass was not computed (bounded work: the "
+                              "elements above took the budget)"});
+    } else if (!s.wired) {
+      stiff.push_back(
+          {"", s.component, head + "; no effective mass could be computed for its wiring"});
+    } else {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    " against an effective mass/inertia %.6g: omega = %.5g rad/s, damping ratio "
+                    "%.3g; alone, this undamped mode would make rk4 unstable above 2.83 / omega "
+                    "= %.3g s",
+                    1.0 / s.mobility, s.omega, s.damping_ratio, 2.8284271247461903 / s.omega);
+      stiff.push_back({"", s.component, head + text});
     }
-    if (!s.wired) {
-      std::printf("  %s (%s): K = %s; no effective mass could be computed for its wiring\n",
-                  s.component.c_str(), s.type.c_str(), text::shortest(s.stiffness).c_str());
-      continue;
-    }
-    std::printf(
-        "  %s (%s): K = %s against an effective mass/inertia %.6g: omega = %.5g rad/s, "
-        "damping ratio %.3g; alone, this undamped mode would make rk4 unstable above "
-        "2.83 / omega = %.3g s\n",
-        s.component.c_str(), s.type.c_str(), text::shortest(s.stiffness).c_str(), 1.0 / s.mobility,
-        s.omega, s.damping_ratio, 2.8284271247461903 / s.omega);
   }
+  print_alike(stiff, 0);
   if (report.stiff.empty()) std::printf("  no stiff elements\n");
 
   if (!report.analysis_skipped.empty()) {

@@ -212,8 +212,9 @@ void ImplicitEulerStepper::set_pattern(Network& network, IslandSolve& s) const {
     for (Eigen::Index k = 0; k < n; ++k) s.pattern.groups.push_back({static_cast<int>(k)});
     s.pattern.rows.assign(static_cast<std::size_t>(n), all);
   }
-  s.sparse = n >= sparse_unknowns_ && static_cast<double>(s.pattern.nonzeros()) <=
-                                          kSparseFill * static_cast<double>(n) * static_cast<double>(n);
+  s.sparse =
+      n >= sparse_unknowns_ && static_cast<double>(s.pattern.nonzeros()) <=
+                                   kSparseFill * static_cast<double>(n) * static_cast<double>(n);
   if (!s.sparse) return;
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<std::size_t>(s.pattern.nonzeros()));

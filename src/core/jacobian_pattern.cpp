@@ -58,8 +58,8 @@ JacobianPattern jacobian_pattern(const Network& network, const Island& island,
   for (std::size_t k = 0; k < island.impedances.size(); ++k) {
     clique.clear();
     for (const Admittance* body : network.map_of(island.impedances[k]).admittances()) {
-      const auto it = std::lower_bound(block_of_body.begin(), block_of_body.end(),
-                                       std::make_pair(body, -1));
+      const auto it =
+          std::lower_bound(block_of_body.begin(), block_of_body.end(), std::make_pair(body, -1));
       if (it != block_of_body.end() && it->first == body) clique.push_back(it->second);
     }
     if (own_block[k] >= 0) clique.push_back(own_block[k]);

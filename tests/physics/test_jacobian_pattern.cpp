@@ -74,14 +74,14 @@ std::string ball_row(std::mt19937& rng, int count, double dt) {
   for (int k = 0; k < count; ++k) {
     text << "[bodies." << ball_name(k) << "]\ntype = \"rigid_body\"\nmass = " << uniform(0.5, 2.0)
          << "\nshape = \"sphere\"\nradius = " << radius << "\nposition = ["
-         << k * (2.0 * radius - 1e-4) << ", 0.0, " << radius
-         << "]\nangular_velocity = [" << uniform(-5.0, 5.0) << ", " << uniform(-5.0, 5.0) << ", "
-         << uniform(-5.0, 5.0) << "]\n[impedances.floor" << k
-         << "]\ntype = \"kikuuwe_contact\"\nbody = \"" << ball_name(k)
-         << "\"\nstiffness = 1e6\ndamping = 100.0\nmu = " << uniform(0.2, 0.8) << "\n";
+         << k * (2.0 * radius - 1e-4) << ", 0.0, " << radius << "]\nangular_velocity = ["
+         << uniform(-5.0, 5.0) << ", " << uniform(-5.0, 5.0) << ", " << uniform(-5.0, 5.0)
+         << "]\n[impedances.floor" << k << "]\ntype = \"kikuuwe_contact\"\nbody = \""
+         << ball_name(k) << "\"\nstiffness = 1e6\ndamping = 100.0\nmu = " << uniform(0.2, 0.8)
+         << "\n";
     if (k > 0) {
-      text << "[impedances.touch" << k << "]\ntype = \"kikuuwe_contact\"\nbody = \""
-           << ball_name(k) << "\"\nother = \"" << ball_name(k - 1)
+      text << "[impedances.touch" << k << "]\ntype = \"kikuuwe_contact\"\nbody = \"" << ball_name(k)
+           << "\"\nother = \"" << ball_name(k - 1)
            << "\"\nstiffness = 1e6\ndamping = 100.0\nmu = " << uniform(0.2, 0.8) << "\n";
     }
   }
@@ -116,12 +116,14 @@ constexpr Eigen::Index kNever = 1 << 30;
 
 }  // namespace
 
-TEST_CASE("jacobian pattern: a tower is a chain, coloured in three evaluations per unknown of a "
-          "box however tall",
-          "[implicit][jacobian]") {
+TEST_CASE(
+    "jacobian pattern: a tower is a chain, coloured in three evaluations per unknown of a "
+    "box however tall",
+    "[implicit][jacobian]") {
   std::mt19937 rng(36);
   for (int count : {2, 5, 12, 30}) {
-    auto scene = scene::load_scene(scene::SceneSource::from_text(tower(rng, count, 1e-3), "t.toml"));
+    auto scene =
+        scene::load_scene(scene::SceneSource::from_text(tower(rng, count, 1e-3), "t.toml"));
     const std::vector<bool> solved_flags = core::implicitly_solved_slots(*scene.network);
     const auto islands = core::find_islands(*scene.network);
     REQUIRE(islands.size() == 1);
@@ -150,9 +152,10 @@ TEST_CASE("jacobian pattern: a tower is a chain, coloured in three evaluations p
   }
 }
 
-TEST_CASE("jacobian pattern: compressed differences give the same run to the bit as one column "
-          "per evaluation, for a fraction of the evaluations",
-          "[implicit][jacobian]") {
+TEST_CASE(
+    "jacobian pattern: compressed differences give the same run to the bit as one column "
+    "per evaluation, for a fraction of the evaluations",
+    "[implicit][jacobian]") {
   std::mt19937 rng(2036);
   for (int trial = 0; trial < 3; ++trial) {
     for (bool boxes : {true, false}) {
@@ -177,9 +180,10 @@ TEST_CASE("jacobian pattern: compressed differences give the same run to the bit
   }
 }
 
-TEST_CASE("jacobian pattern: the sparse LU steps a tower as the dense LU does, to Newton's "
-          "tolerance",
-          "[implicit][jacobian]") {
+TEST_CASE(
+    "jacobian pattern: the sparse LU steps a tower as the dense LU does, to Newton's "
+    "tolerance",
+    "[implicit][jacobian]") {
   std::mt19937 rng(7);
   // 16 and 24 boxes: 208 and 312 unknowns, 18% and 12% of the matrix in the pattern.
   for (int count : {16, 24}) {
