@@ -136,7 +136,7 @@ CompareFrames::~CompareFrames() = default;
 std::vector<FrameTime> CompareFrames::frame_times() const {
   const double step = 1.0 / (settings_.fps * settings_.slow_motion);
   return warped_frame_times(start_, end_, step, events_, settings_.slow_motion_around_events,
-                            settings_.event_slow_motion);
+                            settings_.event_slow_motion, settings_.slowed_events);
 }
 
 void CompareFrames::render(double t, image::Image& out, double speed) {

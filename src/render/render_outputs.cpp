@@ -177,7 +177,7 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
                                        settings.fps, settings.slow_motion);
   const std::vector<FrameTime> times = warped_frame_times(
       clock.start, renderer.poses().end_time(), clock.step, request.event_times,
-      settings.slow_motion_around_events, settings.event_slow_motion);
+      settings.slow_motion_around_events, settings.event_slow_motion, settings.slowed_events);
   std::error_code ec;
   fs::create_directories(request.out_dir, ec);
   if (ec) throw VideoError("cannot create " + request.out_dir.string() + ": " + ec.message());

@@ -17,9 +17,23 @@ double playback_speed(double t, const std::vector<double>& events, double window
   return slow + (1.0 - slow) * (d - window) / ramp;
 }
 
+std::vector<double> first_episodes(std::vector<double> events, double window, int episodes) {
+  std::sort(events.begin(), events.end());
+  if (episodes <= 0) return events;
+  std::vector<double> kept;
+  int count = 0;
+  for (double e : events) {
+    if (kept.empty() || e - kept.back() >= 2.0 * window) ++count;
+    if (count > episodes) break;
+    kept.push_back(e);
+  }
+  return kept;
+}
+
 std::vector<FrameTime> warped_frame_times(double start, double end, double step,
-                                          const std::vector<double>& events, double window,
-                                          double factor) {
+                                          const std::vector<double>& all_events, double window,
+                                          double factor, int episodes) {
+  const std::vector<double> events = first_episodes(all_events, window, episodes);
   std::vector<FrameTime> frames;
   if (!(step > 0.0)) return frames;
   if (window <= 0.0 || factor <= 1.0 || events.empty()) {

@@ -16,9 +16,15 @@ struct FrameTime {
 // Frames every `step` simulated seconds from `start` through `end` (both ends included when
 // `end - start` is a whole number of steps), the step scaled by the speed near `events`.
 // window <= 0 or no events: uniform frames.
+// `episodes` > 0: only the first that many episodes of events are slowed (slowed_events).
 std::vector<FrameTime> warped_frame_times(double start, double end, double step,
                                           const std::vector<double>& events, double window,
-                                          double factor);
+                                          double factor, int episodes = 0);
+
+// The events of the first `episodes` episodes, in time order: events less than two windows
+// apart (whose slowed stretches would touch) are one episode, so a contact chattering at
+// touch-down counts once and the transition after it is still slowed. episodes <= 0: all.
+std::vector<double> first_episodes(std::vector<double> events, double window, int episodes);
 
 // Playback speed at time t (1 far from events, 1/factor within `window` of one).
 double playback_speed(double t, const std::vector<double>& events, double window, double factor);

@@ -63,7 +63,7 @@ std::vector<render::FrameTime> video_frame_times(const core::Trajectory& rows,
   const double end = rows.at(rows.row_count() - 1, 0);
   const double step = 1.0 / (settings.fps * settings.slow_motion);
   return render::warped_frame_times(start, end, step, events, settings.slow_motion_around_events,
-                                    settings.event_slow_motion);
+                                    settings.event_slow_motion, settings.slowed_events);
 }
 
 render::RenderResult write_run_video(const scene::Scene& scene, const core::RunResult& result,
