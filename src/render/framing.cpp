@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "render/mechanism_items.hpp"
+#include "render/scene_geometry.hpp"
 #include "render/tree_items.hpp"
 
 namespace stiction::render {
@@ -42,7 +44,23 @@ void add_body_points(std::vector<glm::vec3>& points, const Drawing& scene, const
     case BodyVisual::Kind::sphere:
       add_cube(points, to_glm(poses.position(index, t)), glm::vec3(static_cast<float>(b.radius)));
       break;
-    case BodyVisual::Kind::cylinder:
+    case BodyVisual::Kind::cylinder: {
+      // Its two rims, as regular 12-gons around them (not its box, whose corners stand out
+      // by up to 41% of the radius as the wheel turns, which framed a rolling wheel smaller).
+      const core::Vec3 c = poses.position(index, t);
+      const core::Quat q = poses.orientation(index, t);
+      core::Vec3 u, v;
+      tangents(b.axis, u, v);
+      const double r = b.radius / std::cos(std::numbers::pi / 12.0);
+      for (int k = 0; k < 12; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / 12.0;
+        const core::Vec3 rim = r * (std::cos(a) * u + std::sin(a) * v);
+        for (const double side : {-0.5, 0.5}) {
+          points.push_back(to_glm(c + q * (rim + side * b.length * b.axis)));
+        }
+      }
+      break;
+    }
     case BodyVisual::Kind::box: {
       const core::Vec3 c = poses.position(index, t);
       const core::Quat q = poses.orientation(index, t);
