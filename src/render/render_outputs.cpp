@@ -175,9 +175,11 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   FrameRenderer& renderer = *run_renderer;
   const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                                        settings.fps, settings.slow_motion);
-  const std::vector<FrameTime> times = warped_frame_times(
-      clock.start, renderer.poses().end_time(), clock.step, request.event_times,
-      settings.slow_motion_around_events, settings.event_slow_motion, settings.slowed_events);
+  const std::vector<FrameTime> times =
+      warped_frame_times(clock.start, renderer.poses().end_time(), clock.step,
+                         slowed_events(request.event_times, request.event_kinds,
+                                       settings.slow_motion_around_events, settings.slowed_events),
+                         settings.slow_motion_around_events, settings.event_slow_motion);
   std::error_code ec;
   fs::create_directories(request.out_dir, ec);
   if (ec) throw VideoError("cannot create " + request.out_dir.string() + ": " + ec.message());

@@ -18,8 +18,8 @@
 //   slow_motion_around_events = 0.0  # seconds of simulated time on each side of every
 //                           # stick/slip event played `event_slow_motion` times slower
 //   event_slow_motion = 8   # how much slower, 1..100 (ramps in and out over half the window)
-//   slowed_events = 0       # slow down around the first N episodes of events only (events
-//                           # less than two windows apart are one episode); 0: all
+//   slowed_events = 0       # slow down around the first N episodes of slip/stick changes
+//                           # only (time_warp.hpp: slowed_events); 0: around every event
 //   msaa = 4                # samples per pixel: 1, 2 or 4
 //   shadow_map_size = 2048  # 0 turns shadows off; else a power of two 256..8192: the most
 //                           # texels per side; each frame uses what the fitted region needs

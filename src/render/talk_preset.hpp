@@ -1,7 +1,7 @@
 // [render] preset = "talk": one key for a video to show in a talk (issue 37 item 6). It sets
 //   size = [1280, 720]                  a 16:9 frame
 //   slow_motion_around_events = 0.1     8x slower (event_slow_motion) within 0.1 s of ...
-//   slowed_events = 3                   ... the first three episodes of events only
+//   slowed_events = 3                   ... the first three episodes of slip/stick changes
 //   [overlay] badges, forces and trail = true
 //   [inset] signals: the ones that matter for the scene (talk_inset_signals)
 // Every key given in the scene file wins over the preset's value: the preset is applied

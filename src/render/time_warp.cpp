@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace stiction::render {
 
@@ -30,10 +31,28 @@ std::vector<double> first_episodes(std::vector<double> events, double window, in
   return kept;
 }
 
+std::vector<double> slowed_events(const std::vector<double>& times,
+                                  const std::vector<std::string>& kinds, double window,
+                                  int episodes) {
+  if (episodes <= 0) return times;
+  if (kinds.size() != times.size()) return first_episodes(times, window, episodes);
+  std::vector<std::pair<double, std::string>> events;
+  for (std::size_t i = 0; i < times.size(); ++i) events.emplace_back(times[i], kinds[i]);
+  std::stable_sort(events.begin(), events.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<double> changes;
+  std::string last;
+  for (const auto& [t, kind] : events) {
+    if (kind == "open" || kind == last) continue;
+    changes.push_back(t);
+    last = kind;
+  }
+  return first_episodes(changes, window, episodes);
+}
+
 std::vector<FrameTime> warped_frame_times(double start, double end, double step,
-                                          const std::vector<double>& all_events, double window,
-                                          double factor, int episodes) {
-  const std::vector<double> events = first_episodes(all_events, window, episodes);
+                                          const std::vector<double>& events, double window,
+                                          double factor) {
   std::vector<FrameTime> frames;
   if (!(step > 0.0)) return frames;
   if (window <= 0.0 || factor <= 1.0 || events.empty()) {
