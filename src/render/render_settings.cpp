@@ -60,7 +60,7 @@ void read_render(TableReader& r, RenderSettings& s) {
     return std::find(presets.begin(), presets.end(), name) != presets.end();
   };
   const std::string preset = r.string("preset", "");
-  if (!preset.empty() && !is_look_preset(preset)) {
+  if (r.has("preset") && !is_look_preset(preset)) {
     if (!x264(preset)) {
       r.fail("preset", "unknown preset '" + preset + "' (a look: " + join(look_preset_names()) +
                            "; or libx264's speed, now `encoder_preset`: " + join(presets) + ")");

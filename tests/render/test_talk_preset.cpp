@@ -111,6 +111,7 @@ TEST_CASE("preset: libx264's names still work, the two keys never clash",
   CHECK_THROWS_WITH(read("[render]\npreset = \"poster\"\n"),
                     Contains("render.preset") && Contains("unknown preset 'poster'") &&
                         Contains("talk") && Contains("superfast"));
+  CHECK_THROWS_WITH(read("[render]\npreset = \"\"\n"), Contains("unknown preset ''"));
   CHECK_THROWS_WITH(read("[render]\nencoder_preset = \"talk\"\n"),
                     Contains("render.encoder_preset") && Contains("unknown libx264 preset"));
   CHECK_THROWS_WITH(read("[render]\nslowed_events = -1\n"), Contains("render.slowed_events"));
