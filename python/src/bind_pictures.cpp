@@ -83,7 +83,8 @@ class Pictures {
   const std::vector<render::FrameTime>& frame_times() {
     if (!frame_times_) {
       frame_times_ = services::video_frame_times(video_rows(), settings(),
-                                                 services::slip_event_times(run_->result));
+                                                 services::slip_event_times(run_->result),
+                                                 services::slip_event_kinds(run_->result));
     }
     return *frame_times_;
   }

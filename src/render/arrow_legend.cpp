@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "render/number_format.hpp"
 
@@ -58,6 +60,25 @@ ArrowLegend::ArrowLegend(bool forces, bool velocities, const ArrowScales& scales
     : forces_(forces), velocities_(velocities), scales_(scales), font_(text::Font::open_default()) {
   style_.pixel_size = std::max(10.0, image_height / 36.0);
   style_.colour = {20, 22, 26, 255};
+}
+
+PixelBox ArrowLegend::bound(int bottom) {
+  const double px = style_.pixel_size, pad = 0.6 * px, line = 1.4 * px;
+  std::vector<std::pair<std::string, std::string>> rows;  // name, unit
+  if (forces_) rows.insert(rows.end(), {{"normal force", "N"}, {"friction", "N"}});
+  if (velocities_) rows.emplace_back("velocity", "m/s");
+  if (rows.empty()) return {};
+  double width = 0.0;
+  for (const auto& [name, unit] : rows) {
+    for (const char* prefix : {"", "m", "\u00b5", "k", "M"}) {
+      const std::string label = " " + name + ": 500 " + prefix + unit;
+      width = std::max(width, 4.0 * px + font_.measure(label, style_).width);
+    }
+  }
+  const double height = rows.size() * line + 2.0 * pad;
+  const int x0 = static_cast<int>(pad);
+  return {x0, static_cast<int>(bottom - height),
+          static_cast<int>(std::ceil(x0 + width + 2.0 * pad)), bottom};
 }
 
 void ArrowLegend::draw(image::Image& frame, const Camera& camera, int bottom) {

@@ -27,6 +27,10 @@ class ArrowLegend {
   ArrowLegend(bool forces, bool velocities, const ArrowScales& scales, int image_height);
   // Draws the legend; `bottom`: the lowest pixel row it may use (above the caption).
   void draw(image::Image& frame, const Camera& camera, int bottom);
+  // The most of the frame the legend can cover, whatever the camera (its bars at their
+  // longest, each value with three digits and a prefix): a panel the camera keeps the
+  // bodies clear of, known before the camera is.
+  PixelBox bound(int bottom);
 
  private:
   bool forces_, velocities_;

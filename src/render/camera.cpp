@@ -14,7 +14,12 @@ namespace stiction::render {
 glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
 
 glm::mat4 Camera::projection(float aspect) const {
-  return glm::perspective(glm::radians(fov_y_degrees), aspect, near_plane, far_plane);
+  const glm::mat4 centred =
+      glm::perspective(glm::radians(fov_y_degrees), aspect, near_plane, far_plane);
+  if (lens_shift == glm::vec2(0.0f)) return centred;
+  // Adds lens_shift to the normalized device coordinates (clip x += shift.x w): the picture
+  // moves, the depth and the view do not.
+  return glm::translate(glm::mat4(1.0f), glm::vec3(lens_shift, 0.0f)) * centred;
 }
 
 Camera frame_bounds(const Bounds& bounds, glm::vec3 direction, float fov_y_degrees, float aspect,
@@ -103,8 +108,13 @@ glm::vec3 view_up(CameraView view, const Drawing& scene) {
   return view == CameraView::top ? front_direction(scene) : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
-CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene,
-                     const PoseTrack& poses, float aspect)
+CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene, const PoseTrack& poses,
+                     float aspect)
+    : CameraRig(settings, scene, poses,
+                FramePanels{static_cast<int>(std::lround(10000.0f * aspect)), 10000, {}}) {}
+
+CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene, const PoseTrack& poses,
+                     const FramePanels& panels)
     : poses_(poses) {
   const CameraView view = settings.view;
   const glm::vec3 direction = view_direction(view, scene);
@@ -120,11 +130,12 @@ CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene,
   }
   if (view == CameraView::follow && follow_ < 0) follow_ = first_followable(scene);
   // Every body and every element of the mechanism at every time in view, framed by their
-  // own points (an arm fills the picture rather than the box around its sweep).
+  // own points (an arm fills the picture rather than the box around its sweep), in the part
+  // of the frame the panels leave free.
   auto whole_run = [&] {
     std::vector<glm::vec3> points = run_points(scene, poses, direction, 96, up);
     if (points.empty()) points.push_back(glm::vec3(0.0f));
-    return frame_points(points, direction, fov, aspect, 0.12f, up);
+    return frame_points_beside_panels(points, direction, fov, panels, 0.12f, up);
   };
   if (view == CameraView::automatic && follow_ >= 0 && has_world_parts(scene)) {
     // A follow camera would move the posts, rollers and pivots in the picture and hide the
@@ -136,11 +147,15 @@ CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene,
         2.0f * std::tan(glm::radians(fov) * 0.5f) * glm::length(fixed.target - fixed.eye);
     if (piece_size(scene.bodies[static_cast<std::size_t>(follow_)]) >= height / 12.0) follow_ = -1;
   }
-  // What to frame: the whole run, or the followed body's neighbourhood at the start.
   follow_vertical_ = settings.follow_vertical;
+  // The follow view keeps its height; `follow` with the automatic view lets the height pass
+  // up to a dead zone set below, once the distance is known.
+  if (view == CameraView::follow) vertical_dead_zone_ = std::numeric_limits<float>::infinity();
   Bounds bounds;
   if (follow_ >= 0) {
     follow_origin_ = to_glm(poses.position(follow_, poses.start_time()));
+    // The followed body's neighbourhood at the start (the ground square of a camera that
+    // follows all three axes is centred on it).
     const Bounds b = body_bounds(scene, poses, poses.start_time());
     const glm::vec3 c = b.centre();
     const float h =
@@ -148,30 +163,25 @@ CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene,
     bounds.add(c - glm::vec3(3.5f * h, 2.0f * h, h));
     bounds.add(c + glm::vec3(3.5f * h, 2.0f * h, h));
     follow_region_ = bounds;
+    base_ = frame_followed(scene, direction, up, fov, panels);
   } else {
     bounds = run_bounds(scene, poses);
-  }
-  if (bounds.empty()) bounds.add(glm::vec3(0.0f));
-  if (view == CameraView::follow) {
-    // Everything as the camera moving with the body (horizontally) sees it over the run.
-    vertical_dead_zone_ = std::numeric_limits<float>::infinity();  // a fixed height
-    const std::vector<glm::vec3> points =
-        run_points(scene, poses, direction, 96, up, [&](double t) { return shift(t); });
-    base_ = frame_points(points, direction, fov, aspect, 0.12f, up);
-  } else if (follow_ >= 0) {
-    base_ = frame_bounds(bounds, direction, fov, aspect);
-  } else {
     base_ = whole_run();
   }
+  if (bounds.empty()) bounds.add(glm::vec3(0.0f));
   // Following horizontally, the camera still moves vertically once the body is more than
   // this far above or below where it started, so a body that drops stays in the frame.
   if (view != CameraView::follow) {
     vertical_dead_zone_ =
         0.5f * std::tan(glm::radians(fov) * 0.5f) * glm::length(base_.eye - base_.target);
   }
+  // An explicit eye or target is the user's camera: no automatic framing, the target at the
+  // frame's centre. Under a follow camera both are where they are at the start of the run and
+  // move with the body (shift), keeping their offset from it.
   if (settings.target) base_.target = to_glm(*settings.target);
   if (settings.position) base_.eye = to_glm(*settings.position);
   if (settings.position || settings.target) {
+    base_.lens_shift = glm::vec2(0.0f);
     const float d = glm::length(base_.eye - base_.target);
     const float r = std::max(bounds.radius(), 1e-3f);
     base_.near_plane = std::max(1e-3f, 0.02f * d);
@@ -181,6 +191,33 @@ CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene,
       base_.up = glm::vec3(0.0f, 1.0f, 0.0f);
     }
   }
+}
+
+Camera CameraRig::frame_followed(const Drawing& scene, glm::vec3 direction, glm::vec3 up, float fov,
+                                 const FramePanels& panels) const {
+  // The followed body as the moving camera sees it over the run (a bounce under a camera at
+  // a fixed height moves it in the picture), framed into the free part of the frame: where
+  // it goes, and the least distance at which all of it stays there.
+  std::vector<glm::vec3> points;
+  for (int i = 0; i < 96; ++i) {
+    const double t = poses_.start_time() + (poses_.end_time() - poses_.start_time()) * i / 95.0;
+    const std::size_t first = points.size();
+    add_body_points(points, scene, poses_, follow_, t);
+    for (std::size_t k = first; k < points.size(); ++k) points[k] -= shift(t);
+  }
+  Camera camera = frame_points_beside_panels(points, direction, fov, panels, 0.12f, up);
+  // The distance at which the body's size spans kFollowFraction of the frame's height at the
+  // reference field of view: a fixed distance, so `fov` zooms.
+  const float size =
+      static_cast<float>(piece_size(scene.bodies[static_cast<std::size_t>(follow_)]));
+  const float at_fraction =
+      size / (2.0f * kFollowFraction * std::tan(glm::radians(kFollowReferenceFov) * 0.5f));
+  const glm::vec3 f = glm::normalize(camera.target - camera.eye);
+  const float distance = std::max(glm::length(camera.target - camera.eye), at_fraction);
+  camera.eye = camera.target - f * distance;
+  camera.near_plane = std::max(1e-3f, 0.05f * (distance - size));
+  camera.far_plane = distance + 60.0f * size + 20.0f;
+  return camera;
 }
 
 glm::vec3 CameraRig::shift(double t) const {

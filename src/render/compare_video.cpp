@@ -88,7 +88,11 @@ CompareFrames::CompareFrames(const std::vector<CompareRun>& runs) {
   for (const CompareRun& r : runs) {
     settings_.slow_motion_around_events =
         std::max(settings_.slow_motion_around_events, r.settings.slow_motion_around_events);
-    events_.insert(events_.end(), r.event_times.begin(), r.event_times.end());
+    // The events each run's own video slows down around (slowed_events), all runs together.
+    const std::vector<double> slowed =
+        slowed_events(r.event_times, r.event_kinds, r.settings.slow_motion_around_events,
+                      r.settings.slowed_events);
+    events_.insert(events_.end(), slowed.begin(), slowed.end());
   }
   std::sort(events_.begin(), events_.end());
   grid_ = tile_grid(static_cast<int>(runs.size()), settings_.width, settings_.height);

@@ -37,14 +37,24 @@ void ForceRegimeLayers::add_items(std::vector<DrawItem>& items, double t, const 
   if (layers_.velocities) add_velocity_arrows(items, scene_, poses_, t, scales_);
 }
 
+namespace {
+
+// The legend's lowest row: above the caption's band, by the overlay's pad.
+int legend_bottom(int height, int caption_height) {
+  return height - caption_height - static_cast<int>(0.6 * std::max(11.0, height / 30.0));
+}
+
+}  // namespace
+
+PixelBox ForceRegimeLayers::legend_box(int height) {
+  return legend_ ? legend_->bound(legend_bottom(height, caption_height_)) : PixelBox{};
+}
+
 void ForceRegimeLayers::draw(image::Image& frame, double t, const Camera& camera, double exposure) {
   if (badges_) {
     badges_->draw(frame, poses_, t, camera.projection(aspect_) * camera.view(), exposure);
   }
-  if (legend_) {
-    const int pad = static_cast<int>(0.6 * std::max(11.0, frame.height / 30.0));
-    legend_->draw(frame, camera, frame.height - caption_height_ - pad);
-  }
+  if (legend_) legend_->draw(frame, camera, legend_bottom(frame.height, caption_height_));
 }
 
 }  // namespace stiction::render

@@ -21,12 +21,11 @@ namespace stiction::render {
 class ForceRegimeLayers {
  public:
   // Null when forces, velocities and badges are all off.
-  static std::unique_ptr<ForceRegimeLayers> create(const Drawing& scene,
-                                                   const ContactSites& sites,
+  static std::unique_ptr<ForceRegimeLayers> create(const Drawing& scene, const ContactSites& sites,
                                                    const PoseTrack& poses,
                                                    const RenderSettings& settings);
-  ForceRegimeLayers(const Drawing& scene, const ContactSites& sites,
-                    const PoseTrack& poses, const RenderSettings& settings);
+  ForceRegimeLayers(const Drawing& scene, const ContactSites& sites, const PoseTrack& poses,
+                    const RenderSettings& settings);
 
   // The arrows at time t; `exposure`: the simulated time the frame stands for (forces and
   // regimes are judged over it: contact_force, contact_regime).
@@ -36,6 +35,9 @@ class ForceRegimeLayers {
   void draw(image::Image& frame, double t, const Camera& camera, double exposure);
 
   const ArrowScales& scales() const { return scales_; }
+  // The most of a frame `height` high the arrows' legend can cover (ArrowLegend::bound);
+  // empty without arrows.
+  PixelBox legend_box(int height);
 
  private:
   const Drawing& scene_;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "render/mechanism_items.hpp"
+#include "render/scene_geometry.hpp"
 #include "render/tree_items.hpp"
 
 namespace stiction::render {
@@ -18,50 +21,70 @@ void add_cube(std::vector<glm::vec3>& points, glm::vec3 c, glm::vec3 half) {
 
 }  // namespace
 
-std::vector<glm::vec3> body_points(const Drawing& scene, const PoseTrack& poses,
-                                   double t) {
+void add_body_points(std::vector<glm::vec3>& points, const Drawing& scene, const PoseTrack& poses,
+                     int index, double t) {
+  const BodyVisual& b = scene.bodies[static_cast<std::size_t>(index)];
+  switch (b.kind) {
+    case BodyVisual::Kind::arm: {
+      // Joints and tip of the planar chain, in its own plane (as scene_view draws it), each
+      // with the width of the link that ends there (the base with the first link's).
+      const std::vector<core::Vec3> joints = arm_joints(b, poses, index, t);
+      for (std::size_t k = 0; k < joints.size(); ++k) {
+        const double width = b.widths[k == 0 ? 0 : k - 1];
+        add_cube(points, to_glm(joints[k]), glm::vec3(static_cast<float>(width)));
+      }
+      break;
+    }
+    case BodyVisual::Kind::tree: {
+      const float w = static_cast<float>(*std::max_element(b.widths.begin(), b.widths.end()));
+      for (const core::Vec3& p : tree_points(b, poses, index, t))
+        add_cube(points, to_glm(p), glm::vec3(w));
+      break;
+    }
+    case BodyVisual::Kind::sphere:
+      add_cube(points, to_glm(poses.position(index, t)), glm::vec3(static_cast<float>(b.radius)));
+      break;
+    case BodyVisual::Kind::cylinder: {
+      // Its two rims, as regular 12-gons around them (not its box, whose corners stand out
+      // by up to 41% of the radius as the wheel turns, which framed a rolling wheel smaller).
+      const core::Vec3 c = poses.position(index, t);
+      const core::Quat q = poses.orientation(index, t);
+      core::Vec3 u, v;
+      tangents(b.axis, u, v);
+      const double r = b.radius / std::cos(std::numbers::pi / 12.0);
+      for (int k = 0; k < 12; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / 12.0;
+        const core::Vec3 rim = r * (std::cos(a) * u + std::sin(a) * v);
+        for (const double side : {-0.5, 0.5}) {
+          points.push_back(to_glm(c + q * (rim + side * b.length * b.axis)));
+        }
+      }
+      break;
+    }
+    case BodyVisual::Kind::box: {
+      const core::Vec3 c = poses.position(index, t);
+      const core::Quat q = poses.orientation(index, t);
+      for (int k = 0; k < 8; ++k) {
+        const core::Vec3 corner(((k & 1) ? 0.5 : -0.5) * b.size.x(),
+                                ((k & 2) ? 0.5 : -0.5) * b.size.y(),
+                                ((k & 4) ? 0.5 : -0.5) * b.size.z());
+        points.push_back(to_glm(c + q * corner));
+      }
+      break;
+    }
+    case BodyVisual::Kind::block: {
+      // A block sits on its surface: its centre is half its height along the normal.
+      const core::Vec3 c = poses.position(index, t) + 0.5 * b.size.z() * b.up;
+      add_cube(points, to_glm(c), glm::vec3(static_cast<float>(0.5 * b.size.norm())));
+      break;
+    }
+  }
+}
+
+std::vector<glm::vec3> body_points(const Drawing& scene, const PoseTrack& poses, double t) {
   std::vector<glm::vec3> points;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const BodyVisual& b = scene.bodies[i];
-    const int index = static_cast<int>(i);
-    switch (b.kind) {
-      case BodyVisual::Kind::arm: {
-        // Joints and tip of the planar chain, in its own plane (as scene_view draws it), each
-        // with the width of the link that ends there (the base with the first link's).
-        const std::vector<core::Vec3> joints = arm_joints(b, poses, index, t);
-        for (std::size_t k = 0; k < joints.size(); ++k) {
-          const double width = b.widths[k == 0 ? 0 : k - 1];
-          add_cube(points, to_glm(joints[k]), glm::vec3(static_cast<float>(width)));
-        }
-        break;
-      }
-      case BodyVisual::Kind::tree: {
-        const float w = static_cast<float>(*std::max_element(b.widths.begin(), b.widths.end()));
-        for (const core::Vec3& p : tree_points(b, poses, index, t)) add_cube(points, to_glm(p), glm::vec3(w));
-        break;
-      }
-      case BodyVisual::Kind::sphere:
-        add_cube(points, to_glm(poses.position(index, t)), glm::vec3(static_cast<float>(b.radius)));
-        break;
-      case BodyVisual::Kind::cylinder:
-      case BodyVisual::Kind::box: {
-        const core::Vec3 c = poses.position(index, t);
-        const core::Quat q = poses.orientation(index, t);
-        for (int k = 0; k < 8; ++k) {
-          const core::Vec3 corner(((k & 1) ? 0.5 : -0.5) * b.size.x(),
-                                  ((k & 2) ? 0.5 : -0.5) * b.size.y(),
-                                  ((k & 4) ? 0.5 : -0.5) * b.size.z());
-          points.push_back(to_glm(c + q * corner));
-        }
-        break;
-      }
-      case BodyVisual::Kind::block: {
-        // A block sits on its surface: its centre is half its height along the normal.
-        const core::Vec3 c = poses.position(index, t) + 0.5 * b.size.z() * b.up;
-        add_cube(points, to_glm(c), glm::vec3(static_cast<float>(0.5 * b.size.norm())));
-        break;
-      }
-    }
+    add_body_points(points, scene, poses, static_cast<int>(i), t);
   }
   for (const JointVisual& j : scene.joints) {
     const core::Vec3 p = poses.position(j.child, t) + poses.orientation(j.child, t) * j.point;
@@ -102,8 +125,8 @@ float piece_size(const Drawing& scene) {
   return size;
 }
 
-std::vector<glm::vec3> run_points(const Drawing& scene, const PoseTrack& poses,
-                                  glm::vec3 direction, int samples, glm::vec3 up_hint,
+std::vector<glm::vec3> run_points(const Drawing& scene, const PoseTrack& poses, glm::vec3 direction,
+                                  int samples, glm::vec3 up_hint,
                                   const std::function<glm::vec3(double)>& moving_frame) {
   std::vector<glm::vec3> points;
   Bounds all;
@@ -171,6 +194,33 @@ Camera frame_points(const std::vector<glm::vec3>& points, glm::vec3 direction, f
   camera.near_plane = std::max(1e-3f, 0.05f * (d - r));
   camera.far_plane = d + 60.0f * r + 20.0f;
   return camera;
+}
+
+Camera frame_points_beside_panels(const std::vector<glm::vec3>& points, glm::vec3 direction,
+                                  float fov_y_degrees, const FramePanels& panels, float margin,
+                                  glm::vec3 up, PixelBox* free) {
+  const float half = std::tan(glm::radians(fov_y_degrees) * 0.5f);
+  Camera best;
+  float best_distance = std::numeric_limits<float>::infinity();
+  for (const PixelBox& r : free_rectangles(panels)) {
+    // The rectangle seen from the eye is a frustum of its own, centred on the view's axis once
+    // the lens is shifted: its half-height is `half` times its share of the frame's height.
+    const float h = static_cast<float>(r.height()) / static_cast<float>(panels.height);
+    const float w = static_cast<float>(r.width()) / static_cast<float>(panels.width);
+    const float fov = 2.0f * glm::degrees(std::atan(half * h));
+    Camera c = frame_points(points, direction, fov, panels.aspect() * w / h, margin, up);
+    const float distance = glm::length(c.target - c.eye);
+    if (distance < best_distance) {
+      best_distance = distance;
+      c.fov_y_degrees = fov_y_degrees;
+      c.lens_shift =
+          glm::vec2(static_cast<float>(r.x0 + r.x1) / static_cast<float>(panels.width) - 1.0f,
+                    1.0f - static_cast<float>(r.y0 + r.y1) / static_cast<float>(panels.height));
+      best = c;
+      if (free) *free = r;
+    }
+  }
+  return best;
 }
 
 }  // namespace stiction::render

@@ -17,6 +17,9 @@ std::string join(const std::vector<std::string>& names) {
 
 void read_inset(scene::TableReader& r, InsetSettings& s, const std::vector<std::string>& columns) {
   if (r.has("signals")) {
+    // Signals given here replace a preset's (talk_preset.hpp) with its labels and units.
+    s.labels.clear();
+    s.units.clear();
     s.signals = r.strings("signals");
     if (s.signals.empty()) r.fail("signals", "expected at least one signal name");
     if (s.signals.size() > 6) r.fail("signals", "at most 6 signals fit in the inset");

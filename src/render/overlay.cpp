@@ -118,16 +118,22 @@ std::vector<std::string> Overlay::value_lines(const PoseTrack& poses, double t) 
   return out;
 }
 
-PixelBox Overlay::draw(image::Image& frame, const PoseTrack& poses, double t, double speed) {
+PixelBox Overlay::box() const {
   if (!settings_.enabled) return {};
-  auto width = [&](const std::string& s) { return font_.measure(s, style_).width; };
   const int lines = 1 + static_cast<int>(lines_.size());
-  // Translucent white panel so the text reads on any background; its size is the run's.
   PixelBox box;
   box.x0 = static_cast<int>(pad_);
   box.y0 = static_cast<int>(pad_);
   box.x1 = static_cast<int>(std::ceil(pad_ + panel_width_ + 2 * pad_));
   box.y1 = static_cast<int>(pad_ + lines * line_height_ + pad_);
+  return box;
+}
+
+PixelBox Overlay::draw(image::Image& frame, const PoseTrack& poses, double t, double speed) {
+  if (!settings_.enabled) return {};
+  auto width = [&](const std::string& s) { return font_.measure(s, style_).width; };
+  // Translucent white panel so the text reads on any background; its size is the run's.
+  const PixelBox box = this->box();
   for (int y = box.y0; y < std::min(box.y1, frame.height); ++y) {
     for (int x = box.x0; x < std::min(box.x1, frame.width); ++x) {
       frame.blend(x, y, {255, 255, 255, 255}, 0.75f);

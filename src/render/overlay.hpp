@@ -9,16 +9,12 @@
 #include <vector>
 
 #include "image/image.hpp"
+#include "render/frame_panels.hpp"
 #include "render/render_settings.hpp"
 #include "render/scene_view.hpp"
 #include "text/font.hpp"
 
 namespace stiction::render {
-
-struct PixelBox {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // [x0, x1) x [y0, y1)
-  bool operator==(const PixelBox&) const = default;
-};
 
 // The values an overlay shows: `signal` (the one-value form) first, then `layers.values`.
 std::vector<OverlayValue> overlay_values(const OverlaySettings& settings);
@@ -44,6 +40,8 @@ class Overlay {
   // Draws "t = 1.234 s" and a "LABEL = VALUE UNIT" line per value. `speed` < 1 (slow motion around
   // an event) adds "(1/8 speed)" to the time line. Returns the panel's box.
   PixelBox draw(image::Image& frame, const PoseTrack& poses, double t, double speed = 1.0);
+  // The panel's box (the same at every time; empty when the overlay is off).
+  PixelBox box() const;
   // The text of the value lines at time t, as drawn ("slip speed = 0.000 m/s").
   std::vector<std::string> value_lines(const PoseTrack& poses, double t);
 

@@ -1,7 +1,5 @@
 #include "render/render_outputs.hpp"
 
-#include "sys/terminal_text.hpp"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +19,7 @@
 #include "render/trail.hpp"
 #include "render/video_encoder.hpp"
 #include "scene/scene.hpp"
+#include "sys/terminal_text.hpp"
 
 namespace stiction::render {
 
@@ -71,8 +70,6 @@ FrameRenderer::FrameRenderer(Drawing scene, const core::Trajectory& trajectory,
   options.shadow_map_size = settings.shadow_map_size;
   options.shadow_taps = settings.shadow_taps;
   renderer_ = std::make_unique<Renderer>(options);
-  camera_ = std::make_unique<CameraRig>(settings.camera, scene_, poses_,
-                                        float(settings.width) / float(settings.height));
   if (settings.overlay.enabled && settings.overlay.panel) {
     overlay_ =
         std::make_unique<Overlay>(settings.overlay, settings.height, poses_.end_time(),
@@ -90,7 +87,24 @@ FrameRenderer::FrameRenderer(Drawing scene, const core::Trajectory& trajectory,
   }
   layers_ = ForceRegimeLayers::create(scene_, scene_.sites, poses_, settings);
   titles_ = TitleCaption::create(settings.overlay, settings.height);
+  // The camera comes last: it frames the bodies beside the panels above.
+  panels_.width = settings.width;
+  panels_.height = settings.height;
+  if (overlay_) panels_.boxes.push_back(overlay_->box());
+  if (inset_) panels_.boxes.push_back(inset_->box());
+  if (layers_) {
+    const PixelBox legend = layers_->legend_box(settings.height);
+    if (!legend.empty()) panels_.boxes.push_back(legend);
+  }
+  if (titles_) {
+    for (const PixelBox& b : titles_->boxes(settings.width, settings.height)) {
+      panels_.boxes.push_back(b);
+    }
+  }
+  camera_ = std::make_unique<CameraRig>(settings.camera, scene_, poses_, panels_);
 }
+
+Camera FrameRenderer::camera(double t) const { return camera_->at(t); }
 
 std::unique_ptr<FrameRenderer> frame_renderer_for(const scene::Scene& scene,
                                                   const core::Trajectory& trajectory,
@@ -162,7 +176,9 @@ RenderResult render_outputs(const scene::Scene& scene, const core::Trajectory& t
   const FrameClock clock = frame_clock(renderer.poses().start_time(), renderer.poses().end_time(),
                                        settings.fps, settings.slow_motion);
   const std::vector<FrameTime> times =
-      warped_frame_times(clock.start, renderer.poses().end_time(), clock.step, request.event_times,
+      warped_frame_times(clock.start, renderer.poses().end_time(), clock.step,
+                         slowed_events(request.event_times, request.event_kinds,
+                                       settings.slow_motion_around_events, settings.slowed_events),
                          settings.slow_motion_around_events, settings.event_slow_motion);
   std::error_code ec;
   fs::create_directories(request.out_dir, ec);

@@ -23,7 +23,9 @@
 
 #include "core/trajectory.hpp"
 #include "image/image.hpp"
+#include "render/camera.hpp"
 #include "render/contact_sites.hpp"
+#include "render/frame_panels.hpp"
 #include "render/render_settings.hpp"
 #include "render/scene_view.hpp"
 
@@ -95,8 +97,8 @@ struct FrameAnnotations {
 
 class FrameRenderer {
  public:
-  FrameRenderer(Drawing scene, const core::Trajectory& trajectory,
-                const RenderSettings& settings, const FrameAnnotations& annotations = {});
+  FrameRenderer(Drawing scene, const core::Trajectory& trajectory, const RenderSettings& settings,
+                const FrameAnnotations& annotations = {});
   ~FrameRenderer();
   FrameRenderer(const FrameRenderer&) = delete;
   FrameRenderer& operator=(const FrameRenderer&) = delete;
@@ -108,6 +110,10 @@ class FrameRenderer {
 
   const PoseTrack& poses() const { return poses_; }
   const RenderSettings& settings() const { return settings_; }
+  // The panels drawn over the frames (time panel, inset, arrows' legend, title and caption),
+  // which the camera keeps the bodies clear of, and the camera at time t.
+  const FramePanels& panels() const { return panels_; }
+  Camera camera(double t) const;
   // The magnitude below which `signal` prints as zero because the run judges it stuck (a
   // contact's slip speed, a friction joint's rate: their stick thresholds); -1 for a signal
   // without a stick threshold.
@@ -125,6 +131,7 @@ class FrameRenderer {
   std::unique_ptr<InsetPlot> inset_;
   std::unique_ptr<ForceRegimeLayers> layers_;  // null: forces, velocities, badges off
   std::unique_ptr<TitleCaption> titles_;       // null: no title and no caption
+  FramePanels panels_;
 };
 
 // The renderer of a run of `scene` as the video draws it: its description, its contact sites

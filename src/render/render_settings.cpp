@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/scene_view.hpp"
+#include "render/talk_preset.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 
@@ -50,12 +51,32 @@ void read_render(TableReader& r, RenderSettings& s) {
   s.crf = static_cast<int>(crf);
   s.codec = r.string("codec", s.codec);
   if (s.codec != "h264") r.fail("codec", "unknown codec '" + s.codec + "' (supported: h264)");
-  s.preset = r.string("preset", s.preset);
+  // `preset`: a look (applied before this table is read: read_render_settings) or, as in
+  // older scene files, libx264's speed preset, which has its own key `encoder_preset` now.
   static const std::vector<std::string> presets{"ultrafast", "superfast", "veryfast",
                                                 "faster",    "fast",      "medium",
                                                 "slow",      "slower",    "veryslow"};
-  if (std::find(presets.begin(), presets.end(), s.preset) == presets.end()) {
-    r.fail("preset", "unknown preset '" + s.preset + "' (one of: " + join(presets) + ")");
+  const auto x264 = [&](const std::string& name) {
+    return std::find(presets.begin(), presets.end(), name) != presets.end();
+  };
+  const std::string preset = r.string("preset", "");
+  if (r.has("preset") && !is_look_preset(preset)) {
+    if (!x264(preset)) {
+      r.fail("preset", "unknown preset '" + preset + "' (a look: " + join(look_preset_names()) +
+                           "; or libx264's speed, now `encoder_preset`: " + join(presets) + ")");
+    }
+    if (r.has("encoder_preset")) {
+      r.fail("preset",
+             "libx264's speed is given twice: keep `encoder_preset` (`preset` takes "
+             "a look: " +
+                 join(look_preset_names()) + ")");
+    }
+    s.preset = preset;
+  }
+  s.preset = r.string("encoder_preset", s.preset);
+  if (!x264(s.preset)) {
+    r.fail("encoder_preset",
+           "unknown libx264 preset '" + s.preset + "' (one of: " + join(presets) + ")");
   }
   s.slow_motion = r.positive("slow_motion", s.slow_motion);
   if (s.slow_motion < 1e-3 || s.slow_motion > 1e3) r.fail("slow_motion", "must be in 0.001..1000");
@@ -69,6 +90,11 @@ void read_render(TableReader& r, RenderSettings& s) {
   if (s.event_slow_motion < 1.0 || s.event_slow_motion > 100.0) {
     r.fail("event_slow_motion", "must be in 1..100 (times slower around events)");
   }
+  const long slowed = r.integer("slowed_events", s.slowed_events);
+  if (slowed < 0 || slowed > 1000000) {
+    r.fail("slowed_events", "must be a count of episodes of events, >= 0 (0: every event)");
+  }
+  s.slowed_events = static_cast<int>(slowed);
   const long msaa = r.integer("msaa", s.msaa);
   if (msaa != 1 && msaa != 2 && msaa != 4) r.fail("msaa", "must be 1, 2 or 4");
   s.msaa = static_cast<int>(msaa);
@@ -144,6 +170,9 @@ RenderSettings read_render_settings(const toml::table& document,
                                     const std::vector<std::string>& signal_columns) {
   RenderSettings s;
   TableReader root(document, "");
+  // A look preset first, so that every key the tables give is read over it and wins.
+  const std::string look = document["render"]["preset"].value<std::string>().value_or("");
+  if (look == "talk") apply_talk_preset(s, signal_columns);
   if (auto r = table(root, "render")) read_render(*r, s);
   if (auto r = table(root, "camera")) read_camera(*r, s.camera, body_names);
   if (auto r = table(root, "overlay")) read_overlay(*r, s.overlay, signal_columns);

@@ -7,23 +7,33 @@
 //   fps = 60                # video frames per second of video time
 //   crf = 21                # H.264 quality, 0 (lossless) .. 51 (worst); 18-23 look good
 //   codec = "h264"          # only "h264" (libx264)
-//   preset = "superfast"    # libx264 speed preset (with crf 21: half the encoding time of
-//                           # veryfast at crf 20, better SSIM and PSNR, 1.5x the bytes;
+//   preset = "talk"         # a look preset (talk_preset.hpp: 16:9, slow motion around the
+//                           # first events, badges, force arrows, trail, inset); any key
+//                           # given explicitly wins. An x264 name here (older files) is
+//                           # encoder_preset's
+//   encoder_preset = "superfast"  # libx264 speed preset (with crf 21: half the encoding time
+//                           # of veryfast at crf 20, better SSIM and PSNR, 1.5x the bytes;
 //                           # "ultrafast", deblocking kept on: 60% of this CPU, 2.6x bytes)
 //   slow_motion = 1.0       # video seconds per simulated second (4 = four times slower)
 //   slow_motion_around_events = 0.0  # seconds of simulated time on each side of every
 //                           # stick/slip event played `event_slow_motion` times slower
 //   event_slow_motion = 8   # how much slower, 1..100 (ramps in and out over half the window)
+//   slowed_events = 0       # slow down around the first N episodes of slip/stick changes
+//                           # only (time_warp.hpp: slowed_events); 0: around every event
 //   msaa = 4                # samples per pixel: 1, 2 or 4
 //   shadow_map_size = 2048  # 0 turns shadows off; else a power of two 256..8192: the most
 //                           # texels per side; each frame uses what the fitted region needs
 //   shadow_taps = 4         # 1 or 4 filtered shadow-map lookups per pixel
 //   encoder_threads = 0     # libx264 threads; 0: the cores the renderer leaves (at least 1)
 //
-//   [camera]
-//   position = [x, y, z]    # default: framed from the scene's bounds over the whole run
-//   target = [x, y, z]
-//   fov = 40                # vertical field of view, degrees
+//   [camera]                # what each key does under each view: docs/scene_format.md
+//   position = [x, y, z]    # default: framed from the bodies over the whole run, beside the
+//                           # panels (framing.hpp); given: no automatic framing. Under a
+//                           # follow camera: the eye at the start, moving with the body
+//   target = [x, y, z]      # likewise, the point at the frame's centre
+//   fov = 40                # vertical field of view, degrees; a fixed camera comes as close
+//                           # as the bodies allow, a follow camera stands where its body is
+//                           # 1/3 of the height at 40 degrees, so there fov zooms
 //   follow = "sphere"       # keep this body's horizontal position in view
 //   follow_vertical = false # true: follow its height too (needs `follow`); the shadow map is
 //                           # then fitted around the body every frame (long descents)
@@ -102,10 +112,12 @@ struct RenderSettings {
   double fps = 60.0;
   int crf = 21;
   std::string codec = "h264";
-  std::string preset = "superfast";
+  std::string preset = "superfast";  // libx264's speed preset: [render] encoder_preset
+  std::string look;                  // [render] preset = "talk": the look applied; "": none
   double slow_motion = 1.0;
   double slow_motion_around_events = 0.0;  // seconds; 0: off
   double event_slow_motion = 8.0;
+  int slowed_events = 0;  // episodes of events slowed down, from the first; 0: all
   int msaa = 4;
   int shadow_map_size = 2048;
   int shadow_taps = 4;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace stiction::render {
 
@@ -15,6 +16,38 @@ double playback_speed(double t, const std::vector<double>& events, double window
   const double ramp = 0.5 * window;
   if (d >= window + ramp) return 1.0;
   return slow + (1.0 - slow) * (d - window) / ramp;
+}
+
+std::vector<double> first_episodes(std::vector<double> events, double window, int episodes) {
+  std::sort(events.begin(), events.end());
+  if (episodes <= 0) return events;
+  std::vector<double> kept;
+  int count = 0;
+  for (double e : events) {
+    if (kept.empty() || e - kept.back() >= 2.0 * window) ++count;
+    if (count > episodes) break;
+    kept.push_back(e);
+  }
+  return kept;
+}
+
+std::vector<double> slowed_events(const std::vector<double>& times,
+                                  const std::vector<std::string>& kinds, double window,
+                                  int episodes) {
+  if (episodes <= 0) return times;
+  if (kinds.size() != times.size()) return first_episodes(times, window, episodes);
+  std::vector<std::pair<double, std::string>> events;
+  for (std::size_t i = 0; i < times.size(); ++i) events.emplace_back(times[i], kinds[i]);
+  std::stable_sort(events.begin(), events.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<double> changes;
+  std::string last;
+  for (const auto& [t, kind] : events) {
+    if (kind == "open" || kind == last) continue;
+    changes.push_back(t);
+    last = kind;
+  }
+  return first_episodes(changes, window, episodes);
 }
 
 std::vector<FrameTime> warped_frame_times(double start, double end, double step,

@@ -4,6 +4,7 @@
 // slower than elsewhere; over the next half window the speed ramps back linearly.
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace stiction::render {
@@ -19,6 +20,19 @@ struct FrameTime {
 std::vector<FrameTime> warped_frame_times(double start, double end, double step,
                                           const std::vector<double>& events, double window,
                                           double factor);
+
+// The events of the first `episodes` episodes, in time order: events less than two windows
+// apart (whose slowed stretches would touch) are one episode. episodes <= 0: all.
+std::vector<double> first_episodes(std::vector<double> events, double window, int episodes);
+
+// The events the video slows down around ([render] slowed_events = `episodes`): with
+// episodes <= 0 every event, as given; else the changes between slip and stick only (a
+// contact's "open" / touch-down chatter and a kind repeating are left out, as the inset
+// marks them: sphere_roll's micro-bounces would chain the whole run into one episode), of
+// the first `episodes` episodes. `kinds` parallel to `times` (empty: every event counts).
+std::vector<double> slowed_events(const std::vector<double>& times,
+                                  const std::vector<std::string>& kinds, double window,
+                                  int episodes);
 
 // Playback speed at time t (1 far from events, 1/factor within `window` of one).
 double playback_speed(double t, const std::vector<double>& events, double window, double factor);

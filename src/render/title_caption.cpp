@@ -34,32 +34,54 @@ int TitleCaption::caption_height(const OverlaySettings& settings, int image_heig
 }
 
 void TitleCaption::draw(image::Image& frame) {
-  if (!title_.empty()) draw_band(frame, title_, style_.pixel_size, true);
-  if (!caption_.empty()) draw_band(frame, caption_, 0.8 * style_.pixel_size, false);
+  if (!title_.empty()) {
+    draw_band(frame, band(title_, style_.pixel_size, true, frame.width, frame.height), title_);
+  }
+  if (!caption_.empty()) {
+    draw_band(frame, band(caption_, 0.8 * style_.pixel_size, false, frame.width, frame.height),
+              caption_);
+  }
 }
 
-void TitleCaption::draw_band(image::Image& frame, const std::string& text, double pixel_size,
-                             bool top_right) {
-  text::TextStyle style = style_;
-  style.pixel_size = pixel_size;
-  double w = font_.measure(text, style).width;
-  const double room = frame.width - 4.0 * pad_;
-  if (w > room) {
-    style.pixel_size = std::max(0.6 * pixel_size, pixel_size * room / w);
-    w = font_.measure(text, style).width;
+std::vector<PixelBox> TitleCaption::boxes(int width, int height) {
+  std::vector<PixelBox> out;
+  if (!title_.empty()) out.push_back(band(title_, style_.pixel_size, true, width, height).box);
+  if (!caption_.empty()) {
+    out.push_back(band(caption_, 0.8 * style_.pixel_size, false, width, height).box);
   }
-  const double pad = 0.6 * style.pixel_size;
-  const double height = 1.35 * style.pixel_size + pad;
-  const double x = top_right ? frame.width - pad_ - pad - w : 0.5 * (frame.width - w);
-  const double y0 = top_right ? pad_ : frame.height - pad_ - height;
-  const int x0 = static_cast<int>(x - pad), x1 = static_cast<int>(std::ceil(x + w + pad));
-  const int y1 = static_cast<int>(std::ceil(y0 + height));
-  for (int y = std::max(0, static_cast<int>(y0)); y < std::min(y1, frame.height); ++y) {
-    for (int px = std::max(0, x0); px < std::min(x1, frame.width); ++px) {
+  return out;
+}
+
+TitleCaption::Band TitleCaption::band(const std::string& text, double pixel_size, bool top_right,
+                                      int width, int height) {
+  Band b;
+  b.style = style_;
+  b.style.pixel_size = pixel_size;
+  double w = font_.measure(text, b.style).width;
+  const double room = width - 4.0 * pad_;
+  if (w > room) {
+    b.style.pixel_size = std::max(0.6 * pixel_size, pixel_size * room / w);
+    w = font_.measure(text, b.style).width;
+  }
+  const double pad = 0.6 * b.style.pixel_size;
+  const double band_height = 1.35 * b.style.pixel_size + pad;
+  b.text_x = top_right ? width - pad_ - pad - w : 0.5 * (width - w);
+  const double y0 = top_right ? pad_ : height - pad_ - band_height;
+  b.baseline = y0 + 0.5 * pad + 1.0 * b.style.pixel_size;
+  b.box = {static_cast<int>(b.text_x - pad), static_cast<int>(y0),
+           static_cast<int>(std::ceil(b.text_x + w + pad)),
+           static_cast<int>(std::ceil(y0 + band_height))};
+  return b;
+}
+
+void TitleCaption::draw_band(image::Image& frame, const Band& b, const std::string& text) {
+  const PixelBox& box = b.box;
+  for (int y = std::max(0, box.y0); y < std::min(box.y1, frame.height); ++y) {
+    for (int px = std::max(0, box.x0); px < std::min(box.x1, frame.width); ++px) {
       frame.blend(px, y, {255, 255, 255, 255}, 0.75f);
     }
   }
-  font_.draw(frame, text, x, y0 + 0.5 * pad + 1.0 * style.pixel_size, style);
+  font_.draw(frame, text, b.text_x, b.baseline, b.style);
 }
 
 }  // namespace stiction::render

@@ -55,15 +55,19 @@ core::Trajectory video_rows(const core::Trajectory& all, const core::RunOptions&
 
 std::vector<render::FrameTime> video_frame_times(const core::Trajectory& rows,
                                                  const render::RenderSettings& settings,
-                                                 const std::vector<double>& events) {
+                                                 const std::vector<double>& events,
+                                                 const std::vector<std::string>& kinds) {
   if (rows.row_count() == 0) return {};
   // As render::render_outputs: the frame clock from the first to the last row
   // (render::frame_clock's step), warped around the events.
   const double start = rows.at(0, 0);
   const double end = rows.at(rows.row_count() - 1, 0);
   const double step = 1.0 / (settings.fps * settings.slow_motion);
-  return render::warped_frame_times(start, end, step, events, settings.slow_motion_around_events,
-                                    settings.event_slow_motion);
+  return render::warped_frame_times(
+      start, end, step,
+      render::slowed_events(events, kinds, settings.slow_motion_around_events,
+                            settings.slowed_events),
+      settings.slow_motion_around_events, settings.event_slow_motion);
 }
 
 render::RenderResult write_run_video(const scene::Scene& scene, const core::RunResult& result,

@@ -32,10 +32,12 @@ core::Trajectory video_rows(const core::Trajectory& all, const core::RunOptions&
                             const render::RenderSettings& settings);
 
 // The simulated time and playback speed of every frame of the video (frame i of video.mp4
-// is frames/NNNNNN.png with NNNNNN = i), for `rows` as video_rows gives them.
+// is frames/NNNNNN.png with NNNNNN = i), for `rows` as video_rows gives them; `events` and
+// `kinds` as slip_event_times and slip_event_kinds give them.
 std::vector<render::FrameTime> video_frame_times(const core::Trajectory& rows,
                                                  const render::RenderSettings& settings,
-                                                 const std::vector<double>& events);
+                                                 const std::vector<double>& events,
+                                                 const std::vector<std::string>& kinds);
 
 struct VideoRequest {
   std::filesystem::path out_dir;  // OUT/video.mp4, OUT/frames/
