@@ -9,6 +9,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,20 +20,27 @@
 #include "components/maps/pair_contact_map.hpp"
 #include "core/rim_point.hpp"
 #include "core/types.hpp"
+#include "scene/triangle_mesh.hpp"
 
 namespace stiction::scene {
 
-// A visual primitive of a URDF link (<visual>): drawn on the link's pose.
+// A visual of a URDF link (<visual>): drawn on the link's pose.
 struct UrdfVisual {
   enum class Shape { box, cylinder, sphere, mesh };
   Shape shape = Shape::box;
   int link = -1;                  // index into the tree's links, -1: the fixed base
+  std::string link_name;          // the URDF link it is written in (messages)
   core::Vec3 size = core::Vec3::Zero();  // box: sides; cylinder: (radius, radius, length)
-                                         // along its z axis; sphere: (r, r, r)
+                                         // along its z axis; sphere: (r, r, r); mesh: scale
   core::Vec3 origin = core::Vec3::Zero();        // in the link frame
   core::Quat rotation = core::Quat::Identity();  // in the link frame
   Eigen::Vector4d rgba{0.6, 0.6, 0.62, 1.0};     // <material><color>, grey if none
+  bool rgba_given = false;                       // the URDF gave a <material><color>
   std::string mesh;                              // mesh: its file name as written
+  // mesh: the file it names (scene/mesh_path.hpp) and its triangles, read when the scene is
+  // loaded (scene/mesh_file.hpp); a part without the URDF's colour takes the file's own.
+  std::filesystem::path mesh_file;
+  std::shared_ptr<const TriangleMesh> triangles;
 };
 
 struct BodyVisual {

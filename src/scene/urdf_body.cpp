@@ -2,6 +2,7 @@
 // components::SpatialTree, with the joint elements its URDF asks for: Kikuuwe friction
 // (<dynamics friction>), a damper (<dynamics damping>) and a one-sided stop at each end of
 // the travel (<limit lower upper>), named NAME.JOINT.friction, .damping and .limit.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <memory>
@@ -67,9 +68,14 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_urdf_body(TableReader& t
   const std::string file = table.required_string("file");
   std::filesystem::path path(file);
   if (path.is_relative()) path = directory_ / path;
+  // The scene's bound on mesh triangles holds for all its robots together.
+  std::size_t used = 0;
+  for (const BodyVisual& b : drawing_.bodies) {
+    for (const UrdfVisual& v : b.visuals) used += v.triangles ? v.triangles->triangle_count() : 0;
+  }
   UrdfRobot robot;
   try {
-    robot = load_urdf(path);
+    robot = load_urdf(path, kMaxSceneTriangles - std::min(used, kMaxSceneTriangles));
   } catch (const UrdfError& e) {
     table.fail("file", e.what());
   }
