@@ -106,17 +106,24 @@ struct ContactSite {
   bool trail = false;
 };
 
-// A friction element on a planar arm's joint: its slip speed is |ARM.omega.JOINT|.
+// A friction element on a joint of a planar arm or a kinematic tree (a urdf or spatial_tree
+// body): its slip speed is |ARM.omega.AXIS| (rate_column), its badge sits at the joint.
 struct JointSite {
   std::string name;  // the friction element (its column NAME.tau)
-  std::string arm;   // the arm's name: its columns ARM.omega.JOINT
-  int body = -1;     // the arm's index into Drawing::bodies
-  int joint = 0;
+  std::string arm;   // the arm's or tree's name: its columns ARM.omega.AXIS
+  int body = -1;     // the arm's or tree's index into Drawing::bodies
+  int joint = 0;     // the joint's index (a tree's: its link's)
   double stick_threshold = 1e-3;  // rad/s
+  std::string axis{};  // a tree's joint name, which names its columns; empty: an arm's index
 };
 
+// The column of the joint's rate: ARM.omega.1 on an arm, TREE.omega.elbow on a tree.
+inline std::string rate_column(const JointSite& site) {
+  return site.arm + ".omega." + (site.axis.empty() ? std::to_string(site.joint) : site.axis);
+}
+
 // Every contact point (one per element "NAME" or "NAME.i" of a kikuuwe_contact table: box
-// corners, rim points and listed points included) and every friction joint of a planar arm.
+// corners, rim points and listed points included) and every friction joint of an arm or tree.
 struct ContactSites {
   std::vector<ContactSite> contacts;
   std::vector<JointSite> joints;

@@ -108,6 +108,7 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_urdf_body(TableReader& t
 
   auto tree = construct_here(table, [&] { return std::make_unique<components::SpatialTree>(name, p); });
   const components::SpatialTree& t = *tree;
+  const int drawn_as = static_cast<int>(drawing_.bodies.size());  // the tree, pushed below
   for (std::size_t i = 0; i < robot.links.size(); ++i) {
     const components::SpatialLink& link = robot.links[i];
     const std::string prefix = name + "." + link.joint_name + ".";
@@ -120,6 +121,9 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_urdf_body(TableReader& t
       components::KikuuweFrictionParams f = friction;
       f.force_limit = robot.dynamics[i].friction;
       stick_thresholds_[prefix + "friction"] = stick_threshold;
+      // Its stick/slip badge, at the joint (the tree is body `drawn_as` of the drawing).
+      drawing_.sites.joints.push_back(
+          {prefix + "friction", name, drawn_as, joint, stick_threshold, link.joint_name});
       element(construct_here(table, [&] {
                 return std::make_unique<components::KikuuweFriction>(prefix + "friction", f);
               }),
