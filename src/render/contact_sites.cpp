@@ -5,7 +5,7 @@ namespace stiction::render {
 std::map<std::string, double> joint_rate_thresholds(const ContactSites& sites) {
   std::map<std::string, double> out;
   for (const JointSite& j : sites.joints) {
-    out[j.arm + ".omega." + std::to_string(j.joint)] = j.stick_threshold;
+    out[rate_column(j)] = j.stick_threshold;
   }
   return out;
 }

@@ -17,7 +17,7 @@ using scene::ContactSite;
 using scene::ContactSites;
 using scene::JointSite;
 
-// "ARM.omega.J" -> the stick threshold of the friction joint J of ARM (for the overlay's
+// "ARM.omega.J" (rate_column) -> the stick threshold of the friction joint J of ARM (for the overlay's
 // values: a stuck joint's rate prints as zero).
 std::map<std::string, double> joint_rate_thresholds(const ContactSites& sites);
 

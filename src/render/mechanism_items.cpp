@@ -108,6 +108,9 @@ MechanismFrame mechanism_frame(const Drawing& scene, const PoseTrack& poses,
                lift(scene.bodies[static_cast<std::size_t>(s.body)]));
   }
   f.floor_z = floor_height(scene, ground, f.scale);
+  // Fixed-base robots stand on the floor (at their bases) rather than above one put under
+  // their reach, as long as no link goes beneath it.
+  if (const std::optional<double> base = tree_base_floor(scene, poses)) f.floor_z = *base;
   for (const SourceVisual& s : scene.sources) {
     std::vector<int> columns;
     const std::vector<std::string> names =

@@ -128,6 +128,24 @@ MeshData make_plane(int cells) {
   return m;
 }
 
+MeshData unit_mesh(const scene::TriangleMesh::Part& part) {
+  const Eigen::Vector3f centre = part.centre(), half = part.half_extent();
+  const glm::vec3 c(centre.x(), centre.y(), centre.z()), h(half.x(), half.y(), half.z());
+  MeshData m;
+  m.vertices.reserve(part.positions.size());
+  for (std::size_t i = 0; i < part.positions.size(); ++i) {
+    const Eigen::Vector3f& p = part.positions[i];
+    const Eigen::Vector3f& n = part.normals[i];
+    // Positions scaled by 1 / h: normals by h (the inverse transpose), then made unit again.
+    const glm::vec3 scaled = glm::vec3(n.x(), n.y(), n.z()) * h;
+    const float length = glm::length(scaled);
+    m.vertices.push_back({(glm::vec3(p.x(), p.y(), p.z()) - c) / h,
+                          length > 0.0f ? scaled / length : glm::vec3(0.0f, 0.0f, 1.0f)});
+  }
+  m.indices = part.indices;
+  return m;
+}
+
 Mesh::Mesh(const MeshData& data)
     : vao_(make_vertex_array()),
       vertices_(make_buffer()),

@@ -1,5 +1,5 @@
-// Triangle meshes: CPU generators (unit shapes, scaled by the model matrix) and their GPU
-// buffers. Attribute 0 is the position, 1 the normal.
+// Triangle meshes: CPU generators (unit shapes, scaled by the model matrix), a URDF mesh
+// file's parts brought to the unit cube, and their GPU buffers. Attribute 0 is the position, 1 the normal.
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "render/gl.hpp"
+#include "scene/triangle_mesh.hpp"
 
 namespace stiction::render {
 
@@ -33,6 +34,11 @@ MeshData make_cone(int slices);
 // Square in the z = 0 plane from -1 to 1 (scale by the half size), normal +z. `cells` per
 // side so that per-vertex lighting and depth precision stay good on a large floor.
 MeshData make_plane(int cells);
+
+// A URDF mesh's part as the renderer draws it (Shape::mesh): positions mapped from the
+// part's bounding box onto [-1, 1]^3, normals mapped the other way (by the half extents, then
+// unit) so that the model matrix's inverse transpose turns them back into the file's normals.
+MeshData unit_mesh(const scene::TriangleMesh::Part& part);
 
 class Mesh {
  public:

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "render/trail.hpp"
+#include "render/tree_items.hpp"
 
 namespace stiction::render {
 namespace {
@@ -50,6 +51,24 @@ void dot(image::Image& frame, const glm::vec2& c, float radius, image::Rgba colo
 
 }  // namespace
 
+std::optional<core::Vec3> joint_position(const Drawing& scene, const JointSite& site,
+                                         const PoseTrack& poses, double t) {
+  if (site.body < 0 || site.body >= static_cast<int>(scene.bodies.size()) || site.joint < 0) {
+    return std::nullopt;
+  }
+  const BodyVisual& b = scene.bodies[static_cast<std::size_t>(site.body)];
+  const auto j = static_cast<std::size_t>(site.joint);
+  if (b.kind == BodyVisual::Kind::tree && b.tree != nullptr) {
+    // A link's frame is its joint's frame after the joint's motion: its origin is the joint.
+    const std::vector<components::LinkPose> links = tree_poses(b, poses, site.body, t);
+    if (j < links.size()) return links[j].p;
+  } else if (b.kind == BodyVisual::Kind::arm) {
+    const std::vector<core::Vec3> joints = arm_joints(b, poses, site.body, t);
+    if (j < joints.size()) return joints[j];
+  }
+  return std::nullopt;
+}
+
 const char* regime_name(Regime r) {
   switch (r) {
     case Regime::stick:
@@ -91,7 +110,7 @@ Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t,
 }
 
 Regime joint_regime(const JointSite& site, const PoseTrack& poses, double t) {
-  const double omega = poses.signal(site.arm + ".omega." + std::to_string(site.joint), t);
+  const double omega = poses.signal(rate_column(site), t);
   return std::isnan(omega) || sticks(std::abs(omega), site.stick_threshold) ? Regime::stick
                                                                             : Regime::slip;
 }
@@ -178,14 +197,9 @@ std::vector<Badge> RegimeBadges::badges(const PoseTrack& poses, double t,
     b.points.push_back(pixel);
   }
   for (const JointSite& j : sites_.joints) {
-    const BodyVisual& arm = scene_.bodies[static_cast<std::size_t>(j.body)];
-    const std::vector<core::Vec3> joints = arm_joints(arm, poses, j.body, t);
+    const std::optional<core::Vec3> at = joint_position(scene_, j, poses, t);
     glm::vec2 pixel;
-    if (j.joint < 0 || j.joint >= static_cast<int>(joints.size()) ||
-        !project(view_projection, to_glm(joints[static_cast<std::size_t>(j.joint)]), width, height,
-                 pixel)) {
-      continue;
-    }
+    if (!at || !project(view_projection, to_glm(*at), width, height, pixel)) continue;
     const Regime r = joint_regime(j, poses, t);
     Badge& b = groups[{j.name, r}];
     b.regime = r;

@@ -1,4 +1,5 @@
-// "stick" / "slip" / "open" badges by each contact point and friction joint, on the CPU
+// "stick" / "slip" / "open" badges by each contact point and friction joint (of a planar
+// arm or a kinematic tree: a URDF robot's <dynamics friction>), on the CPU
 // overlay, coloured as the trail (green, red) and grey for open. The regime is judged with
 // the element's own stick threshold, as the stick/slip events are. Points of one contact
 // table in the same regime share one badge ("stick ×4", at their mean projected position),
@@ -7,6 +8,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,10 @@ Regime contact_regime(const ContactSite& site, const PoseTrack& poses, double t,
 double visible_gap(const Drawing& scene, const ContactSite& site);
 // A friction joint: stick while |omega| of the joint is below its threshold.
 Regime joint_regime(const JointSite& site, const PoseTrack& poses, double t);
+// Where a friction joint is at time t (world): an arm's joint, or a tree link's joint (its
+// frame's origin); nothing if the site names no joint of its body.
+std::optional<core::Vec3> joint_position(const Drawing& scene, const JointSite& site,
+                                         const PoseTrack& poses, double t);
 
 // A badge to draw: its regime, how many points it stands for, and the projected points.
 struct Badge {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <optional>
 
 #include "render/camera.hpp"
@@ -24,29 +23,6 @@
 namespace stiction::render {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// Meshes are not drawn (no mesh import yet): say so once per file.
-void warn_undrawn_meshes(const Drawing& drawing) {
-  for (const BodyVisual& b : drawing.bodies) {
-    std::vector<std::string> told;
-    for (const scene::UrdfVisual& v : b.visuals) {
-      if (v.shape != scene::UrdfVisual::Shape::mesh ||
-          std::find(told.begin(), told.end(), v.mesh) != told.end()) {
-        continue;
-      }
-      told.push_back(v.mesh);
-      // The file name is the URDF's text: escaped for the terminal (issue 39).
-      std::fprintf(stderr, "%s\n",
-                   sys::terminal_safe("warning: " + b.name + ": mesh visual '" + v.mesh +
-                                      "' not drawn (meshes are not supported)")
-                       .c_str());
-    }
-  }
-}
-
-}  // namespace
 
 FrameClock frame_clock(double start, double end, double fps, double slow_motion) {
   FrameClock clock;
@@ -111,7 +87,6 @@ std::unique_ptr<FrameRenderer> frame_renderer_for(const scene::Scene& scene,
                                                   const RenderSettings& settings,
                                                   std::vector<double> event_times,
                                                   std::vector<std::string> event_kinds) {
-  warn_undrawn_meshes(scene.drawing);
   FrameAnnotations annotations;
   annotations.event_times = std::move(event_times);
   annotations.event_kinds = std::move(event_kinds);

@@ -119,8 +119,17 @@ Renderer::ShadowTarget& Renderer::shadow_target(int size) {
   return shadow_targets_.emplace(size, std::move(target)).first->second;
 }
 
-const Mesh& Renderer::mesh(Shape shape) const {
-  switch (shape) {
+const Mesh& Renderer::mesh(const DrawItem& item) {
+  if (item.shape == Shape::mesh && item.mesh && item.mesh_part < item.mesh->parts.size()) {
+    const scene::TriangleMesh::Part* part = &item.mesh->parts[item.mesh_part];
+    UploadedPart& slot = mesh_parts_[part];
+    if (!slot.mesh) {
+      slot.owner = item.mesh;
+      slot.mesh = std::make_unique<Mesh>(unit_mesh(*part));
+    }
+    return *slot.mesh;
+  }
+  switch (item.shape) {
     case Shape::sphere:
       return sphere_;
     case Shape::box:
@@ -132,6 +141,13 @@ const Mesh& Renderer::mesh(Shape shape) const {
     default:
       return plane_;
   }
+}
+
+void Renderer::draw_mesh(const DrawItem& item) {
+  const bool mirrored = glm::determinant(glm::mat3(item.model)) < 0.0f;
+  if (mirrored) glFrontFace(GL_CW);
+  mesh(item).draw();
+  if (mirrored) glFrontFace(GL_CCW);
 }
 
 void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
@@ -162,7 +178,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
     for (const DrawItem& item : items) {
       if (!item.casts_shadow) continue;
       depth_program_.set("u_model", item.model);
-      mesh(item.shape).draw();
+      draw_mesh(item);
     }
     glDisable(GL_DEPTH_CLAMP);
     // The lit pass samples this map: finish it here. Left to llvmpipe, the first draw that
@@ -243,7 +259,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera,
       program.set("u_local_offset", m.local_offset);
       program.set("u_spin_axis", m.spin_axis);
       program.set("u_spin_blur", m.spin_blur);
-      mesh(item.shape).draw();
+      draw_mesh(item);
     }
   }
   glDisable(GL_SCISSOR_TEST);

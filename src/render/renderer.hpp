@@ -50,7 +50,10 @@ class Renderer {
   const RendererOptions& options() const { return options_; }
 
  private:
-  const Mesh& mesh(Shape shape) const;
+  const Mesh& mesh(const DrawItem& item);
+  // Draws the item's mesh; a mirroring model matrix (a URDF mesh's negative scale) turns
+  // its triangles' winding, so the front faces are then the clockwise ones.
+  void draw_mesh(const DrawItem& item);
 
   RendererOptions options_;
   // The lit program of a material, with or without shadow sampling (both compiled in:
@@ -63,6 +66,13 @@ class Renderer {
   ShaderProgram depth_program_;
   ShaderProgram trail_program_;
   Mesh sphere_, box_, cylinder_, cone_, plane_;
+  // The URDF mesh parts drawn so far, uploaded on first use. Each entry holds its mesh, so
+  // that a part's address is never reused by another while it is a key here.
+  struct UploadedPart {
+    std::shared_ptr<const scene::TriangleMesh> owner;
+    std::unique_ptr<Mesh> mesh;
+  };
+  std::map<const scene::TriangleMesh::Part*, UploadedPart> mesh_parts_;
   GlVertexArray trail_vao_;
   GlBuffer trail_buffer_;
   // Multisampled colour + depth and the single-sampled resolve target.

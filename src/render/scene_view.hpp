@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,10 @@ using scene::SourceVisual;
 using scene::SpringVisual;
 using scene::SurfaceVisual;
 
-enum class Shape { sphere, box, cylinder, plane, trail, cone };
+// mesh: a part of a URDF mesh file (DrawItem::mesh), drawn as the unit shapes are: its
+// vertices mapped onto [-1, 1]^3 (TriangleMesh::Part::half_extent), so that the model
+// matrix takes the unit cube to its bounding box.
+enum class Shape { sphere, box, cylinder, plane, trail, cone, mesh };
 
 enum class MaterialKind { plain = 0, checker = 1, sphere_pattern = 2 };
 
@@ -58,6 +62,9 @@ struct DrawItem {
   Material material;
   bool casts_shadow = true;
   int body = -1;  // index into Drawing::bodies of the body drawn, or -1
+  // Shape::mesh: the scene's mesh and which of its parts.
+  std::shared_ptr<const scene::TriangleMesh> mesh;
+  std::size_t mesh_part = 0;
 };
 
 struct Bounds {

@@ -1,7 +1,9 @@
 #include "render/tree_items.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <utility>
 
 #include "render/scene_geometry.hpp"
@@ -48,6 +50,80 @@ std::vector<std::pair<core::Vec3, core::Vec3>> rods(const BodyVisual& b,
   return out;
 }
 
+glm::mat4 frame_matrix(const components::LinkPose& f) {
+  return glm::translate(glm::mat4(1.0f), to_glm(f.p)) * to_glm(f.q);
+}
+
+// A mesh part's unit cube (render/mesh.hpp unit_mesh) onto its place: the part's bounding
+// box, scaled by the URDF's scale, on the visual's frame.
+glm::mat4 part_model(const scene::UrdfVisual& v, const components::LinkPose& f,
+                     const scene::TriangleMesh::Part& part) {
+  const Eigen::Vector3f c = part.centre(), h = part.half_extent();
+  return frame_matrix(f) * glm::scale(glm::mat4(1.0f), to_glm(v.size)) *
+         glm::translate(glm::mat4(1.0f), glm::vec3(c.x(), c.y(), c.z())) *
+         glm::scale(glm::mat4(1.0f), glm::vec3(h.x(), h.y(), h.z()));
+}
+
+// A primitive's unit shape onto its place.
+glm::mat4 primitive_model(const scene::UrdfVisual& v, const components::LinkPose& f) {
+  glm::vec3 half(0.0f);
+  switch (v.shape) {
+    case scene::UrdfVisual::Shape::box:
+      half = 0.5f * to_glm(v.size);
+      break;
+    case scene::UrdfVisual::Shape::cylinder:
+      half = glm::vec3(to_glm(v.size).x, to_glm(v.size).y, 0.5f * to_glm(v.size).z);
+      break;
+    case scene::UrdfVisual::Shape::sphere:
+    case scene::UrdfVisual::Shape::mesh:
+      half = to_glm(v.size);
+      break;
+  }
+  return frame_matrix(f) * glm::scale(glm::mat4(1.0f), half);
+}
+
+glm::vec3 colour_of(const Eigen::Vector4d& rgba) {
+  return {static_cast<float>(rgba[0]), static_cast<float>(rgba[1]), static_cast<float>(rgba[2])};
+}
+
+// The lowest height of a visual on frame `f`: exact for the primitives and, with `exact`, for
+// a mesh (its lowest vertex: a robot's base stands on the floor put there); else a mesh's
+// bounding box's lowest corner (below or at the mesh: cheap enough for every frame).
+double lowest_z(const scene::UrdfVisual& v, const components::LinkPose& f, bool exact) {
+  const core::Mat3 R = f.q.toRotationMatrix();
+  switch (v.shape) {
+    case scene::UrdfVisual::Shape::box:
+      return f.p.z() - 0.5 * (R.row(2).cwiseAbs() * v.size).value();
+    case scene::UrdfVisual::Shape::cylinder: {
+      const double az = std::min(1.0, std::abs(R(2, 2)));  // the axis' vertical part
+      return f.p.z() - v.size.x() * std::sqrt(1.0 - az * az) - 0.5 * v.size.z() * az;
+    }
+    case scene::UrdfVisual::Shape::sphere:
+      return f.p.z() - v.size.x();
+    case scene::UrdfVisual::Shape::mesh: {
+      double low = f.p.z();
+      if (!v.triangles) return low;
+      low = std::numeric_limits<double>::infinity();
+      const auto height = [&](const Eigen::Vector3f& p) {
+        return f.p.z() + R.row(2).dot(v.size.cwiseProduct(p.cast<double>()));
+      };
+      for (const auto& part : v.triangles->parts) {
+        if (exact) {
+          for (const Eigen::Vector3f& p : part.positions) low = std::min(low, height(p));
+          continue;
+        }
+        for (int k = 0; k < 8; ++k) {
+          low = std::min(low, height(Eigen::Vector3f((k & 1) ? part.upper.x() : part.lower.x(),
+                                                     (k & 2) ? part.upper.y() : part.lower.y(),
+                                                     (k & 4) ? part.upper.z() : part.lower.z())));
+        }
+      }
+      return low;
+    }
+  }
+  return f.p.z();
+}
+
 void add_rod(std::vector<DrawItem>& items, const core::Vec3& a, const core::Vec3& b, float radius,
              glm::vec3 colour) {
   const core::Vec3 d = b - a;
@@ -80,8 +156,20 @@ std::vector<core::Vec3> tree_points(const BodyVisual& b, const PoseTrack& poses,
     out.push_back(to);
   }
   for (const auto& v : b.visuals) {
-    if (v.shape == scene::UrdfVisual::Shape::mesh) continue;
     const components::LinkPose f = visual_frame(b, p, v);
+    if (v.shape == scene::UrdfVisual::Shape::mesh) {
+      // The corners of each part's bounding box, where it is drawn.
+      if (!v.triangles) continue;
+      for (const auto& part : v.triangles->parts) {
+        const glm::mat4 model = part_model(v, f, part);
+        for (int k = 0; k < 8; ++k) {
+          const glm::vec4 c = model * glm::vec4((k & 1) ? 1.0f : -1.0f, (k & 2) ? 1.0f : -1.0f,
+                                                (k & 4) ? 1.0f : -1.0f, 1.0f);
+          out.emplace_back(c.x, c.y, c.z);
+        }
+      }
+      continue;
+    }
     const double r = 0.5 * v.size.norm();
     for (int k = 0; k < 8; ++k) {
       out.push_back(f.p + core::Vec3((k & 1) ? r : -r, (k & 2) ? r : -r, (k & 4) ? r : -r));
@@ -95,29 +183,28 @@ void add_tree_items(std::vector<DrawItem>& items, const BodyVisual& b, const Pos
   const std::vector<components::LinkPose> p = tree_poses(b, poses, index, t);
   if (!b.visuals.empty()) {
     for (const auto& v : b.visuals) {
-      if (v.shape == scene::UrdfVisual::Shape::mesh) continue;  // warned by frame_renderer_for
       const components::LinkPose f = visual_frame(b, p, v);
       DrawItem item;
-      glm::vec3 half(0.0f);
-      switch (v.shape) {
-        case scene::UrdfVisual::Shape::box:
-          item.shape = Shape::box;
-          half = 0.5f * to_glm(v.size);
-          break;
-        case scene::UrdfVisual::Shape::cylinder:
-          item.shape = Shape::cylinder;
-          half = glm::vec3(to_glm(v.size).x, to_glm(v.size).y, 0.5f * to_glm(v.size).z);
-          break;
-        case scene::UrdfVisual::Shape::sphere:
-        case scene::UrdfVisual::Shape::mesh:
-          item.shape = Shape::sphere;
-          half = to_glm(v.size);
-          break;
+      item.material.colour = colour_of(v.rgba);
+      if (v.shape == scene::UrdfVisual::Shape::mesh) {
+        if (!v.triangles) continue;  // a drawing built without its files (parse_urdf)
+        item.shape = Shape::mesh;
+        item.mesh = v.triangles;
+        for (std::size_t k = 0; k < v.triangles->parts.size(); ++k) {
+          const auto& part = v.triangles->parts[k];
+          item.mesh_part = k;
+          item.model = part_model(v, f, part);
+          // The URDF's colour first, else the file's own for this part, else grey.
+          item.material.colour =
+              colour_of(!v.rgba_given && part.has_colour ? part.rgba : v.rgba);
+          items.push_back(item);
+        }
+        continue;
       }
-      item.model = glm::translate(glm::mat4(1.0f), to_glm(f.p)) * to_glm(f.q) *
-                   glm::scale(glm::mat4(1.0f), half);
-      item.material.colour = glm::vec3(static_cast<float>(v.rgba[0]), static_cast<float>(v.rgba[1]),
-                                       static_cast<float>(v.rgba[2]));
+      item.shape = v.shape == scene::UrdfVisual::Shape::box        ? Shape::box
+                   : v.shape == scene::UrdfVisual::Shape::cylinder ? Shape::cylinder
+                                                                   : Shape::sphere;
+      item.model = primitive_model(v, f);
       items.push_back(item);
     }
     return;
@@ -141,6 +228,44 @@ void add_tree_items(std::vector<DrawItem>& items, const BodyVisual& b, const Pos
     pin.material.specular = 0.5f;
     items.push_back(pin);
   }
+}
+
+std::optional<double> tree_base_floor(const Drawing& scene, const PoseTrack& poses) {
+  if (scene.bodies.empty() || !scene.springs.empty() || !scene.joints.empty()) return std::nullopt;
+  double floor = std::numeric_limits<double>::infinity();
+  for (const BodyVisual& b : scene.bodies) {
+    // A stick figure (no visuals) has its first pin at the base: it keeps the usual floor.
+    if (b.kind != BodyVisual::Kind::tree || b.tree == nullptr || b.visuals.empty()) {
+      return std::nullopt;
+    }
+    const components::LinkPose base{b.tree->params().base_position,
+                                    b.tree->params().base_orientation};
+    bool has_base_visual = false;
+    for (const auto& v : b.visuals) {
+      if (v.link >= 0) continue;
+      has_base_visual = true;
+      floor = std::min(floor, lowest_z(v, visual_frame(b, {}, v), true));
+    }
+    if (!has_base_visual) floor = std::min(floor, base.p.z());
+  }
+  // The moving links over the run (sampled as run_bounds does): their visuals must stay
+  // above it.
+  constexpr int kSamples = 32;
+  const double t0 = poses.start_time(), t1 = poses.end_time();
+  const double tolerance = 1e-9 * std::max(1.0, std::abs(floor));
+  for (int k = 0; k < kSamples; ++k) {
+    const double t = t0 + (t1 - t0) * k / (kSamples - 1);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      const BodyVisual& b = scene.bodies[i];
+      const std::vector<components::LinkPose> p = tree_poses(b, poses, static_cast<int>(i), t);
+      double low = std::numeric_limits<double>::infinity();
+      for (const auto& v : b.visuals) {
+        if (v.link >= 0) low = std::min(low, lowest_z(v, visual_frame(b, p, v), false));
+      }
+      if (low < floor - tolerance) return std::nullopt;
+    }
+  }
+  return floor;
 }
 
 }  // namespace stiction::render

@@ -549,12 +549,16 @@ void ComponentBuilder::add_impedance(TableReader& table) {
 
 void ComponentBuilder::add_joint_site(TableReader& table, const std::string& name, int joint) {
   const int arm = body_index(drawing_, table.required_string("body"));
-  if (joint < 0 || arm < 0 ||
-      drawing_.bodies[static_cast<std::size_t>(arm)].kind != BodyVisual::Kind::arm) {
-    return;  // on a point (no joint), or a tree's joint (no badge there yet)
+  if (joint < 0 || arm < 0) return;  // on a point: no joint
+  const BodyVisual& b = drawing_.bodies[static_cast<std::size_t>(arm)];
+  if (b.kind == BodyVisual::Kind::arm) {
+    drawing_.sites.joints.push_back({name, b.name, arm, joint});
+  } else if (b.kind == BodyVisual::Kind::tree && b.tree != nullptr) {
+    // A tree's columns are named by its joints' names.
+    drawing_.sites.joints.push_back(
+        {name, b.name, arm, joint, 1e-3,
+         b.tree->params().links[static_cast<std::size_t>(joint)].joint_name});
   }
-  drawing_.sites.joints.push_back(
-      {name, drawing_.bodies[static_cast<std::size_t>(arm)].name, arm, joint});
 }
 
 void ComponentBuilder::add_element(std::unique_ptr<core::Impedance> impedance,

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,20 +20,27 @@
 #include "components/maps/pair_contact_map.hpp"
 #include "core/rim_point.hpp"
 #include "core/types.hpp"
+#include "scene/triangle_mesh.hpp"
 
 namespace stiction::scene {
 
-// A visual primitive of a URDF link (<visual>): drawn on the link's pose.
+// A visual of a URDF link (<visual>): drawn on the link's pose.
 struct UrdfVisual {
   enum class Shape { box, cylinder, sphere, mesh };
   Shape shape = Shape::box;
   int link = -1;                  // index into the tree's links, -1: the fixed base
+  std::string link_name;          // the URDF link it is written in (messages)
   core::Vec3 size = core::Vec3::Zero();  // box: sides; cylinder: (radius, radius, length)
-                                         // along its z axis; sphere: (r, r, r)
+                                         // along its z axis; sphere: (r, r, r); mesh: scale
   core::Vec3 origin = core::Vec3::Zero();        // in the link frame
   core::Quat rotation = core::Quat::Identity();  // in the link frame
   Eigen::Vector4d rgba{0.6, 0.6, 0.62, 1.0};     // <material><color>, grey if none
+  bool rgba_given = false;                       // the URDF gave a <material><color>
   std::string mesh;                              // mesh: its file name as written
+  // mesh: the file it names (scene/mesh_path.hpp) and its triangles, read when the scene is
+  // loaded (scene/mesh_file.hpp); a part without the URDF's colour takes the file's own.
+  std::filesystem::path mesh_file;
+  std::shared_ptr<const TriangleMesh> triangles;
 };
 
 struct BodyVisual {
@@ -97,17 +106,24 @@ struct ContactSite {
   bool trail = false;
 };
 
-// A friction element on a planar arm's joint: its slip speed is |ARM.omega.JOINT|.
+// A friction element on a joint of a planar arm or a kinematic tree (a urdf or spatial_tree
+// body): its slip speed is |ARM.omega.AXIS| (rate_column), its badge sits at the joint.
 struct JointSite {
   std::string name;  // the friction element (its column NAME.tau)
-  std::string arm;   // the arm's name: its columns ARM.omega.JOINT
-  int body = -1;     // the arm's index into Drawing::bodies
-  int joint = 0;
+  std::string arm;   // the arm's or tree's name: its columns ARM.omega.AXIS
+  int body = -1;     // the arm's or tree's index into Drawing::bodies
+  int joint = 0;     // the joint's index (a tree's: its link's)
   double stick_threshold = 1e-3;  // rad/s
+  std::string axis{};  // a tree's joint name, which names its columns; empty: an arm's index
 };
 
+// The column of the joint's rate: ARM.omega.1 on an arm, TREE.omega.elbow on a tree.
+inline std::string rate_column(const JointSite& site) {
+  return site.arm + ".omega." + (site.axis.empty() ? std::to_string(site.joint) : site.axis);
+}
+
 // Every contact point (one per element "NAME" or "NAME.i" of a kikuuwe_contact table: box
-// corners, rim points and listed points included) and every friction joint of a planar arm.
+// corners, rim points and listed points included) and every friction joint of an arm or tree.
 struct ContactSites {
   std::vector<ContactSite> contacts;
   std::vector<JointSite> joints;

@@ -2,6 +2,7 @@
 // components::SpatialTree, with the joint elements its URDF asks for: Kikuuwe friction
 // (<dynamics friction>), a damper (<dynamics damping>) and a one-sided stop at each end of
 // the travel (<limit lower upper>), named NAME.JOINT.friction, .damping and .limit.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <memory>
@@ -67,9 +68,14 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_urdf_body(TableReader& t
   const std::string file = table.required_string("file");
   std::filesystem::path path(file);
   if (path.is_relative()) path = directory_ / path;
+  // The scene's bound on mesh triangles holds for all its robots together.
+  std::size_t used = 0;
+  for (const BodyVisual& b : drawing_.bodies) {
+    for (const UrdfVisual& v : b.visuals) used += v.triangles ? v.triangles->triangle_count() : 0;
+  }
   UrdfRobot robot;
   try {
-    robot = load_urdf(path);
+    robot = load_urdf(path, kMaxSceneTriangles - std::min(used, kMaxSceneTriangles));
   } catch (const UrdfError& e) {
     table.fail("file", e.what());
   }
@@ -102,6 +108,7 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_urdf_body(TableReader& t
 
   auto tree = construct_here(table, [&] { return std::make_unique<components::SpatialTree>(name, p); });
   const components::SpatialTree& t = *tree;
+  const int drawn_as = static_cast<int>(drawing_.bodies.size());  // the tree, pushed below
   for (std::size_t i = 0; i < robot.links.size(); ++i) {
     const components::SpatialLink& link = robot.links[i];
     const std::string prefix = name + "." + link.joint_name + ".";
@@ -114,6 +121,9 @@ std::unique_ptr<core::Admittance> ComponentBuilder::add_urdf_body(TableReader& t
       components::KikuuweFrictionParams f = friction;
       f.force_limit = robot.dynamics[i].friction;
       stick_thresholds_[prefix + "friction"] = stick_threshold;
+      // Its stick/slip badge, at the joint (the tree is body `drawn_as` of the drawing).
+      drawing_.sites.joints.push_back(
+          {prefix + "friction", name, drawn_as, joint, stick_threshold, link.joint_name});
       element(construct_here(table, [&] {
                 return std::make_unique<components::KikuuweFriction>(prefix + "friction", f);
               }),

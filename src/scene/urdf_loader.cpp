@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/safe_normalize.hpp"
+#include "scene/mesh_path.hpp"
 #include "scene/urdf_numbers.hpp"
 #include "sys/read_file.hpp"
 
@@ -196,12 +197,14 @@ class Builder {
       if (!v || !v->geometry) continue;
       UrdfVisual out;
       out.link = owner;
+      out.link_name = link.name;
       const Frame f = in * frame_of(v->origin);
       out.origin = f.p;
       out.rotation = f.q;
       if (v->material) {
         const auto& c = v->material->color;
         out.rgba = Eigen::Vector4d(c.r, c.g, c.b, c.a);
+        out.rgba_given = true;
       }
       const urdf::Geometry& g = *v->geometry;
       switch (g.type) {
@@ -284,14 +287,16 @@ UrdfRobot parse_urdf(const std::string& text, const std::string& origin) {
   return robot;
 }
 
-UrdfRobot load_urdf(const std::filesystem::path& file) {
+UrdfRobot load_urdf(const std::filesystem::path& file, std::size_t max_triangles) {
   std::string text;
   try {
     text = sys::read_regular_file(file);
   } catch (const sys::FileRefused& e) {
     throw UrdfError(file.string() + ": cannot read the URDF file: " + std::string(e.what()));
   }
-  return parse_urdf(text, file.string());
+  UrdfRobot robot = parse_urdf(text, file.string());
+  read_urdf_meshes(robot, file, package_search_path(), max_triangles);
+  return robot;
 }
 
 }  // namespace stiction::scene

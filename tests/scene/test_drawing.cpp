@@ -313,11 +313,47 @@ TEST_CASE("drawing: a URDF robot is a tree with its file's visuals", "[scene][dr
     CHECK(arm.visuals[i].link == robot.visuals[i].link);
     CHECK((arm.visuals[i].size - robot.visuals[i].size).norm() == 0.0);
   }
-  // Joint friction on a tree has no badge site yet (item 1 of issue 37 leaves it open); the
-  // torque sources on its joints are drawn on them.
-  CHECK(s.drawing.sites.joints.empty());
+  // Each joint's friction (<dynamics friction="0.5">) is a badge site at its joint, judged on
+  // the tree's rate column of that joint; the torque sources on its joints are drawn on them.
+  REQUIRE(s.drawing.sites.joints.size() == 2);
+  for (std::size_t j = 0; j < 2; ++j) {
+    const scene::JointSite& site = s.drawing.sites.joints[j];
+    const std::string joint = robot.links[j].joint_name;
+    CHECK(site.name == "arm." + joint + ".friction");
+    CHECK(site.body == 0);
+    CHECK(site.joint == static_cast<int>(j));
+    CHECK(scene::rate_column(site) == "arm.omega." + joint);
+    CHECK(site.stick_threshold == 0.02);  // the scene's stick_threshold
+  }
   for (const scene::SourceVisual& src : s.drawing.sources) {
     CHECK(src.body == 0);
     CHECK(src.joint >= 0);
   }
+}
+
+TEST_CASE("drawing: friction on a spatial_tree's joint is a badge site at that joint",
+          "[scene][drawing]") {
+  const scene::Scene s = scene::load_scene(scene::SceneSource::from_text(R"(
+name = "tree_friction"
+[bodies.robot]
+type = "spatial_tree"
+joints = [
+  { name = "shoulder", axis = [0, 1, 0], mass = 1.0, com = [0.15, 0, 0], size = [0.3, 0.04, 0.04] },
+  { name = "elbow", parent = "shoulder", origin = [0.3, 0, 0], axis = [0, 1, 0], mass = 0.5, com = [0.1, 0, 0], inertia = [1e-4, 2e-3, 2e-3] },
+]
+[impedances.elbow_friction]
+type = "kikuuwe_friction"
+body = "robot"
+joint = "elbow"
+force_limit = 0.3
+stick_threshold = 0.05
+)",
+                                                                          "tree_friction.toml"));
+  REQUIRE(s.drawing.sites.joints.size() == 1);
+  const scene::JointSite& site = s.drawing.sites.joints[0];
+  CHECK(site.name == "elbow_friction");
+  CHECK(site.body == 0);
+  CHECK(site.joint == 1);
+  CHECK(scene::rate_column(site) == "robot.omega.elbow");
+  CHECK(site.stick_threshold == 0.05);
 }
