@@ -55,6 +55,7 @@ struct Cylinder {
   Vec3 x_b = Vec3::UnitX(), y_b = Vec3::UnitY(), z_b = Vec3::UnitZ();
   Vec3 position = Vec3::Zero(), velocity = Vec3::Zero();
   Vec3 angular_velocity = Vec3::Zero();  // body frame
+  double torque = 0.0;                   // N m about the axis, applied throughout (0: none)
   double k() const { return hollow ? 1.0 : 0.5; }
 };
 
@@ -85,6 +86,10 @@ std::string cylinder_scene(const Cylinder& c, const char* integrator, double dt,
     << vec(c.normal) << "\nstiffness = " << kK << "\ndamping = " << std::sqrt(kK * c.mass)
     << "\nmu = " << c.mu << "\nrolling_resistance = " << c.rolling
     << "\nspin_friction = " << c.spin << "\n";
+  if (c.torque != 0.0) {
+    s << "[impedances.twist]\ntype = \"torque_source\"\nbody = \"can\"\naxis = [0.0, 0.0, 1.0]\n"
+      << "torque = " << c.torque << "\n";
+  }
   return s.str();
 }
 
@@ -295,6 +300,61 @@ TEST_CASE(
     figure("coin spin", in.name, "mu > 0: stop vs J_n w0 / ((s + mu R) N), relative",
            worst_t_mu);
     figure("coin spin", in.name, "creep of p and q over 10 s after the stop", worst_creep);
+  }
+}
+
+TEST_CASE(
+    "cylinder hold: a cylinder on its rim and a coin on its face do not creep under a torque "
+    "below c N or s N",
+    "[rolling][cylinder]") {
+  // What holds them is the elements' stuck branch, e_dot equal to the coordinate exactly: the
+  // torque about the axis loads the rolling element of a cylinder on its rim (the rim
+  // contacts carry no torque about the axis) and the spin element of a coin on a
+  // frictionless face (mu = 0: nothing else resists the turn). A law whose anchor leaked
+  // (e_dot = w - r e, as a smooth model's does) would let them turn.
+  Random r{std::mt19937(3842)};
+  for (const Integrator in : kIntegrators) {
+    double worst = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      Cylinder c = random_cylinder(r);
+      const bool rim = k % 2 == 0;
+      if (!rim && std::string(in.name) == "implicit") c.normal = Vec3::UnitZ();  // see above
+      const Vec3 n = c.normal;
+      if (rim) {
+        c.length = r.uniform(0.3, 3.0) * c.radius;
+        c.z_b = r.unit_normal_to(n);
+        c.x_b = n;
+        c.position = (c.radius - c.mass * kG / (2.0 * kK)) * n;
+        c.rolling = r.uniform(0.01, 0.1) * c.radius;
+        c.spin = c.rolling;
+        c.torque = r.uniform(0.3, 0.9) * c.rolling * c.mass * kG;
+      } else {
+        c.length = r.uniform(0.02, 0.3) * c.radius;
+        c.mu = 0.0;
+        c.z_b = n;
+        c.x_b = r.unit_normal_to(n);
+        c.position = (0.5 * c.length - c.mass * kG / (3.0 * kK)) * n;
+        c.spin = r.uniform(0.2, 1.0) * c.radius;
+        c.rolling = 0.1 * c.spin;
+        c.torque = r.uniform(0.3, 0.9) * c.spin * c.mass * kG;
+      }
+      c.y_b = c.z_b.cross(c.x_b);
+      const double duration = 11.0;
+      const core::RunResult result = run(cylinder_scene(c, in.name, in.dt, duration));
+      INFO(in.name << " case " << k << (rim ? " on its rim" : " on its face") << ": m "
+                   << c.mass << ", R " << c.radius << ", L " << c.length << ", c " << c.rolling
+                   << ", s " << c.spin << ", torque " << c.torque << ", n " << n.transpose());
+      REQUIRE_FALSE(result.instability);
+      // The element carries the torque...
+      const Vec3 tau = column3(result.trajectory, rim ? "ground.rolling.tau" : "ground.spin.tau",
+                               0.5 * duration);
+      CHECK(tau.dot(c.z_b) == Approx(-c.torque).epsilon(1e-6));
+      // ... and the body does not move once the load has settled.
+      const double moved = creep(result.trajectory, 1.0, duration);
+      CHECK(moved < 1e-12);
+      worst = std::max(worst, moved);
+    }
+    figure("hold", in.name, "creep of p and q from 1 s to 11 s under the torque", worst);
   }
 }
 
