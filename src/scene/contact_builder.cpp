@@ -135,10 +135,10 @@ struct RollingElement {
 };
 
 std::vector<RollingElement> read_rolling_resistance(TableReader& table, double sphere_radius,
-                                                   const components::CylinderShape* rim,
-                                                   const core::Body& body,
-                                                   const components::KikuuweContactParams& p,
-                                                   double radius, bool other_shape) {
+                                                    const components::CylinderShape* rim,
+                                                    const core::Body& body,
+                                                    const components::KikuuweContactParams& p,
+                                                    double radius, bool other_shape) {
   std::vector<RollingElement> out;
   const bool any = table.has("rolling_resistance") || table.has("spin_friction");
   if (!any) {
@@ -437,9 +437,9 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
                         "(use \"world\")");
   }
   // (A cylinder on a moving surface was refused just above.)
-  const std::vector<RollingElement> rolling = read_rolling_resistance(
-      table, info.sphere_radius, rim ? &*info.cylinder : nullptr, *b, p, radius,
-      listed || several || moving || rim);
+  const std::vector<RollingElement> rolling =
+      read_rolling_resistance(table, info.sphere_radius, rim ? &*info.cylinder : nullptr, *b, p,
+                              radius, listed || several || moving || rim);
   table.finish();
   count_contact_elements(table, points.size());
 

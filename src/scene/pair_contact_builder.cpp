@@ -114,7 +114,8 @@ void ComponentBuilder::add_pair_contact(TableReader& table, const std::string& n
   if (table.has("tangential_damping"))
     p.tangential_damping = table.non_negative("tangential_damping", 0.0);
   const double threshold = table.positive("stick_threshold", 1e-3);
-  const std::vector<PairRolling> rolling = read_pair_rolling(table, a.sphere_radius, b.sphere_radius, p);
+  const std::vector<PairRolling> rolling =
+      read_pair_rolling(table, a.sphere_radius, b.sphere_radius, p);
   table.finish();
 
   components::PairShape shape;

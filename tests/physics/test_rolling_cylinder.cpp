@@ -66,8 +66,7 @@ std::string vec(const Vec3& v) {
   return s.str();
 }
 
-std::string cylinder_scene(const Cylinder& c, const char* integrator, double dt,
-                           double duration) {
+std::string cylinder_scene(const Cylinder& c, const char* integrator, double dt, double duration) {
   Eigen::Matrix3d r;
   r << c.x_b, c.y_b, c.z_b;
   const core::Quat q(r);
@@ -82,10 +81,9 @@ std::string cylinder_scene(const Cylinder& c, const char* integrator, double dt,
     << "position = " << vec(c.position) << "\nvelocity = " << vec(c.velocity) << "\n"
     << "orientation = [" << q.w() << ", " << q.x() << ", " << q.y() << ", " << q.z() << "]\n"
     << "angular_velocity = " << vec(c.angular_velocity) << "\n"
-    << "[impedances.ground]\ntype = \"kikuuwe_contact\"\nbody = \"can\"\nnormal = "
-    << vec(c.normal) << "\nstiffness = " << kK << "\ndamping = " << std::sqrt(kK * c.mass)
-    << "\nmu = " << c.mu << "\nrolling_resistance = " << c.rolling
-    << "\nspin_friction = " << c.spin << "\n";
+    << "[impedances.ground]\ntype = \"kikuuwe_contact\"\nbody = \"can\"\nnormal = " << vec(c.normal)
+    << "\nstiffness = " << kK << "\ndamping = " << std::sqrt(kK * c.mass) << "\nmu = " << c.mu
+    << "\nrolling_resistance = " << c.rolling << "\nspin_friction = " << c.spin << "\n";
   if (c.torque != 0.0) {
     s << "[impedances.twist]\ntype = \"torque_source\"\nbody = \"can\"\naxis = [0.0, 0.0, 1.0]\n"
       << "torque = " << c.torque << "\n";
@@ -153,8 +151,8 @@ constexpr Integrator kIntegrators[] = {{"rk4", 1e-4}, {"implicit", 1e-3}};
 // Position and orientation of the body from `from` to `to`: the largest change of an entry.
 double creep(const core::Trajectory& tr, double from, double to) {
   double worst = 0.0;
-  for (const char* name : {"can.p.x", "can.p.y", "can.p.z", "can.q.w", "can.q.x", "can.q.y",
-                           "can.q.z"}) {
+  for (const char* name :
+       {"can.p.x", "can.p.y", "can.p.z", "can.q.w", "can.q.x", "can.q.y", "can.q.z"}) {
     worst = std::max(worst, std::abs(column_at(tr, name, to) - column_at(tr, name, from)));
   }
   return worst;
@@ -190,9 +188,9 @@ TEST_CASE(
       c.angular_velocity = Vec3(0.0, 0.0, -v0 / c.radius);  // -(v0 / R) a, body frame
       const double hold = 10.0, duration = t_stop + 1.0 + hold;
       const core::RunResult result = run(cylinder_scene(c, in.name, in.dt, duration));
-      INFO(in.name << " case " << k << ": m " << c.mass << ", R " << c.radius << ", L "
-                   << c.length << (c.hollow ? " ring" : " solid") << ", mu " << c.mu << ", c "
-                   << c.rolling << ", n " << n.transpose() << ", v0 " << v0 << ", a_r " << a_r
+      INFO(in.name << " case " << k << ": m " << c.mass << ", R " << c.radius << ", L " << c.length
+                   << (c.hollow ? " ring" : " solid") << ", mu " << c.mu << ", c " << c.rolling
+                   << ", n " << n.transpose() << ", v0 " << v0 << ", a_r " << a_r
                    << ", stop due at " << t_stop);
       REQUIRE_FALSE(result.instability);
       const auto& tr = result.trajectory;
@@ -260,10 +258,9 @@ TEST_CASE(
       c.angular_velocity = Vec3(0.0, 0.0, w0);  // about the axis, here the normal
       const double hold = 10.0, duration = t_spin + 1.0 + hold;
       const core::RunResult result = run(cylinder_scene(c, in.name, in.dt, duration));
-      INFO(in.name << " case " << k << ": m " << c.mass << ", R " << c.radius << ", L "
-                   << c.length << (c.hollow ? " ring" : " solid") << ", mu " << c.mu << ", s "
-                   << c.spin << ", n " << n.transpose() << ", w0 " << w0 << ", stop due at "
-                   << t_spin);
+      INFO(in.name << " case " << k << ": m " << c.mass << ", R " << c.radius << ", L " << c.length
+                   << (c.hollow ? " ring" : " solid") << ", mu " << c.mu << ", s " << c.spin
+                   << ", n " << n.transpose() << ", w0 " << w0 << ", stop due at " << t_spin);
       REQUIRE_FALSE(result.instability);
       const auto& tr = result.trajectory;
       // The body's z is its axis, here the normal: w.z is the spin about the normal.
@@ -295,10 +292,8 @@ TEST_CASE(
     }
     figure("coin spin", in.name, "mu = 0: angular decel. vs s N / J_n, relative", worst_a);
     figure("coin spin", in.name, "mu = 0: stop vs J_n w0 / (s N), s", worst_t);
-    figure("coin spin", in.name, "mu > 0: angular decel. vs (s + mu R) N / J_n, rel.",
-           worst_a_mu);
-    figure("coin spin", in.name, "mu > 0: stop vs J_n w0 / ((s + mu R) N), relative",
-           worst_t_mu);
+    figure("coin spin", in.name, "mu > 0: angular decel. vs (s + mu R) N / J_n, rel.", worst_a_mu);
+    figure("coin spin", in.name, "mu > 0: stop vs J_n w0 / ((s + mu R) N), relative", worst_t_mu);
     figure("coin spin", in.name, "creep of p and q over 10 s after the stop", worst_creep);
   }
 }
@@ -341,9 +336,9 @@ TEST_CASE(
       c.y_b = c.z_b.cross(c.x_b);
       const double duration = 11.0;
       const core::RunResult result = run(cylinder_scene(c, in.name, in.dt, duration));
-      INFO(in.name << " case " << k << (rim ? " on its rim" : " on its face") << ": m "
-                   << c.mass << ", R " << c.radius << ", L " << c.length << ", c " << c.rolling
-                   << ", s " << c.spin << ", torque " << c.torque << ", n " << n.transpose());
+      INFO(in.name << " case " << k << (rim ? " on its rim" : " on its face") << ": m " << c.mass
+                   << ", R " << c.radius << ", L " << c.length << ", c " << c.rolling << ", s "
+                   << c.spin << ", torque " << c.torque << ", n " << n.transpose());
       REQUIRE_FALSE(result.instability);
       // The element carries the torque...
       const Vec3 tau = column3(result.trajectory, rim ? "ground.rolling.tau" : "ground.spin.tau",

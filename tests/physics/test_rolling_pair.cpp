@@ -63,8 +63,8 @@ struct Pair {
   Vec3 normal = Vec3::UnitZ();  // from b to a
   double force = 5.0;           // F, pressing them together
   double mu = 0.5, rolling = 1e-3, spin = 1e-3;
-  double torque = 0.0;           // N m on a (and -torque on b) about `axis`, 0: none
-  Vec3 axis = Vec3::UnitZ();     // a's body frame
+  double torque = 0.0;        // N m on a (and -torque on b) about `axis`, 0: none
+  Vec3 axis = Vec3::UnitZ();  // a's body frame
 };
 
 std::string vec(const Vec3& v) {
@@ -233,7 +233,8 @@ TEST_CASE(
     }
     figure("pair spin", in.name, "relative decel. vs s F (1/J_a + 1/J_b), relative", worst_a);
     figure("pair spin", in.name, "stop (stick event) vs the closed form, s", worst_t);
-    figure("pair spin", in.name, "creep of p and q over 10 s after the stop", worst_creep);
+    figure("pair spin", in.name, "creep of b's pose in a's frame, 10 s after the stop",
+           worst_creep);
   }
 }
 
@@ -263,9 +264,9 @@ TEST_CASE(
       const double hold = 10.0, duration = t_stop + 1.0 + hold;
       const core::RunResult result = run(pair_scene(p, in.name, in.dt, duration));
       INFO(in.name << " case " << k << ": m " << p.a.mass << ", " << p.b.mass << ", r "
-                   << p.a.radius << ", " << p.b.radius << ", F " << p.force << ", c "
-                   << p.rolling << ", W " << w0 << ", n " << p.normal.transpose() << ", u "
-                   << u.transpose() << ", stop due at " << t_stop);
+                   << p.a.radius << ", " << p.b.radius << ", F " << p.force << ", c " << p.rolling
+                   << ", W " << w0 << ", n " << p.normal.transpose() << ", u " << u.transpose()
+                   << ", stop due at " << t_stop);
       REQUIRE_FALSE(result.instability);
       const auto& tr = result.trajectory;
       auto relative = [&](double t) {
@@ -295,13 +296,13 @@ TEST_CASE(
     figure("pair roll", in.name, "relative decel. vs c F (1/J_a + 1/J_b), relative", worst_a);
     figure("pair roll", in.name, "stop (stick event) vs the closed form, s", worst_t);
     figure("pair roll", in.name, "centres' displacement over the run, m", worst_still);
-    figure("pair roll", in.name, "creep of p and q over 10 s after the stop", worst_creep);
+    figure("pair roll", in.name, "creep of b's pose in a's frame, 10 s after the stop",
+           worst_creep);
   }
 }
 
-TEST_CASE(
-    "pair hold: two spheres do not creep under a couple below c N or s N",
-    "[rolling][pair]") {
+TEST_CASE("pair hold: two spheres do not creep under a couple below c N or s N",
+          "[rolling][pair]") {
   // A couple (torque on a, the opposite on b) about n loads the spin element, about a
   // tangent u the rolling element; nothing else resists it (the contact point is on the
   // axis, or the couple needs no contact force). The stuck branch, e_dot equal to the
@@ -323,8 +324,8 @@ TEST_CASE(
                    << p.b.mass << ", r " << p.a.radius << ", " << p.b.radius << ", F " << p.force
                    << ", torque " << p.torque);
       REQUIRE_FALSE(result.instability);
-      const Vec3 tau = column3(result.trajectory, spin ? "touch.spin.tau" : "touch.rolling.tau",
-                               0.5 * duration);
+      const Vec3 tau =
+          column3(result.trajectory, spin ? "touch.spin.tau" : "touch.rolling.tau", 0.5 * duration);
       CHECK(tau.dot(p.axis) == Approx(-p.torque).epsilon(1e-6));
       const double moved = creep(result.trajectory, 1.0, duration);
       CHECK(moved < 1e-11);  // rounding only, as above

@@ -77,7 +77,8 @@ int PairRollingResistance::regime(ConstVecRef x_hat, ConstVecRef y, double tau) 
   Vec3 u;
   Vec3 y_dot = Vec3::Zero();
   evaluate(0.0, x_hat, y, tau, u, y_dot.head(dimension()));
-  if (params_.part == RollingPart::spin) return y_dot[0] == normal_of(x_hat).dot(relative_w(x_hat)) ? 1 : 2;
+  if (params_.part == RollingPart::spin)
+    return y_dot[0] == normal_of(x_hat).dot(relative_w(x_hat)) ? 1 : 2;
   return y_dot == tangential(relative_w(x_hat), normal_of(x_hat)) ? 1 : 2;
 }
 
@@ -97,13 +98,18 @@ Vec3 PairRollingResistance::unloaded_slip(ConstVecRef x_hat, ConstVecRef y, doub
 
 std::vector<core::SignalInfo> PairRollingResistance::signals() const {
   const bool spin = params_.part == RollingPart::spin;
-  return {{.name = "tau", .axes = core::xyz_axes(), .unit = "N·m", .frame = "world",
+  return {{.name = "tau",
+           .axes = core::xyz_axes(),
+           .unit = "N·m",
+           .frame = "world",
            .description = spin ? "spinning resistance torque on the first body; the other "
                                  "body receives the opposite"
                                : "rolling resistance torque on the first body; the other body "
                                  "receives the opposite"},
-          {.name = "e", .axes = spin ? std::vector<std::string>{} : core::xyz_axes(),
-           .unit = "rad", .frame = spin ? "surface" : "world",
+          {.name = "e",
+           .axes = spin ? std::vector<std::string>{} : core::xyz_axes(),
+           .unit = "rad",
+           .frame = spin ? "surface" : "world",
            .description = "elastic rotation of the resistance element (anchor offset)"}};
 }
 

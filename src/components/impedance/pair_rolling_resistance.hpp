@@ -59,8 +59,7 @@ class PairRollingResistance final : public core::Impedance,
   }
   // The relative angular slip (world, rad/s): w_t for rolling, (n.w_rel) n for spin.
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
-  core::Vec3 unloaded_slip(core::ConstVecRef x_hat, core::ConstVecRef y,
-                           double tau) const override;
+  core::Vec3 unloaded_slip(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
   const RollingResistanceParams& params() const { return params_; }
 
  private:

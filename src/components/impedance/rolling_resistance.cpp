@@ -19,8 +19,7 @@ RollingResistance::RollingResistance(std::string name, const KikuuweContactParam
       params_(params) {
   if (!(params_.coefficient >= 0.0) || !std::isfinite(params_.coefficient) ||
       !(params_.stiffness > 0.0) || !std::isfinite(params_.stiffness) ||
-      !(params_.damping >= 0.0) || !std::isfinite(params_.damping) ||
-      !(params_.radius >= 0.0)) {
+      !(params_.damping >= 0.0) || !std::isfinite(params_.damping) || !(params_.radius >= 0.0)) {
     throw std::invalid_argument(
         "rolling resistance: need a coefficient >= 0, K > 0, B >= 0 and a radius >= 0");
   }
@@ -111,15 +110,20 @@ std::vector<core::SignalInfo> RollingResistance::signals() const {
   const bool spin = params_.part == RollingPart::spin;
   // A cylinder's rolling state is one angle about its axis (projected on the plane).
   const bool about_axis = !spin && params_.body == RollingBody::cylinder;
-  return {{.name = "tau", .axes = core::xyz_axes(), .unit = "N·m", .frame = "world",
-           .description = spin ? "spinning resistance torque on the body"
-                               : "rolling resistance torque on the body"},
-          {.name = "e", .axes = dimension() == 1 ? std::vector<std::string>{} : core::index_axes(2),
-           .unit = "rad", .frame = about_axis ? "body" : "surface",
-           .description = about_axis
-                              ? "elastic rotation of the resistance element about the axis "
-                                "projected on the plane (anchor offset)"
-                              : "elastic rotation of the resistance element (anchor offset)"}};
+  return {
+      {.name = "tau",
+       .axes = core::xyz_axes(),
+       .unit = "N·m",
+       .frame = "world",
+       .description = spin ? "spinning resistance torque on the body"
+                           : "rolling resistance torque on the body"},
+      {.name = "e",
+       .axes = dimension() == 1 ? std::vector<std::string>{} : core::index_axes(2),
+       .unit = "rad",
+       .frame = about_axis ? "body" : "surface",
+       .description = about_axis ? "elastic rotation of the resistance element about the axis "
+                                   "projected on the plane (anchor offset)"
+                                 : "elastic rotation of the resistance element (anchor offset)"}};
 }
 
 void RollingResistance::write_signals(ConstVecRef /*x_hat*/, ConstVecRef y, ConstVecRef u,

@@ -93,8 +93,7 @@ class RollingResistance final : public core::Impedance,
   // The angular slip (world, rad/s): w_t for a sphere's rolling, (a_p.w) a_p for a
   // cylinder's, (n.w) n for spin.
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
-  core::Vec3 unloaded_slip(core::ConstVecRef x_hat, core::ConstVecRef y,
-                           double tau) const override;
+  core::Vec3 unloaded_slip(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override;
   // N at x_hat, as the sphere's contact computes it.
   double contact_normal_force(core::ConstVecRef x_hat) const;
   const RollingResistanceParams& params() const { return params_; }
