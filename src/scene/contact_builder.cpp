@@ -19,6 +19,7 @@
 #include "components/maps/body_twist_map.hpp"
 #include "components/maps/contact_point_map.hpp"
 #include "components/maps/cylinder_rim_map.hpp"
+#include "components/maps/cylinder_twist_map.hpp"
 #include "components/maps/surface_point_map.hpp"
 #include "core/safe_normalize.hpp"
 #include "scene/components.hpp"
@@ -116,20 +117,28 @@ void reject_for_cylinder(TableReader& table, bool moving, bool settle) {
   if (settle) table.fail("settle", "not supported for a cylinder body (start it at rest on the plane)");
 }
 
-// `rolling_resistance` and `spin_friction` (m, >= 0): Kikuuwe elements on the sphere's
-// angular velocity (components/impedance/rolling_resistance.hpp), for a sphere on a fixed
-// plane only so far (`other_shape` says the contact is anything else), with the angular
-// spring `rolling_stiffness` (default Kt R^2, N m/rad) and damper `rolling_damping` (default
-// Bt R^2, N m s/rad): the contact's own tangential spring seen at the lever R.
+// `rolling_resistance` and `spin_friction` (m, >= 0): Kikuuwe elements on the body's
+// angular velocity (components/impedance/rolling_resistance.hpp), for a sphere (one contact
+// point) or a cylinder (its rim points, `rim` its shape) on a fixed plane; `other_shape`
+// says a sphere's contact is anything else (several or listed points, a moving surface).
+// The angular spring `rolling_stiffness` (default Kt R^2, N m/rad) and damper
+// `rolling_damping` (default Bt R^2, N m s/rad): the contact's own tangential spring seen at
+// the lever R (the sphere's or the cylinder's radius).
+// The element reads the cylinder's x_hat as the map lays it out.
+static_assert(components::CylinderTwistMap::kAxisOffset == components::kCylinderAxis &&
+              components::CylinderTwistMap::kRimOffset == components::kCylinderRim &&
+              components::CylinderTwistMap::kSize == components::kCylinderInput);
+
 struct RollingElement {
   const char* suffix;
   components::RollingResistanceParams params;
 };
 
 std::vector<RollingElement> read_rolling_resistance(TableReader& table, double sphere_radius,
-                                                   const core::Body& body,
-                                                   const components::KikuuweContactParams& p,
-                                                   double radius, bool other_shape) {
+                                                    const components::CylinderShape* rim,
+                                                    const core::Body& body,
+                                                    const components::KikuuweContactParams& p,
+                                                    double radius, bool other_shape) {
   std::vector<RollingElement> out;
   const bool any = table.has("rolling_resistance") || table.has("spin_friction");
   if (!any) {
@@ -139,14 +148,18 @@ std::vector<RollingElement> read_rolling_resistance(TableReader& table, double s
     return out;
   }
   const char* key = table.has("rolling_resistance") ? "rolling_resistance" : "spin_friction";
-  if (!(sphere_radius > 0.0) || other_shape || !body.can_rotate() || !(radius > 0.0)) {
+  const bool sphere = sphere_radius > 0.0 && !other_shape && body.can_rotate() && radius > 0.0;
+  if (!sphere && rim == nullptr) {
     table.fail(key,
-               "rolling and spinning resistance are supported for a rigid_body sphere on a "
-               "fixed plane only (one contact point, no `points`, `belt_speed` or `tilt`)");
+               "rolling and spinning resistance are supported for a rigid_body sphere (one "
+               "contact point) or cylinder (its rim points) on a fixed plane only (no "
+               "`points`, `belt_speed` or `tilt`)");
   }
+  if (rim != nullptr) radius = rim->radius;
   const double kt = p.tangential_stiffness > 0.0 ? p.tangential_stiffness : p.stiffness;
   const double bt = p.tangential_damping >= 0.0 ? p.tangential_damping : p.damping;
   components::RollingResistanceParams base;
+  base.body = rim != nullptr ? components::RollingBody::cylinder : components::RollingBody::sphere;
   base.radius = radius;
   base.stiffness = table.positive("rolling_stiffness", kt * radius * radius);
   base.damping = table.non_negative("rolling_damping", bt * radius * radius);
@@ -423,9 +436,10 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
                       : "body-fixed axes are not supported for a cylinder's rim contacts yet "
                         "(use \"world\")");
   }
+  // (A cylinder on a moving surface was refused just above.)
   const std::vector<RollingElement> rolling =
-      read_rolling_resistance(table, info.sphere_radius, *b, p, radius,
-                              listed || several || moving || rim);
+      read_rolling_resistance(table, info.sphere_radius, rim ? &*info.cylinder : nullptr, *b, p,
+                              radius, listed || several || moving || rim);
   table.finish();
   count_contact_elements(table, points.size());
 
@@ -524,7 +538,8 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     add_element(std::move(impedance), std::move(map));
     drawing_.sites.contacts.push_back(std::move(site));
   }
-  // Rolling and spinning resistance (a sphere on a fixed plane): NAME.rolling, NAME.spin.
+  // Rolling and spinning resistance (a sphere or a cylinder on a fixed plane): NAME.rolling,
+  // NAME.spin.
   for (const RollingElement& r : rolling) {
     const std::string element = name + "." + r.suffix;
     auto resistance = construct_contact(table, [&] {
@@ -532,7 +547,13 @@ void ComponentBuilder::add_contact(TableReader& table, const std::string& name) 
     });
     stick_thresholds_[element] = threshold;
     impedance_types_.emplace(element, "kikuuwe_contact");
-    add_element(std::move(resistance), std::make_unique<components::BodyTwistMap>(*b));
+    std::unique_ptr<core::CoordinateMap> map;
+    if (r.params.body == components::RollingBody::cylinder) {
+      map = std::make_unique<components::CylinderTwistMap>(*b, *info.cylinder, p.normal);
+    } else {
+      map = std::make_unique<components::BodyTwistMap>(*b);
+    }
+    add_element(std::move(resistance), std::move(map));
   }
   add_surface(drawing_, surface);
   // The table's own name too, so no other component takes it.
