@@ -36,13 +36,18 @@
 
 #include "core/simulation.hpp"
 #include "core/types.hpp"
+#include "rolling_cases.hpp"
 #include "scene/scene.hpp"
 #include "trajectory_rows.hpp"
 
 using namespace stiction;
 using core::Vec3;
+using testing::column3;
 using testing::column_at;
+using testing::figure;
+using testing::Random;
 using testing::row_at;
+using testing::stick_time;
 
 namespace {
 
@@ -104,39 +109,8 @@ std::string pair_scene(const Pair& p, const char* integrator, double dt, double 
 }
 
 core::RunResult run(const std::string& text) {
-  auto scene = scene::load_scene(scene::SceneSource::from_text(text, "generated_pair.toml"));
-  return core::simulate(*scene.network, scene.run);
+  return testing::run_generated(text, "generated_pair.toml");
 }
-
-double stick_time(const core::RunResult& r, const std::string& element) {
-  for (const auto& h : r.slip_events) {
-    if (h.component == element) return h.monitor.stick_time();
-  }
-  return -1.0;
-}
-
-Vec3 column3(const core::Trajectory& tr, const std::string& name, double t) {
-  return {column_at(tr, name + ".x", t), column_at(tr, name + ".y", t),
-          column_at(tr, name + ".z", t)};
-}
-
-void figure(const char* test, const char* integrator, const char* what, double value) {
-  if (std::getenv("STICTION_FIGURES") != nullptr) {
-    std::printf("%-10s %-9s %-52s %.3g\n", test, integrator, what, value);
-  }
-}
-
-struct Random {
-  std::mt19937 rng;
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); }
-  Vec3 unit() {
-    Vec3 v;
-    do {
-      v = Vec3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-    } while (v.norm() < 0.1 || v.norm() > 1.0);
-    return v.normalized();
-  }
-};
 
 // Two spheres touching along a random n, pressed by F; b's mass is left to the caller.
 Pair random_pair(Random& r) {
