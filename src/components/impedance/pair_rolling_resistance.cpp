@@ -25,11 +25,7 @@ PairRollingResistance::PairRollingResistance(std::string name, const PairContact
       FrictionSpring(params.stiffness, params.damping),
       contact_("contact", contact),
       params_(params) {
-  if (!(params_.coefficient >= 0.0) || !std::isfinite(params_.coefficient) ||
-      !(params_.stiffness > 0.0) || !std::isfinite(params_.stiffness) ||
-      !(params_.damping >= 0.0) || !std::isfinite(params_.damping)) {
-    throw std::invalid_argument("rolling resistance: need a coefficient >= 0, K > 0 and B >= 0");
-  }
+  check_rolling_params(params_);
 }
 
 std::vector<std::string> PairRollingResistance::state_labels() const {

@@ -17,9 +17,13 @@ RollingResistance::RollingResistance(std::string name, const KikuuweContactParam
       FrictionSpring(params.stiffness, params.damping),
       contact_("contact", contact),
       params_(params) {
-  if (!(params_.coefficient >= 0.0) || !std::isfinite(params_.coefficient) ||
-      !(params_.stiffness > 0.0) || !std::isfinite(params_.stiffness) ||
-      !(params_.damping >= 0.0) || !std::isfinite(params_.damping) || !(params_.radius >= 0.0)) {
+  check_rolling_params(params_);
+}
+
+void check_rolling_params(const RollingResistanceParams& p) {
+  if (!(p.coefficient >= 0.0) || !std::isfinite(p.coefficient) || !(p.stiffness > 0.0) ||
+      !std::isfinite(p.stiffness) || !(p.damping >= 0.0) || !std::isfinite(p.damping) ||
+      !(p.radius >= 0.0)) {
     throw std::invalid_argument(
         "rolling resistance: need a coefficient >= 0, K > 0, B >= 0 and a radius >= 0");
   }

@@ -58,6 +58,10 @@ inline constexpr int kCylinderAxis = 9;
 inline constexpr int kCylinderRim = 12;
 inline constexpr int kCylinderInput = kCylinderRim + 6 * core::RimPoint::kPoints;
 
+// Throws std::invalid_argument unless coefficient >= 0, K > 0, B >= 0 (finite) and radius
+// >= 0: the checks every rolling or spinning element makes of its parameters.
+void check_rolling_params(const RollingResistanceParams& params);
+
 class RollingResistance final : public core::Impedance,
                                 public FrictionSpring,
                                 public core::ClampedFriction,
