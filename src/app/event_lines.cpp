@@ -121,6 +121,23 @@ std::vector<std::string> event_lines(const nlohmann::ordered_json& events,
       what = first_of(entry, element, accuracy, "first_stick", "stick", "sticks from t = 0") +
              ", " + first_of(entry, element, accuracy, "first_slip", "slip", "slips from t = 0");
     }
+    // A law with a static level above the kinetic one (mu_static > mu): where it broke away
+    // (the first slip itself, unless that was a touch-down).
+    const auto breakaway = entry.find("first_breakaway");
+    if (breakaway != entry.end() && breakaway->is_number()) {
+      const double t = breakaway->get<double>();
+      const std::string level = " (static level " +
+                                text::significant(entry.value("static_ratio", 1.0), 3) +
+                                "x the kinetic)";
+      const std::string first_slip = "first slip at " + time_text(t);
+      const auto at = what.find(first_slip);
+      if (at != std::string::npos) {
+        what.replace(at, first_slip.size(), "breaks away at " + time_text(t));
+      } else {
+        what += ", breaks away at " + time_text(t);
+      }
+      what += level;
+    }
     int sticks = 0, slips = 0, touch_downs = 0, lift_offs = 0;
     if (entry.contains("event_counts")) {  // all events, kept or not (SlipMonitor's bound)
       const auto& c = entry["event_counts"];

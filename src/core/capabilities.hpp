@@ -41,6 +41,11 @@ class SlipElement {
   virtual ~SlipElement() = default;
   // Relative velocity of the pair at input x_hat (a joint uses the x entry).
   virtual Vec3 slip_velocity(ConstVecRef x_hat) const = 0;
+  // The static friction level over the kinetic one (mu_static / mu, static_limit /
+  // force_limit): above 1, every slip onset from a stick is a breakaway at the static level,
+  // which the run's summary names (`first_breakaway`, io/summary.cpp). 1 for a law with one
+  // level.
+  virtual double static_ratio() const { return 1.0; }
 };
 
 // A law with smooth pieces: which one the element is on at (x_hat, y; tau), e.g. 0 open,

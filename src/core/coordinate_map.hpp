@@ -29,6 +29,15 @@ class CoordinateMap {
 
   virtual int motion_size() const = 0;  // size of x_hat
   virtual int force_size() const = 0;   // size of u
+  // Where in x_hat the velocity conjugate to u starts: force_size() entries whose product
+  // with u is the power the element exchanges (a contact point's velocity, a body's angular
+  // velocity for a torque), the moving side's, so that pushing it with +u shows as a negative
+  // change (it receives -u). -1 where x_hat has no such contiguous part. `check` reads each
+  // element's effective mass through it (services/dynamics_fingerprint.cpp). Default: x_hat
+  // = [position (n), velocity (n)].
+  virtual int conjugate_velocity_offset() const {
+    return motion_size() == 2 * force_size() ? force_size() : -1;
+  }
   // The admittances this map reads and drives, in a fixed order; the network calls bind()
   // with their slots in the same order once the layout is known.
   virtual std::vector<const Admittance*> admittances() const = 0;

@@ -52,6 +52,8 @@ struct SlipHistory {
   Vec3 other_point = Vec3::Zero();
   // The point travels over the body as it rolls (contact_site): not an edge or corner.
   bool rolling = false;
+  // The element's static level over its kinetic one (SlipElement::static_ratio).
+  double static_ratio = 1.0;
 };
 
 struct Instability {

@@ -1,9 +1,9 @@
 #include "core/slip_observer.hpp"
 
+#include <optional>
+
 #include "core/body.hpp"
 #include "core/body_events.hpp"
-
-#include <optional>
 
 namespace stiction::core {
 namespace {
@@ -63,6 +63,7 @@ SlipObserver::SlipObserver(Network& network, const RunOptions& options, const St
     slipping_.push_back(i);
     contacts_.push_back(network.capabilities(i).contact);
     histories_.push_back({imp.name(), SlipMonitor(threshold, resolution)});
+    histories_.back().static_ratio = network.capabilities(i).slip->static_ratio();
     if (contacts_.back() != nullptr) locate_on_body(network, i, x0, histories_.back());
     observe(slipping_.size() - 1, 0.0, x0, options.dt);
   }

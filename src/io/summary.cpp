@@ -9,6 +9,20 @@
 
 namespace stiction::io {
 
+namespace {
+
+// The first slip event that follows a stick (the initial state counts), or -1.
+double first_breakaway(const core::SlipMonitor& monitor) {
+  std::string previous = monitor.initial_state();
+  for (const core::SlipEvent& e : monitor.events()) {
+    if (e.kind == "slip" && previous == "stick") return e.time;
+    previous = e.kind;
+  }
+  return -1.0;
+}
+
+}  // namespace
+
 nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histories) {
   nlohmann::ordered_json events = nlohmann::ordered_json::object();
   for (const core::SlipHistory& h : histories) {
@@ -23,6 +37,12 @@ nlohmann::ordered_json slip_events(const std::vector<core::SlipHistory>& histori
     entry["last_stick"] = time_or_null(h.monitor.last_stick());
     entry["first_slip"] = time_or_null(h.monitor.first_slip());
     entry["initial"] = h.monitor.initial_state();
+    // A law whose static level is above its kinetic one: its first slip onset from a stick
+    // (not a touch-down) is where it broke away at the static level.
+    if (h.static_ratio > 1.0) {
+      entry["static_ratio"] = h.static_ratio;
+      entry["first_breakaway"] = time_or_null(first_breakaway(h.monitor));
+    }
     // All events counted, kept or not (SlipMonitor keeps the first and the last ones).
     entry["event_counts"] = {{"stick", h.monitor.count("stick")},
                              {"slip", h.monitor.count("slip")},
@@ -102,7 +122,8 @@ nlohmann::ordered_json final_row(const core::RunResult& result) {
   for (int c = 0; c < tr.column_count(); ++c) {
     const std::string& name = tr.columns()[static_cast<std::size_t>(c)];
     if (!seen.insert(name).second) continue;
-    append_member(row, name, has_end ? result.end_row[static_cast<std::size_t>(c)] : tr.at(last, c));
+    append_member(row, name,
+                  has_end ? result.end_row[static_cast<std::size_t>(c)] : tr.at(last, c));
   }
   return row;
 }

@@ -10,13 +10,14 @@ namespace stiction::services {
 
 // Push with a unit force through the map of impedance i at the initial state, let the
 // admittances accelerate for a unit time
-// and read the velocity part of x_hat back. The largest entry gives the stiffest mode, the
-// one that limits the step. Works for every map whose x_hat is [position (n), velocity (n)]
-// with n = force size; NaN otherwise.
+// and read the velocity conjugate to the force back from x_hat (the map says where it is:
+// a point's velocity, a body's angular velocity for a torque). The largest entry gives the
+// stiffest mode, the one that limits the step. NaN for a map that names no such velocity.
 double largest_mobility(core::Network& network, int i, const core::Vec& x0, double* work) {
   const core::CoordinateMap& map = network.map_of(i);
   const int n = map.force_size();
-  if (map.motion_size() != 2 * n) return std::nan("");
+  const int velocity = map.conjugate_velocity_offset();
+  if (velocity < 0 || velocity + n > map.motion_size()) return std::nan("");
   core::Vec base_hat(map.motion_size()), pushed_hat(map.motion_size());
   map.motion(x0, base_hat);
   double largest = 0.0;
@@ -42,15 +43,14 @@ double largest_mobility(core::Network& network, int i, const core::Vec& x0, doub
     }
     map.motion(x1, pushed_hat);
     // The moving side receives -u: a positive mobility shows as a negative response.
-    largest = std::max(largest, -(pushed_hat[n + k] - base_hat[n + k]));
+    largest = std::max(largest, -(pushed_hat[velocity + k] - base_hat[velocity + k]));
   }
   return largest;
 }
 
 bool DynamicsFingerprint::operator==(const DynamicsFingerprint& other) const {
-  if (integrator != other.integrator || pilot_dt != other.pilot_dt ||
-      duration != other.duration || state_dim != other.state_dim ||
-      numbers.size() != other.numbers.size()) {
+  if (integrator != other.integrator || pilot_dt != other.pilot_dt || duration != other.duration ||
+      state_dim != other.state_dim || numbers.size() != other.numbers.size()) {
     return false;
   }
   for (std::size_t i = 0; i < numbers.size(); ++i) {

@@ -16,7 +16,8 @@
 namespace stiction::services {
 
 // Mobility (inverse effective mass or inertia) that impedance i sees at the state x0 (the
-// network's initial state); NaN for a map whose motion is not [position (n), velocity (n)].
+// network's initial state), read at the velocity its map names as conjugate to its force
+// (CoordinateMap::conjugate_velocity_offset); NaN for a map that names none.
 // Only the admittances its push reaches are evaluated; `work`, when given, is increased by
 // their state sizes (twice per force axis).
 double largest_mobility(core::Network& network, int i, const core::Vec& x0,

@@ -22,6 +22,7 @@
 #include "components/impedance/kikuuwe_contact.hpp"
 #include "components/impedance/pair_contact.hpp"
 #include "core/simulation.hpp"
+#include "io/summary.hpp"
 #include "scene/scene.hpp"
 #include "trajectory_rows.hpp"
 
@@ -91,7 +92,6 @@ core::RunResult run(const std::string& text) {
   auto scene = scene::load_scene(scene::SceneSource::from_text(text, "generated_friction.toml"));
   return core::simulate(*scene.network, scene.run);
 }
-
 
 // The anchor of the friction element along x: position less the spring's elongation. It
 // stays constant, to rounding, exactly while the element is stuck (e_dot == v).
@@ -253,6 +253,18 @@ TEST_CASE(
       CHECK(t_moved - t_stuck == Approx(step).epsilon(1e-6));
       // And above the kinetic level it does slide away.
       CHECK(column_at(tr, "block.v.x", t_break + 0.05) > 1e-4);
+      // The run's events name the breakaway (issue 38 item 5): the first slip from the
+      // stick, at the static level. The law releases in the step that reaches F_s or the
+      // one before (the trial force leads the push by tau r, docs/friction_laws.md), and the
+      // onset lies in the bracket between the last held step and that one: within two steps.
+      const nlohmann::ordered_json events = io::slip_events(r.slip_events);
+      const auto& ground = events.at("ground");
+      CHECK(ground.value("static_ratio", 0.0) == Approx(b.mu_static / b.mu).epsilon(1e-12));
+      REQUIRE(ground.at("first_breakaway").is_number());
+      const double t_event = ground["first_breakaway"].get<double>();
+      CHECK(t_event == ground["first_slip"].get<double>());
+      CHECK(t_event >= t_break - 2.0 * step);
+      CHECK(t_event <= t_break + 2.0 * step);
       worst_low = std::min(worst_low, (t_moved - t_break) / step);
       worst_high = std::max(worst_high, (t_moved - t_break) / step);
     }
@@ -454,6 +466,12 @@ TEST_CASE(
       }
       CHECK(held > 100);
       CHECK(moved > 100);
+      // One level: its slips are plain slips, not breakaways at a static level.
+      for (const core::RunResult* result : {&plain, &same}) {
+        const auto events = io::slip_events(result->slip_events);
+        CHECK_FALSE(events.at("ground").contains("first_breakaway"));
+        CHECK_FALSE(events.at("ground").contains("static_ratio"));
+      }
     }
   }
 }

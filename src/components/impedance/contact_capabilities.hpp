@@ -16,16 +16,22 @@ class ContactCapabilities : public core::NormalContact,
                             public core::EnergyStore,
                             public core::StiffnessHint {
  public:
-  // K and B of the normal spring-damper, mu, and the tangential (friction) stiffness Kt.
-  ContactCapabilities(double stiffness, double damping, double mu, double tangential_stiffness)
-      : core::StiffnessHint(stiffness, damping), mu_(mu), kt_(tangential_stiffness) {}
+  // K and B of the normal spring-damper, the largest coefficient (the stuck band's edge), the
+  // tangential (friction) stiffness Kt, and mu_static / mu.
+  ContactCapabilities(double stiffness, double damping, double mu, double tangential_stiffness,
+                      double static_ratio)
+      : core::StiffnessHint(stiffness, damping),
+        mu_(mu),
+        kt_(tangential_stiffness),
+        static_ratio_(static_ratio) {}
   double friction_cap_energy(core::ConstVecRef x_hat) const final {
     const double limit = mu_ * contact_normal_force(x_hat);
     return limit * limit / kt_;
   }
+  double static_ratio() const final { return static_ratio_; }
 
  private:
-  double mu_, kt_;
+  double mu_, kt_, static_ratio_;
 };
 
 }  // namespace stiction::components

@@ -106,7 +106,7 @@ struct FrictionLevels {
   // |f| while sliding, for a trial force of magnitude `trial` > breakaway and
   // `damping_sum` = B + tau K.
   double sliding_force(double trial, double damping_sum) const {
-    if (plain()) return kinetic;  // eq. (15): exactly the Coulomb level
+    if (plain()) return kinetic;                         // eq. (15): exactly the Coulomb level
     if (!(damping_sum + viscous > 0.0)) return kinetic;  // no damping at all: Coulomb
     const double s = slip_speed(trial, damping_sum);
     return level(s) + viscous * s;
@@ -167,6 +167,12 @@ struct ContactFriction {
             normal_force > 0.0 ? viscous : 0.0};
   }
 };
+
+// mu_static / mu as a contact's parameters give them (mu_static < 0: equal to mu); 1 when
+// mu = 0 (no friction: nothing breaks away).
+inline double static_to_kinetic(double mu, double mu_static) {
+  return mu > 0.0 && mu_static > mu ? mu_static / mu : 1.0;
+}
 
 // The coefficients as a contact's parameters give them (mu_static < 0: equal to mu), checked:
 // std::invalid_argument unless 0 <= mu <= mu_static, v_s >= 0 and B_v >= 0, all finite.

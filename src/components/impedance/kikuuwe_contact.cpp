@@ -1,10 +1,10 @@
 #include "components/impedance/kikuuwe_contact.hpp"
 
-#include "core/safe_normalize.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "core/safe_normalize.hpp"
 
 namespace stiction::components {
 
@@ -16,7 +16,8 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
     : Impedance(std::move(name)),
       ContactCapabilities(
           params.stiffness, params.damping, std::max({params.mu, params.mu_static, params.mu_2}),
-          params.tangential_stiffness >= 0.0 ? params.tangential_stiffness : params.stiffness),
+          params.tangential_stiffness >= 0.0 ? params.tangential_stiffness : params.stiffness,
+          static_to_kinetic(params.mu, params.mu_static)),
       params_(params) {
   const auto normal = core::safe_normalized(params_.normal);
   if (!normal) throw std::invalid_argument("contact: the normal must be a finite, non-zero vector");
@@ -31,9 +32,9 @@ KikuuweContact::KikuuweContact(std::string name, const KikuuweContactParams& par
   kt_ = params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness;
   bt_ = params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
   frame_ = {n_, t1_, t2_};
-  coefficients_ = {params_.stiffness, params_.damping, kt_, bt_,
-                   contact_friction(params_.mu, params_.mu_static, params_.stribeck_velocity,
-                                    params_.viscous)};
+  coefficients_ = {
+      params_.stiffness, params_.damping, kt_, bt_,
+      contact_friction(params_.mu, params_.mu_static, params_.stribeck_velocity, params_.viscous)};
   // Anisotropic: mu's direction along t1, t2 (t1 itself by default).
   const Vec3 axis = params_.friction_axis;
   const Eigen::Vector2d in_plane = axis == Vec3::Zero()
@@ -97,11 +98,20 @@ double KikuuweContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
 }
 
 std::vector<core::SignalInfo> KikuuweContact::signals() const {
-  return {{.name = "f", .axes = core::xyz_axes(), .unit = "N", .frame = "world",
+  return {{.name = "f",
+           .axes = core::xyz_axes(),
+           .unit = "N",
+           .frame = "world",
            .description = "contact force on the body (normal plus friction)"},
-          {.name = "slip", .axes = core::xyz_axes(), .unit = "m/s", .frame = "world",
+          {.name = "slip",
+           .axes = core::xyz_axes(),
+           .unit = "m/s",
+           .frame = "world",
            .description = "velocity of the contact point in the surface plane"},
-          {.name = "e", .axes = core::index_axes(2), .unit = "m", .frame = "surface",
+          {.name = "e",
+           .axes = core::index_axes(2),
+           .unit = "m",
+           .frame = "surface",
            .description = "elastic displacement of the tangential friction element"},
           {.name = "n_force", .unit = "N", .description = "normal force magnitude"}};
 }

@@ -17,9 +17,9 @@
 namespace stiction::components {
 
 struct KikuuweFrictionParams {
-  double stiffness = 1e4;   // K
-  double damping = 1.0;     // B
-  double force_limit = 1.0; // F, the Coulomb (kinetic) level
+  double stiffness = 1e4;    // K
+  double damping = 1.0;      // B
+  double force_limit = 1.0;  // F, the Coulomb (kinetic) level
   int dimension = 1;
   double static_limit = -1.0;      // F_s >= F, the breakaway level; < 0: equal to force_limit
   double stribeck_velocity = 0.0;  // v_s (m/s or rad/s), 0: none
@@ -54,11 +54,17 @@ class KikuuweFriction final : public core::Impedance,
                      core::VecRef out) const override;
   int regime(core::ConstVecRef x_hat, core::ConstVecRef y, double tau) const override {
     const int n = params_.dimension;
-    const double norm = ((params_.damping + tau * params_.stiffness) * x_hat.segment(n, n) +
-                         params_.stiffness * y).norm();
+    const double norm =
+        ((params_.damping + tau * params_.stiffness) * x_hat.segment(n, n) + params_.stiffness * y)
+            .norm();
     return norm <= levels_.breakaway ? 1 : 2;
   }
   core::Vec3 slip_velocity(core::ConstVecRef x_hat) const override;
+  double static_ratio() const override {
+    return levels_.kinetic > 0.0 && levels_.breakaway > levels_.kinetic
+               ? levels_.breakaway / levels_.kinetic
+               : 1.0;
+  }
   // The whole output is friction: held entirely.
   void evaluate_friction_held(double /*t*/, core::ConstVecRef /*x_hat*/, core::ConstVecRef /*y*/,
                               double /*tau*/, core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref,

@@ -15,7 +15,8 @@ MovingContact::MovingContact(std::string name, const KikuuweContactParams& param
     : Impedance(std::move(name)),
       ContactCapabilities(
           params.stiffness, params.damping, std::max({params.mu, params.mu_static, params.mu_2}),
-          params.tangential_stiffness > 0.0 ? params.tangential_stiffness : params.stiffness),
+          params.tangential_stiffness > 0.0 ? params.tangential_stiffness : params.stiffness,
+          static_to_kinetic(params.mu, params.mu_static)),
       params_(params),
       motion_(motion),
       radius_(radius) {
@@ -90,7 +91,8 @@ MovingContact::Touch MovingContact::touch(ConstVecRef x_hat) const {
 }
 
 double MovingContact::normal_force(const Touch& c) const {
-  return c.inside ? components::contact_normal_force(coefficients_, c.depth, c.surface.frame.n.dot(c.v_rel))
+  return c.inside ? components::contact_normal_force(coefficients_, c.depth,
+                                                     c.surface.frame.n.dot(c.v_rel))
                   : 0.0;
 }
 
@@ -154,11 +156,20 @@ double MovingContact::power_in(ConstVecRef x_hat, ConstVecRef u) const {
 
 std::vector<core::SignalInfo> MovingContact::signals() const {
   std::vector<core::SignalInfo> out{
-      {.name = "f", .axes = core::xyz_axes(), .unit = "N", .frame = "world",
+      {.name = "f",
+       .axes = core::xyz_axes(),
+       .unit = "N",
+       .frame = "world",
        .description = "contact force on the body (normal plus friction)"},
-      {.name = "slip", .axes = core::xyz_axes(), .unit = "m/s", .frame = "world",
+      {.name = "slip",
+       .axes = core::xyz_axes(),
+       .unit = "m/s",
+       .frame = "world",
        .description = "velocity of the contact point relative to the moving surface"},
-      {.name = "e", .axes = core::index_axes(2), .unit = "m", .frame = "surface",
+      {.name = "e",
+       .axes = core::index_axes(2),
+       .unit = "m",
+       .frame = "surface",
        .description = "elastic displacement of the tangential friction element"},
       {.name = "n_force", .unit = "N", .description = "normal force magnitude"}};
   if (motion_.tilt) {

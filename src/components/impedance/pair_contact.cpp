@@ -21,17 +21,19 @@ PairContact::PairContact(std::string name, const PairContactParams& params)
     : Impedance(std::move(name)),
       ContactCapabilities(
           params.stiffness, params.damping, std::max(params.mu, params.mu_static),
-          params.tangential_stiffness > 0.0 ? params.tangential_stiffness : params.stiffness),
+          params.tangential_stiffness > 0.0 ? params.tangential_stiffness : params.stiffness,
+          static_to_kinetic(params.mu, params.mu_static)),
       params_(params) {
   if (!(params_.stiffness > 0.0) || !(params_.damping >= 0.0) || !(params_.mu >= 0.0)) {
     throw std::invalid_argument("contact: need K > 0, B >= 0, mu >= 0");
   }
   const double kt =
       params_.tangential_stiffness > 0.0 ? params_.tangential_stiffness : params_.stiffness;
-  const double bt = params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
-  coefficients_ = {params_.stiffness, params_.damping, kt, bt,
-                   contact_friction(params_.mu, params_.mu_static, params_.stribeck_velocity,
-                                    params_.viscous)};
+  const double bt =
+      params_.tangential_damping >= 0.0 ? params_.tangential_damping : params_.damping;
+  coefficients_ = {
+      params_.stiffness, params_.damping, kt, bt,
+      contact_friction(params_.mu, params_.mu_static, params_.stribeck_velocity, params_.viscous)};
 }
 
 double PairContact::contact_normal_force(ConstVecRef x_hat) const {
@@ -98,19 +100,27 @@ double PairContact::stored_energy(ConstVecRef x_hat, ConstVecRef y) const {
 }
 
 std::vector<core::SignalInfo> PairContact::signals() const {
-  return {{.name = "f", .axes = core::xyz_axes(), .unit = "N", .frame = "world",
+  return {{.name = "f",
+           .axes = core::xyz_axes(),
+           .unit = "N",
+           .frame = "world",
            .description = "contact force on the first body (normal plus friction); the other "
                           "body receives the opposite"},
-          {.name = "slip", .axes = core::xyz_axes(), .unit = "m/s", .frame = "world",
+          {.name = "slip",
+           .axes = core::xyz_axes(),
+           .unit = "m/s",
+           .frame = "world",
            .description = "velocity of the first body's contact point relative to the other's, "
                           "in the tangent plane"},
-          {.name = "e", .axes = core::xyz_axes(), .unit = "m", .frame = "world",
+          {.name = "e",
+           .axes = core::xyz_axes(),
+           .unit = "m",
+           .frame = "world",
            .description = "elastic displacement of the tangential friction element"},
           {.name = "n_force", .unit = "N", .description = "normal force magnitude"}};
 }
 
-void PairContact::write_signals(ConstVecRef x_hat, ConstVecRef y, ConstVecRef u,
-                                VecRef out) const {
+void PairContact::write_signals(ConstVecRef x_hat, ConstVecRef y, ConstVecRef u, VecRef out) const {
   const Vec3 on_body = -u.head<3>();
   out.segment<3>(0) = on_body;
   out.segment<3>(3) = slip_velocity(x_hat);

@@ -14,6 +14,7 @@ class BodyTwistMap final : public core::CoordinateMap {
   explicit BodyTwistMap(const core::Body& body) : body_(body) {}
   int motion_size() const override { return 9; }
   int force_size() const override { return 3; }
+  int conjugate_velocity_offset() const override { return 6; }  // w, for the torque u
   std::vector<const core::Admittance*> admittances() const override { return {&body_}; }
   void bind(const std::vector<core::Slot>& slots) override { slot_ = slots.at(0); }
   void motion(core::ConstVecRef x, core::VecRef x_hat) const override {

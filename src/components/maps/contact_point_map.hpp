@@ -23,6 +23,8 @@ class ContactPointMap final : public core::CoordinateMap {
   }
   int motion_size() const override { return carries_axis_ ? 9 : 6; }
   int force_size() const override { return 3; }
+  // [p_c, v_c] then, with body-fixed friction axes, the first axis.
+  int conjugate_velocity_offset() const override { return 3; }
   std::vector<const core::Admittance*> admittances() const override { return {&body_}; }
   void bind(const std::vector<core::Slot>& slots) override { slot_ = slots.at(0); }
   void motion(core::ConstVecRef x, core::VecRef x_hat) const override {
@@ -30,8 +32,7 @@ class ContactPointMap final : public core::CoordinateMap {
     if (carries_axis_) x_hat.segment<3>(6) = m.q * axis_;
   }
   void apply(core::ConstVecRef x, core::ConstVecRef u, core::VecRef u_hat) const override {
-    apply_to(body_, body_.motion(x.segment(slot_.state_offset, slot_.state_size)), u,
-             u_hat.data());
+    apply_to(body_, body_.motion(x.segment(slot_.state_offset, slot_.state_size)), u, u_hat.data());
   }
   // Kikuuwe contacts on rigid bodies and point masses.
   std::unique_ptr<core::Coupling> direct_coupling(const core::Impedance& impedance,

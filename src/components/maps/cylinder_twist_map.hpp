@@ -28,6 +28,7 @@ class CylinderTwistMap final : public core::CoordinateMap {
   CylinderTwistMap(const core::Body& body, const CylinderShape& shape, const core::Vec3& normal);
   int motion_size() const override { return kSize; }
   int force_size() const override { return 3; }
+  int conjugate_velocity_offset() const override { return 6; }  // w, for the torque u
   std::vector<const core::Admittance*> admittances() const override { return {&body_}; }
   void bind(const std::vector<core::Slot>& slots) override;
   void motion(core::ConstVecRef x, core::VecRef x_hat) const override;

@@ -32,6 +32,8 @@ class ObservingMap final : public core::CoordinateMap {
   ObservingMap(std::unique_ptr<core::CoordinateMap> inner, std::vector<Observed> observed);
   int motion_size() const override { return inner_->motion_size() + raw_size_; }
   int force_size() const override { return inner_->force_size(); }
+  // The inner map's x_hat comes first, unchanged.
+  int conjugate_velocity_offset() const override { return inner_->conjugate_velocity_offset(); }
   std::vector<const core::Admittance*> admittances() const override;
   void bind(const std::vector<core::Slot>& slots) override;
   // Where the observed impedances' states are: known once the network is finalized (the

@@ -35,15 +35,15 @@ enum class PairKind { sphere_sphere, sphere_box, box_sphere, box_box };
 
 struct PairShape {
   PairKind kind = PairKind::sphere_sphere;
-  double radius_a = 0.0, radius_b = 0.0;  // spheres
+  double radius_a = 0.0, radius_b = 0.0;                                // spheres
   core::Vec3 half_a = core::Vec3::Zero(), half_b = core::Vec3::Zero();  // boxes: half sides
   int corner = 0;  // box_box: 0-7 the first box's corners, 8-15 the second's
 };
 
 struct PairProbe {
-  double depth = 0.0;                      // > 0 in contact
-  core::Vec3 n{0.0, 0.0, 1.0};             // pushes the first body; unit
-  core::Vec3 point = core::Vec3::Zero();   // world contact point
+  double depth = 0.0;                     // > 0 in contact
+  core::Vec3 n{0.0, 0.0, 1.0};            // pushes the first body; unit
+  core::Vec3 point = core::Vec3::Zero();  // world contact point
 };
 
 // Corner i (0-7) of a box of half sides h, in its frame.
@@ -57,6 +57,7 @@ class PairContactMap final : public core::CoordinateMap {
       : a_(a), b_(b), shape_(shape) {}
   int motion_size() const override { return 7; }
   int force_size() const override { return 3; }
+  int conjugate_velocity_offset() const override { return 4; }  // v_rel
   std::vector<const core::Admittance*> admittances() const override { return {&a_, &b_}; }
   void bind(const std::vector<core::Slot>& slots) override {
     slot_a_ = slots.at(0);

@@ -19,6 +19,7 @@ class PairTwistMap final : public core::CoordinateMap {
       : a_(a), b_(b), contact_(a, b, shape) {}
   int motion_size() const override { return 10; }
   int force_size() const override { return 3; }
+  int conjugate_velocity_offset() const override { return 7; }  // w_a - w_b
   std::vector<const core::Admittance*> admittances() const override { return {&a_, &b_}; }
   void bind(const std::vector<core::Slot>& slots) override {
     slot_a_ = slots.at(0);

@@ -15,6 +15,8 @@ class SurfacePointMap final : public core::CoordinateMap {
       : body_(body), local_(local), clock_(clock) {}
   int motion_size() const override { return 10; }
   int force_size() const override { return 6; }
+  // [v_b, w] for [force, torque]: the body's side (the surface moves by the clock alone).
+  int conjugate_velocity_offset() const override { return 3; }
   std::vector<const core::Admittance*> admittances() const override { return {&body_, &clock_}; }
   void bind(const std::vector<core::Slot>& slots) override {
     body_slot_ = slots.at(0);
