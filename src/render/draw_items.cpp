@@ -179,7 +179,9 @@ std::vector<DrawItem> build_items(const Drawing& scene, const PoseTrack& poses, 
     add_surface(items, s, around, half, checker, t, span);
   }
 
-  int links = 0;  // jointed rigid bodies so far: their colours alternate as an arm's links
+  // Rigid boxes so far: every other one is lighter, as an arm's links are, so the links of a
+  // chain and the boxes of a stack (a box on a pushed box) tell apart.
+  int boxes = 0;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyVisual& b = scene.bodies[i];
     const int index = static_cast<int>(i);
@@ -205,7 +207,7 @@ std::vector<DrawItem> build_items(const Drawing& scene, const PoseTrack& poses, 
                      to_glm(poses.orientation(index, t)) *
                      glm::scale(glm::mat4(1.0f), 0.5f * to_glm(b.size));
         item.material.colour = kBoxColour;
-        if (is_link(scene, index) && links++ % 2 == 1) item.material.colour = kLinkColour2;
+        if (boxes++ % 2 == 1) item.material.colour = kLinkColour2;
         items.push_back(item);
         break;
       }
