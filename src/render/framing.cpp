@@ -41,9 +41,27 @@ void add_body_points(std::vector<glm::vec3>& points, const Drawing& scene, const
         add_cube(points, to_glm(p), glm::vec3(w));
       break;
     }
-    case BodyVisual::Kind::sphere:
-      add_cube(points, to_glm(poses.position(index, t)), glm::vec3(static_cast<float>(b.radius)));
+    case BodyVisual::Kind::sphere: {
+      // A polyhedron around the ball: 12 meridians, rings every 30 degrees and the poles, its
+      // vertices 1 / cos(22.5 deg) = 1.08 radii out so that its faces (whose corners are at
+      // most 21 degrees from their centres) stay outside the ball. The cube around it stood
+      // out by up to sqrt(3) and framed a ball about 1.5x smaller than the picture allows.
+      const glm::vec3 c = to_glm(poses.position(index, t));
+      const double r = b.radius / std::cos(std::numbers::pi / 8.0);
+      points.push_back(c + glm::vec3(0.0f, 0.0f, static_cast<float>(r)));
+      points.push_back(c - glm::vec3(0.0f, 0.0f, static_cast<float>(r)));
+      for (int ring = 1; ring < 6; ++ring) {
+        const double polar = std::numbers::pi * ring / 6.0;
+        for (int k = 0; k < 12; ++k) {
+          const double a = 2.0 * std::numbers::pi * k / 12.0;
+          points.push_back(c + static_cast<float>(r) *
+                                   glm::vec3(static_cast<float>(std::sin(polar) * std::cos(a)),
+                                             static_cast<float>(std::sin(polar) * std::sin(a)),
+                                             static_cast<float>(std::cos(polar))));
+        }
+      }
       break;
+    }
     case BodyVisual::Kind::cylinder: {
       // Its two rims, as regular 12-gons around them (not its box, whose corners stand out
       // by up to 41% of the radius as the wheel turns, which framed a rolling wheel smaller).
