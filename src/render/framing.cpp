@@ -163,14 +163,17 @@ std::vector<glm::vec3> run_points(const Drawing& scene, const PoseTrack& poses, 
     points.insert(points.end(), at.begin(), at.end());
   }
   // Some ground around bodies that barely move (a block at rest would fill the picture): a
-  // square six pieces wide around the centre of the run, facing the camera so that it is
-  // seen centred.
+  // rectangle five pieces wide and three high (about a 16:9 frame's shape) around the centre
+  // of the run, facing the camera so that it is seen centred. Three pieces high puts a body
+  // at rest at about a third of the picture's height, as a follow camera shows its body
+  // (kFollowFraction); a square six pieces wide and high showed a wheel or a ball that rolls
+  // a metre at a sixth of the height, under a band of sky.
   if (!all.empty()) {
     const glm::vec3 f = glm::normalize(direction);
     const glm::vec3 right = glm::normalize(glm::cross(f, up_hint));
     const glm::vec3 up = glm::cross(right, f);
-    const float h = 3.0f * piece_size(scene);
-    for (const glm::vec3 d : {h * right, -h * right, h * up, -h * up})
+    const float p = piece_size(scene);
+    for (const glm::vec3 d : {2.5f * p * right, -2.5f * p * right, 1.5f * p * up, -1.5f * p * up})
       points.push_back(all.centre() + d);
   }
   return points;
