@@ -217,19 +217,28 @@ core::Vec3 force_arrow_tail(const ContactSite& site, const PoseTrack& poses, dou
   return tail;
 }
 
+std::vector<ArrowSegment> force_arrow_segments(const ContactSites& sites, const PoseTrack& poses,
+                                               double t, const ArrowScales& scales,
+                                               const glm::vec3& eye, double exposure) {
+  std::vector<ArrowSegment> out;
+  for (const ContactSite& s : sites.contacts) {
+    const ContactForce f = contact_force(s, poses, t, exposure);
+    if (f.normal.isZero(0.0) && f.friction.isZero(0.0)) continue;
+    const core::Vec3 tail = force_arrow_tail(s, poses, t, scales, eye);
+    out.push_back({tail, tail + capped(f.normal / scales.force, scales.max_length), true});
+    out.push_back({tail, tail + capped(f.friction / scales.force, scales.max_length), false});
+  }
+  return out;
+}
+
 void add_force_arrows(std::vector<DrawItem>& items, const ContactSites& sites,
                       const PoseTrack& poses, double t, const ArrowScales& scales,
                       const glm::vec3& eye, double exposure) {
   ArrowStyle style;
   style.shaft_radius = scales.shaft_radius;
-  for (const ContactSite& s : sites.contacts) {
-    const ContactForce f = contact_force(s, poses, t, exposure);
-    if (f.normal.isZero(0.0) && f.friction.isZero(0.0)) continue;
-    const glm::vec3 tail = to_glm(force_arrow_tail(s, poses, t, scales, eye));
-    add_arrow(items, tail, to_glm(capped(f.normal / scales.force, scales.max_length)),
-              arrow_material(kNormalForceColour), style);
-    add_arrow(items, tail, to_glm(capped(f.friction / scales.force, scales.max_length)),
-              arrow_material(kFrictionColour), style);
+  for (const ArrowSegment& a : force_arrow_segments(sites, poses, t, scales, eye, exposure)) {
+    add_arrow(items, to_glm(a.tail), to_glm(core::Vec3(a.tip - a.tail)),
+              arrow_material(a.normal ? kNormalForceColour : kFrictionColour), style);
   }
 }
 
