@@ -4,7 +4,9 @@
 // each from the side, three-quarter and follow views with badges, force arrows and trails on.
 // Unlike the other goldens these come from real runs: the bundled scene is simulated here and
 // its frame drawn through frame_renderer_for, the path the video takes, so they show what a
-// user's video shows. The scenes are short (1 s, 1 s and 0.4 s of simulated time).
+// user's video shows; the events the pictures rest on (the spin-out, the floor letting go,
+// the tip) are checked against the closed forms in the scenes' headers first. The scenes are
+// short (1 s, 1.1 s and 0.4 s of simulated time; the three cases take about 4 s).
 // Regenerate after an intended change (in the renderer or the physics) with
 //   STICTION_UPDATE_GOLDEN=1 ./build/tests/render/test_render "[golden]"
 // and look at every image (docs/rendering.md, Golden images).
@@ -65,8 +67,18 @@ RenderSettings golden_settings(const scene::Scene& s, CameraView view) {
   return settings;
 }
 
-void check_views(const std::string& name, double t) {
-  const SimulatedRun run = simulate_bundled(name);
+// The first event of `kind` of the element `component`, -1 if none.
+double first_event(const SimulatedRun& run, const std::string& component, const std::string& kind) {
+  for (const core::SlipHistory& h : run.result.slip_events) {
+    if (h.component != component) continue;
+    for (const core::SlipEvent& e : h.monitor.events()) {
+      if (e.kind == kind) return e.time;
+    }
+  }
+  return -1.0;
+}
+
+void check_views(const SimulatedRun& run, const std::string& name, double t) {
   for (const auto& [view, view_name] :
        {std::pair{CameraView::side, "side"}, std::pair{CameraView::three_quarter, "three_quarter"},
         std::pair{CameraView::follow, "follow"}}) {
@@ -91,15 +103,29 @@ void check_views(const std::string& name, double t) {
 
 TEST_CASE("golden: a wheel spinning out under a torque ramp, simulated, three views",
           "[render][golden][simulated]") {
-  check_views("wheel_spin_out", 0.9);  // 0.31 s after the spin-out: slipping at 0.96 m/s
+  const SimulatedRun run = simulate_bundled("wheel_spin_out");
+  // The picture is of what the header's closed form says: both rim contacts spin out at
+  // t* = 3 mu M g R / (2 k) = 0.588 s.
+  CHECK(first_event(run, "floor.0", "slip") == Approx(0.588).margin(1e-3));
+  CHECK(first_event(run, "floor.3", "slip") == Approx(0.588).margin(1e-3));
+  check_views(run, "wheel_spin_out", 0.9);  // 0.31 s after the spin-out: slipping at 0.96 m/s
 }
 
 TEST_CASE("golden: a box tipping on a pushed box, simulated, three views",
           "[render][golden][simulated]") {
-  check_views("box_on_pushed_box", 1.075);  // leaning back 22 degrees (tipped at 0.708 s)
+  const SimulatedRun run = simulate_bundled("box_on_pushed_box");
+  // The floor lets go at mu_f (M + m) g / k = 0.1633 s; the upper box's front corners lift at
+  // t_tip = (M + m) g (mu_f + w / h) / k = 0.708 s (corners 1 and 3: +x, the front).
+  CHECK(first_event(run, "floor.0", "slip") == Approx(0.1633).margin(2e-3));
+  CHECK(first_event(run, "upper_on_lower.1", "open") == Approx(0.708).margin(2e-3));
+  CHECK(first_event(run, "upper_on_lower.3", "open") == Approx(0.708).margin(2e-3));
+  CHECK(first_event(run, "upper_on_lower.0", "open") < 0.0);  // the back edge holds
+  check_views(run, "box_on_pushed_box", 1.075);  // leaning back 22 degrees (tipped at 0.708 s)
 }
 
 TEST_CASE("golden: two spheres colliding at a glancing angle, simulated, three views",
           "[render][golden][simulated]") {
-  check_views("glancing_spheres", 0.036);  // during the 2.6 ms contact
+  const SimulatedRun run = simulate_bundled("glancing_spheres");
+  REQUIRE(first_event(run, "touch", "slip") < 0.036);  // touched down before the frame
+  check_views(run, "glancing_spheres", 0.036);         // during the 2.6 ms contact
 }
