@@ -146,13 +146,19 @@ void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& si
     const int w = static_cast<int>(std::ceil(sizes[i].x)),
               h = static_cast<int>(std::ceil(sizes[i].y));
     const int ax = static_cast<int>(b.anchor.x), ay = static_cast<int>(b.anchor.y);
-    auto clear_of_arrows = [&](const PixelBox& c) {
-      return std::none_of(avoid.begin(), avoid.end(),
-                          [&](const PixelBox& a) { return overlaps(c, a); });
+    // Pixels of `c` under the arrows' boxes (counted once per box).
+    auto on_arrows = [&](const PixelBox& c) {
+      long area = 0;
+      for (const PixelBox& a : avoid) {
+        const long across = std::min(c.x1, a.x1) - std::max(c.x0, a.x0);
+        const long down = std::min(c.y1, a.y1) - std::max(c.y0, a.y0);
+        if (across > 0 && down > 0) area += across * down;
+      }
+      return area;
     };
-    auto free = [&](const PixelBox& c) {
-      return clear_of_arrows(c) && std::none_of(placed.begin(), placed.end(),
-                                                [&](const PixelBox& p) { return overlaps(c, p); });
+    auto clear_of_badges = [&](const PixelBox& c) {
+      return std::none_of(placed.begin(), placed.end(),
+                          [&](const PixelBox& p) { return overlaps(c, p); });
     };
     // Lower right, lower left, upper right, upper left of the anchor.
     const PixelBox sides[] = {{ax + 8, ay + 4, ax + 8 + w, ay + 4 + h},
@@ -172,10 +178,16 @@ void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& si
         }
       }
     }
-    // ... unless that covers an arrow and another side is free.
-    if (!clear_of_arrows(box)) {
-      const PixelBox* other = std::find_if(std::begin(sides) + 1, std::end(sides), free);
-      if (other != std::end(sides)) box = *other;
+    // ... unless that covers an arrow: then the side, clear of the badges, that covers the
+    // arrows least (a normal force's arrow stands beside a friction's, so all four sides may
+    // touch one).
+    long covered = on_arrows(box);
+    for (auto side = std::begin(sides) + 1; side != std::end(sides) && covered > 0; ++side) {
+      const long c = on_arrows(*side);
+      if (c < covered && clear_of_badges(*side)) {
+        box = *side;
+        covered = c;
+      }
     }
     b.box = box;
     placed.push_back(box);

@@ -61,9 +61,9 @@ bool project(const glm::mat4& view_projection, const glm::vec3& p, int width, in
 
 // Places each badge's box (`sizes`: text box width and height per badge) to the lower right
 // of its anchor, moved down past each badge placed before it that it overlaps; if that
-// covers a box of `avoid` (the force arrows' pictures: a badge must not hide the friction
+// covers boxes of `avoid` (the force arrows' pictures: a badge must not hide the friction
 // arrow at its contact), the first of lower left, upper right and upper left of the anchor
-// that overlaps neither an arrow nor a placed badge, if there is one.
+// that overlaps no placed badge and covers fewer of their pixels, if there is one.
 void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& sizes,
                     const std::vector<PixelBox>& avoid = {});
 
