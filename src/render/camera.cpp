@@ -8,6 +8,7 @@
 #include "render/framing.hpp"
 #include "render/mechanism_items.hpp"
 #include "render/scene_geometry.hpp"
+#include "render/tree_items.hpp"
 
 namespace stiction::render {
 
@@ -73,6 +74,27 @@ int first_followable(const Drawing& scene) {
     if (!jointed(scene.bodies[i])) return static_cast<int>(i);
   }
   return -1;
+}
+
+// The links of the scene's kinematic trees (not their bases) at 96 times of the run; empty
+// if the scene has no tree.
+std::vector<glm::vec3> robot_links(const Drawing& scene, const PoseTrack& poses) {
+  std::vector<glm::vec3> points;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyVisual& b = scene.bodies[i];
+    if (b.kind != BodyVisual::Kind::tree || b.tree == nullptr) continue;
+    const float w = static_cast<float>(*std::max_element(b.widths.begin(), b.widths.end()));
+    for (int k = 0; k < 96; ++k) {
+      const double t = poses.start_time() + (poses.end_time() - poses.start_time()) * k / 95.0;
+      for (const core::Vec3& p : tree_points(b, poses, static_cast<int>(i), t, true)) {
+        for (int c = 0; c < 8; ++c) {
+          points.push_back(to_glm(p) +
+                           glm::vec3((c & 1) ? w : -w, (c & 2) ? w : -w, (c & 4) ? w : -w));
+        }
+      }
+    }
+  }
+  return points;
 }
 
 }  // namespace
@@ -164,6 +186,13 @@ CameraRig::CameraRig(const CameraSettings& settings, const Drawing& scene, const
     bounds.add(c + glm::vec3(3.5f * h, 2.0f * h, h));
     follow_region_ = bounds;
     base_ = frame_followed(scene, direction, up, fov, panels);
+  } else if (const std::vector<glm::vec3> links = robot_links(scene, poses);
+             view == CameraView::follow && !links.empty()) {
+    // Nothing to follow but fixed-base robots: the follow view frames their links over the
+    // run (not their pedestals nor the ground around them), so the arm fills the picture
+    // where the fixed presets show it whole on its floor.
+    bounds = run_bounds(scene, poses);
+    base_ = frame_points_beside_panels(links, direction, fov, panels, 0.12f, up);
   } else {
     bounds = run_bounds(scene, poses);
     base_ = whole_run();

@@ -28,6 +28,7 @@ double nice_floor(double size) {
 
 const glm::vec3 kSphereColour{0.90f, 0.30f, 0.03f};
 const glm::vec3 kSphereColour2{0.86f, 0.86f, 0.82f};
+const glm::vec3 kSphereColourOther{0.05f, 0.45f, 0.55f};  // every other ball: teal for orange
 const glm::vec3 kBoxColour{0.10f, 0.28f, 0.62f};
 const glm::vec3 kLinkColour2{0.15f, 0.50f, 0.75f};  // every other link of a chain
 const glm::vec3 kJointColour{0.06f, 0.06f, 0.07f};
@@ -179,7 +180,10 @@ std::vector<DrawItem> build_items(const Drawing& scene, const PoseTrack& poses, 
     add_surface(items, s, around, half, checker, t, span);
   }
 
-  int links = 0;  // jointed rigid bodies so far: their colours alternate as an arm's links
+  // Rigid boxes so far: every other one is lighter, as an arm's links are, so the links of a
+  // chain and the boxes of a stack (a box on a pushed box) tell apart.
+  int boxes = 0;
+  int balls = 0;  // likewise, every other ball is teal: two colliding balls tell apart
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodyVisual& b = scene.bodies[i];
     const int index = static_cast<int>(i);
@@ -192,7 +196,7 @@ std::vector<DrawItem> build_items(const Drawing& scene, const PoseTrack& poses, 
                      glm::scale(glm::mat4(1.0f), glm::vec3(static_cast<float>(b.radius)));
         item.material.kind = MaterialKind::sphere_pattern;
         item.body = index;
-        item.material.colour = kSphereColour;
+        item.material.colour = balls++ % 2 == 1 ? kSphereColourOther : kSphereColour;
         item.material.colour2 = kSphereColour2;
         item.material.shininess = 48.0f;
         item.material.specular = 0.35f;
@@ -205,7 +209,7 @@ std::vector<DrawItem> build_items(const Drawing& scene, const PoseTrack& poses, 
                      to_glm(poses.orientation(index, t)) *
                      glm::scale(glm::mat4(1.0f), 0.5f * to_glm(b.size));
         item.material.colour = kBoxColour;
-        if (is_link(scene, index) && links++ % 2 == 1) item.material.colour = kLinkColour2;
+        if (boxes++ % 2 == 1) item.material.colour = kLinkColour2;
         items.push_back(item);
         break;
       }

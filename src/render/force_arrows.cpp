@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "render/arrow.hpp"
 
@@ -42,6 +43,37 @@ double support(const BodyVisual& b, const core::Quat& q, const core::Vec3& d) {
       return 0.0;
   }
   return 0.0;
+}
+
+// A contact at a box's corner: the box (its index in the drawing) and the corner in its frame.
+struct BoxCorner {
+  int body = -1;
+  core::Vec3 local = core::Vec3::Zero();
+};
+
+std::optional<BoxCorner> box_corner_of(const ContactSite& site) {
+  if (site.rule == ContactSite::Rule::pair) {
+    if (site.pair.kind != components::PairKind::box_box) return std::nullopt;
+    const int i = site.pair.corner;  // 0-7 the first box's corners, 8-15 the second's
+    return BoxCorner{i < 8 ? site.body : site.other,
+                     components::box_corner(i < 8 ? site.pair.half_a : site.pair.half_b, i % 8)};
+  }
+  // A point without a radius off the centre along every axis: a box's corner.
+  if (site.rule == ContactSite::Rule::point && site.radius == 0.0 &&
+      (site.local.array() != 0.0).all()) {
+    return BoxCorner{site.body, site.local};
+  }
+  return std::nullopt;
+}
+
+// True if `offset` (world) from the corner leads out of the box: it points out of one of the
+// three faces that meet there (exact for offsets small against the box).
+bool leaves_corner(const BoxCorner& corner, const core::Quat& q, const core::Vec3& offset) {
+  const core::Vec3 o = q.conjugate() * offset;
+  for (int i = 0; i < 3; ++i) {
+    if (corner.local[i] * o[i] > 0.0) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -153,16 +185,50 @@ core::Vec3 force_arrow_tail(const ContactSite& site, const PoseTrack& poses, dou
     // Beside a ball; off a box's edge by a shaft's width, so the arrow is not half inside;
     // clear of a wheel's near face (its normal force points up through the wheel).
     const core::Vec3 d = toward.normalized();
-    double aside = site.radius > 0.0 ? 1.1 * site.radius + 2.0 * scales.shaft_radius
-                                     : 1.5 * scales.shaft_radius;
+    // A pair's normal force points through its first body: beside it when that is a ball.
+    const bool ball_first = site.rule == ContactSite::Rule::pair &&
+                            (site.pair.kind == components::PairKind::sphere_sphere ||
+                             site.pair.kind == components::PairKind::sphere_box);
+    const double round = ball_first ? site.pair.radius_a : site.radius;
+    double aside =
+        round > 0.0 ? 1.1 * round + 2.0 * scales.shaft_radius : 1.5 * scales.shaft_radius;
     if (site.rule == ContactSite::Rule::rim) {
       const core::Vec3 centre = poses.position(site.body, t);
       aside = site.rim.reach(poses.orientation(site.body, t), d) - d.dot(tail - centre) +
               2.0 * scales.shaft_radius;
     }
     tail += aside * d;
+    // A box's corner whose side towards the camera is the box itself (a back corner): the
+    // arrow would start inside the box, so it starts off the corner outwards instead, beside
+    // the edge the viewer sees end there (or behind the box, hidden as the corner is).
+    if (const std::optional<BoxCorner> corner = box_corner_of(site)) {
+      const core::Quat q = poses.orientation(corner->body, t);
+      const core::Vec3 lift = scales.shaft_radius * n;
+      if (!leaves_corner(*corner, q, tail - contact_point(site, poses, t))) {
+        core::Vec3 out = q * corner->local;
+        out -= n.dot(out) * n;
+        if (out.norm() > 1e-12) {
+          const core::Vec3 moved = lift + 1.5 * scales.shaft_radius * out.normalized();
+          if (leaves_corner(*corner, q, moved)) tail = contact_point(site, poses, t) + moved;
+        }
+      }
+    }
   }
   return tail;
+}
+
+std::vector<ArrowSegment> force_arrow_segments(const ContactSites& sites, const PoseTrack& poses,
+                                               double t, const ArrowScales& scales,
+                                               const glm::vec3& eye, double exposure) {
+  std::vector<ArrowSegment> out;
+  for (const ContactSite& s : sites.contacts) {
+    const ContactForce f = contact_force(s, poses, t, exposure);
+    if (f.normal.isZero(0.0) && f.friction.isZero(0.0)) continue;
+    const core::Vec3 tail = force_arrow_tail(s, poses, t, scales, eye);
+    out.push_back({tail, tail + capped(f.normal / scales.force, scales.max_length), true});
+    out.push_back({tail, tail + capped(f.friction / scales.force, scales.max_length), false});
+  }
+  return out;
 }
 
 void add_force_arrows(std::vector<DrawItem>& items, const ContactSites& sites,
@@ -170,14 +236,9 @@ void add_force_arrows(std::vector<DrawItem>& items, const ContactSites& sites,
                       const glm::vec3& eye, double exposure) {
   ArrowStyle style;
   style.shaft_radius = scales.shaft_radius;
-  for (const ContactSite& s : sites.contacts) {
-    const ContactForce f = contact_force(s, poses, t, exposure);
-    if (f.normal.isZero(0.0) && f.friction.isZero(0.0)) continue;
-    const glm::vec3 tail = to_glm(force_arrow_tail(s, poses, t, scales, eye));
-    add_arrow(items, tail, to_glm(capped(f.normal / scales.force, scales.max_length)),
-              arrow_material(kNormalForceColour), style);
-    add_arrow(items, tail, to_glm(capped(f.friction / scales.force, scales.max_length)),
-              arrow_material(kFrictionColour), style);
+  for (const ArrowSegment& a : force_arrow_segments(sites, poses, t, scales, eye, exposure)) {
+    add_arrow(items, to_glm(a.tail), to_glm(core::Vec3(a.tip - a.tail)),
+              arrow_material(a.normal ? kNormalForceColour : kFrictionColour), style);
   }
 }
 

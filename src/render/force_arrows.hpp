@@ -62,13 +62,23 @@ ContactForce contact_force(const ContactSite& site, const PoseTrack& poses, doub
 core::Vec3 force_arrow_tail(const ContactSite& site, const PoseTrack& poses, double t,
                             const ArrowScales& scales, const glm::vec3& eye);
 
+// The contact force arrows at t as drawn: tail and tip of each (normal, then friction, per
+// contact point with a force), cut to the scales' largest length.
+struct ArrowSegment {
+  core::Vec3 tail, tip;
+  bool normal = true;  // the normal force's (else friction's)
+};
+std::vector<ArrowSegment> force_arrow_segments(const ContactSites& sites, const PoseTrack& poses,
+                                               double t, const ArrowScales& scales,
+                                               const glm::vec3& eye, double exposure = 0.0);
+
 // Normal and friction arrows of every contact point (a zero force adds nothing).
 void add_force_arrows(std::vector<DrawItem>& items, const ContactSites& sites,
                       const PoseTrack& poses, double t, const ArrowScales& scales,
                       const glm::vec3& eye, double exposure = 0.0);
 
 // One arrow per body with a velocity (`<b>.v.*`), from the body's surface along v.
-void add_velocity_arrows(std::vector<DrawItem>& items, const Drawing& scene,
-                         const PoseTrack& poses, double t, const ArrowScales& scales);
+void add_velocity_arrows(std::vector<DrawItem>& items, const Drawing& scene, const PoseTrack& poses,
+                         double t, const ArrowScales& scales);
 
 }  // namespace stiction::render

@@ -1,6 +1,7 @@
 #include "render/force_regime_layers.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "render/title_caption.hpp"
 
@@ -52,7 +53,30 @@ PixelBox ForceRegimeLayers::legend_box(int height) {
 
 void ForceRegimeLayers::draw(image::Image& frame, double t, const Camera& camera, double exposure) {
   if (badges_) {
-    badges_->draw(frame, poses_, t, camera.projection(aspect_) * camera.view(), exposure);
+    const glm::mat4 vp = camera.projection(aspect_) * camera.view();
+    // The badges keep off the force arrows' pictures: a badge to the lower right of a wheel's
+    // contact hid its friction arrow, which points forward along the floor.
+    std::vector<PixelBox> arrows;
+    if (layers_.forces) {
+      const glm::vec3 right = glm::normalize(glm::cross(camera.target - camera.eye, camera.up));
+      for (const ArrowSegment& a :
+           force_arrow_segments(sites_, poses_, t, scales_, camera.eye, exposure)) {
+        glm::vec2 tail, tip, side;
+        const glm::vec3 from = to_glm(a.tail);
+        if (!project(vp, from, frame.width, frame.height, tail) ||
+            !project(vp, to_glm(a.tip), frame.width, frame.height, tip) ||
+            !project(vp, from + 2.2f * scales_.shaft_radius * right, frame.width, frame.height,
+                     side)) {
+          continue;
+        }
+        const float pad = glm::length(side - tail) + 1.0f;  // the head's radius
+        arrows.push_back({static_cast<int>(std::floor(std::min(tail.x, tip.x) - pad)),
+                          static_cast<int>(std::floor(std::min(tail.y, tip.y) - pad)),
+                          static_cast<int>(std::ceil(std::max(tail.x, tip.x) + pad)),
+                          static_cast<int>(std::ceil(std::max(tail.y, tip.y) + pad))});
+      }
+    }
+    badges_->draw(frame, poses_, t, vp, exposure, arrows);
   }
   if (legend_) legend_->draw(frame, camera, legend_bottom(frame.height, caption_height_));
 }

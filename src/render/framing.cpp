@@ -41,9 +41,27 @@ void add_body_points(std::vector<glm::vec3>& points, const Drawing& scene, const
         add_cube(points, to_glm(p), glm::vec3(w));
       break;
     }
-    case BodyVisual::Kind::sphere:
-      add_cube(points, to_glm(poses.position(index, t)), glm::vec3(static_cast<float>(b.radius)));
+    case BodyVisual::Kind::sphere: {
+      // A polyhedron around the ball: 12 meridians, rings every 30 degrees and the poles, its
+      // vertices 1 / cos(22.5 deg) = 1.08 radii out so that its faces (whose corners are at
+      // most 21 degrees from their centres) stay outside the ball. The cube around it stood
+      // out by up to sqrt(3) and framed a ball about 1.5x smaller than the picture allows.
+      const glm::vec3 c = to_glm(poses.position(index, t));
+      const double r = b.radius / std::cos(std::numbers::pi / 8.0);
+      points.push_back(c + glm::vec3(0.0f, 0.0f, static_cast<float>(r)));
+      points.push_back(c - glm::vec3(0.0f, 0.0f, static_cast<float>(r)));
+      for (int ring = 1; ring < 6; ++ring) {
+        const double polar = std::numbers::pi * ring / 6.0;
+        for (int k = 0; k < 12; ++k) {
+          const double a = 2.0 * std::numbers::pi * k / 12.0;
+          points.push_back(c + static_cast<float>(r) *
+                                   glm::vec3(static_cast<float>(std::sin(polar) * std::cos(a)),
+                                             static_cast<float>(std::sin(polar) * std::sin(a)),
+                                             static_cast<float>(std::cos(polar))));
+        }
+      }
       break;
+    }
     case BodyVisual::Kind::cylinder: {
       // Its two rims, as regular 12-gons around them (not its box, whose corners stand out
       // by up to 41% of the radius as the wheel turns, which framed a rolling wheel smaller).
@@ -145,14 +163,17 @@ std::vector<glm::vec3> run_points(const Drawing& scene, const PoseTrack& poses, 
     points.insert(points.end(), at.begin(), at.end());
   }
   // Some ground around bodies that barely move (a block at rest would fill the picture): a
-  // square six pieces wide around the centre of the run, facing the camera so that it is
-  // seen centred.
+  // rectangle five pieces wide and three high (about a 16:9 frame's shape) around the centre
+  // of the run, facing the camera so that it is seen centred. Three pieces high puts a body
+  // at rest at about a third of the picture's height, as a follow camera shows its body
+  // (kFollowFraction); a square six pieces wide and high showed a wheel or a ball that rolls
+  // a metre at a sixth of the height, under a band of sky.
   if (!all.empty()) {
     const glm::vec3 f = glm::normalize(direction);
     const glm::vec3 right = glm::normalize(glm::cross(f, up_hint));
     const glm::vec3 up = glm::cross(right, f);
-    const float h = 3.0f * piece_size(scene);
-    for (const glm::vec3 d : {h * right, -h * right, h * up, -h * up})
+    const float p = piece_size(scene);
+    for (const glm::vec3 d : {2.5f * p * right, -2.5f * p * right, 1.5f * p * up, -1.5f * p * up})
       points.push_back(all.centre() + d);
   }
   return points;

@@ -20,9 +20,10 @@ void add_body_points(std::vector<glm::vec3>& points, const Drawing& scene, const
                      int index, double t);
 
 // body_points and the mechanism's points (springs, posts, sources' arrows, rollers, pivots:
-// mechanism_items.hpp) at `samples` times spread over the run, and a square six of the
-// bodies' pieces wide facing a camera looking along `direction` with `up` (a view straight
-// down needs another up than +z), centred on them (ground around a body at rest).
+// mechanism_items.hpp) at `samples` times spread over the run, and a rectangle five of the
+// bodies' pieces wide and three high facing a camera looking along `direction` with `up` (a
+// view straight down needs another up than +z), centred on them (ground around a body at
+// rest, which it shows at about a third of the picture's height).
 // `moving_frame`, if given, is subtracted from the points at each time: the points as seen
 // by a camera that moves by it (a follow camera).
 std::vector<glm::vec3> run_points(const Drawing& scene, const PoseTrack& poses, glm::vec3 direction,

@@ -32,8 +32,8 @@ Material plain(const glm::vec3& colour, float specular = 0.25f, float shininess 
 
 // A body's point (in its frame) in the world at time t; a block's is lifted to half its
 // height (what holds a block pulls at its middle, not at its underside).
-glm::vec3 anchor(const Drawing& scene, const PoseTrack& poses, int body,
-                 const core::Vec3& local, double t) {
+glm::vec3 anchor(const Drawing& scene, const PoseTrack& poses, int body, const core::Vec3& local,
+                 double t) {
   const BodyVisual& b = scene.bodies[static_cast<std::size_t>(body)];
   core::Vec3 p = poses.position(body, t) + poses.orientation(body, t) * local;
   if (b.kind == BodyVisual::Kind::block) p += 0.5 * b.size.z() * b.up;
@@ -72,8 +72,7 @@ void add_box_points(std::vector<glm::vec3>& points, const glm::vec3& c, float h)
 
 }  // namespace
 
-MechanismFrame mechanism_frame(const Drawing& scene, const PoseTrack& poses,
-                               const Bounds* run) {
+MechanismFrame mechanism_frame(const Drawing& scene, const PoseTrack& poses, const Bounds* run) {
   MechanismFrame f;
   f.run = run ? *run : run_bounds(scene, poses, 16);
   f.scale = body_scale(scene);
@@ -134,8 +133,8 @@ MechanismFrame mechanism_frame(const Drawing& scene, const PoseTrack& poses,
   return f;
 }
 
-SpringEnds spring_ends(const Drawing& scene, const PoseTrack& poses,
-                       const MechanismFrame& frame, int spring, double t) {
+SpringEnds spring_ends(const Drawing& scene, const PoseTrack& poses, const MechanismFrame& frame,
+                       int spring, double t) {
   const SpringVisual& s = scene.springs[static_cast<std::size_t>(spring)];
   const BodyVisual& body = scene.bodies[static_cast<std::size_t>(s.body)];
   SpringEnds e;
@@ -196,8 +195,12 @@ std::optional<TorqueArc> torque_arc(const Drawing& scene, const PoseTrack& poses
     const std::size_t j =
         static_cast<std::size_t>(std::clamp(s.joint, 0, static_cast<int>(links.size()) - 1));
     arc.centre = to_glm(links[j].p);
-    arc.axis = glm::normalize(to_glm(links[j].q * b.tree->params().links[j].axis));
-    arc.radius = static_cast<float>(4.0 * b.widths[j]);
+    const core::Vec3 axis = (links[j].q * b.tree->params().links[j].axis).normalized();
+    arc.axis = to_glm(axis);
+    // Outside the link's hub (a turret mesh about the waist hid its motor's arc), whose
+    // surface the tube (0.09 of the radius) clears by a tenth of the reach.
+    const double hub = hub_reach(b, links, static_cast<int>(j), links[j].p, axis);
+    arc.radius = static_cast<float>(std::max(4.0 * b.widths[j], 1.2 * hub));
     tube = 0.09f;
   } else if (b.kind == BodyVisual::Kind::arm) {
     const std::vector<core::Vec3> joints = arm_joints(b, poses, s.body, t);
@@ -332,8 +335,8 @@ std::optional<PivotAxle> pivot_axle(const MechanismFrame& frame, const SurfaceVi
   return axle;
 }
 
-void add_mechanism_items(std::vector<DrawItem>& items, const Drawing& scene,
-                         const PoseTrack& poses, const MechanismFrame& frame, double t) {
+void add_mechanism_items(std::vector<DrawItem>& items, const Drawing& scene, const PoseTrack& poses,
+                         const MechanismFrame& frame, double t) {
   const Material steel = plain(kSpringColour, 0.6f, 64.0f);
   for (std::size_t i = 0; i < scene.springs.size(); ++i) {
     const SpringVisual& s = scene.springs[i];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 
 #include "render/trail.hpp"
@@ -131,7 +132,8 @@ bool project(const glm::mat4& view_projection, const glm::vec3& p, int width, in
   return true;
 }
 
-void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& sizes) {
+void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& sizes,
+                    const std::vector<PixelBox>& avoid) {
   // Top to bottom, so pushing down never moves a badge onto one already settled above.
   std::vector<std::size_t> order(badges.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -143,9 +145,29 @@ void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& si
     Badge& b = badges[i];
     const int w = static_cast<int>(std::ceil(sizes[i].x)),
               h = static_cast<int>(std::ceil(sizes[i].y));
-    PixelBox box{static_cast<int>(b.anchor.x) + 8, static_cast<int>(b.anchor.y) + 4, 0, 0};
-    box.x1 = box.x0 + w;
-    box.y1 = box.y0 + h;
+    const int ax = static_cast<int>(b.anchor.x), ay = static_cast<int>(b.anchor.y);
+    // Pixels of `c` under the arrows' boxes (counted once per box).
+    auto on_arrows = [&](const PixelBox& c) {
+      long area = 0;
+      for (const PixelBox& a : avoid) {
+        const long across = std::min(c.x1, a.x1) - std::max(c.x0, a.x0);
+        const long down = std::min(c.y1, a.y1) - std::max(c.y0, a.y0);
+        if (across > 0 && down > 0) area += across * down;
+      }
+      return area;
+    };
+    auto clear_of_badges = [&](const PixelBox& c) {
+      return std::none_of(placed.begin(), placed.end(),
+                          [&](const PixelBox& p) { return overlaps(c, p); });
+    };
+    // Lower right, lower left, upper right, upper left of the anchor.
+    const PixelBox sides[] = {{ax + 8, ay + 4, ax + 8 + w, ay + 4 + h},
+                              {ax - 8 - w, ay + 4, ax - 8, ay + 4 + h},
+                              {ax + 8, ay - 4 - h, ax + 8 + w, ay - 4},
+                              {ax - 8 - w, ay - 4 - h, ax - 8, ay - 4}};
+    // To the lower right, moved down past the badges placed before it (badges of one place
+    // read as a list below it) ...
+    PixelBox box = sides[0];
     for (bool moved = true; moved;) {
       moved = false;
       for (const PixelBox& p : placed) {
@@ -156,13 +178,24 @@ void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& si
         }
       }
     }
+    // ... unless that covers an arrow: then the side, clear of the badges, that covers the
+    // arrows least (a normal force's arrow stands beside a friction's, so all four sides may
+    // touch one).
+    long covered = on_arrows(box);
+    for (auto side = std::begin(sides) + 1; side != std::end(sides) && covered > 0; ++side) {
+      const long c = on_arrows(*side);
+      if (c < covered && clear_of_badges(*side)) {
+        box = *side;
+        covered = c;
+      }
+    }
     b.box = box;
     placed.push_back(box);
   }
 }
 
-RegimeBadges::RegimeBadges(const Drawing& scene, const ContactSites& sites,
-                           const PoseTrack& poses, int image_height)
+RegimeBadges::RegimeBadges(const Drawing& scene, const ContactSites& sites, const PoseTrack& poses,
+                           int image_height)
     : scene_(scene), font_(text::Font::open_default()) {
   style_.pixel_size = std::max(10.0, image_height / 40.0);
   style_.colour = {255, 255, 255, 255};
@@ -184,7 +217,7 @@ RegimeBadges::RegimeBadges(const Drawing& scene, const ContactSites& sites,
 
 std::vector<Badge> RegimeBadges::badges(const PoseTrack& poses, double t,
                                         const glm::mat4& view_projection, int width, int height,
-                                        double exposure) {
+                                        double exposure, const std::vector<PixelBox>& avoid) {
   std::map<std::pair<std::string, Regime>, Badge> groups;  // ordered: the same every frame
   for (const ContactSite& s : sites_.contacts) {
     glm::vec2 pixel;
@@ -217,14 +250,15 @@ std::vector<Badge> RegimeBadges::badges(const PoseTrack& poses, double t,
     sizes.emplace_back(e.width + 2.0 * pad, 1.3 * style_.pixel_size + pad);
     out.push_back(b);
   }
-  lay_out_badges(out, sizes);
+  lay_out_badges(out, sizes, avoid);
   return out;
 }
 
 void RegimeBadges::draw(image::Image& frame, const PoseTrack& poses, double t,
-                        const glm::mat4& view_projection, double exposure) {
+                        const glm::mat4& view_projection, double exposure,
+                        const std::vector<PixelBox>& avoid) {
   const std::vector<Badge> all =
-      badges(poses, t, view_projection, frame.width, frame.height, exposure);
+      badges(poses, t, view_projection, frame.width, frame.height, exposure, avoid);
   const float radius = static_cast<float>(0.22 * style_.pixel_size);
   for (const Badge& b : all) {
     for (const glm::vec2& p : b.points) dot(frame, p, radius, regime_colour(b.regime));

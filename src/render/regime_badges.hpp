@@ -60,8 +60,12 @@ bool project(const glm::mat4& view_projection, const glm::vec3& p, int width, in
              glm::vec2& pixel);
 
 // Places each badge's box (`sizes`: text box width and height per badge) to the lower right
-// of its anchor, then moves down each badge that overlaps one placed before it.
-void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& sizes);
+// of its anchor, moved down past each badge placed before it that it overlaps; if that
+// covers boxes of `avoid` (the force arrows' pictures: a badge must not hide the friction
+// arrow at its contact), the first of lower left, upper right and upper left of the anchor
+// that overlaps no placed badge and covers fewer of their pixels, if there is one.
+void lay_out_badges(std::vector<Badge>& badges, const std::vector<glm::vec2>& sizes,
+                    const std::vector<PixelBox>& avoid = {});
 
 class RegimeBadges {
  public:
@@ -70,10 +74,12 @@ class RegimeBadges {
                int image_height);
   // The badges at time t (one per table and regime, one per joint), laid out.
   // `exposure`: the frame's simulated duration (contact_regime).
+  // `avoid`: boxes the badges should not cover (lay_out_badges).
   std::vector<Badge> badges(const PoseTrack& poses, double t, const glm::mat4& view_projection,
-                            int width, int height, double exposure = 0.0);
+                            int width, int height, double exposure = 0.0,
+                            const std::vector<PixelBox>& avoid = {});
   void draw(image::Image& frame, const PoseTrack& poses, double t, const glm::mat4& view_projection,
-            double exposure = 0.0);
+            double exposure = 0.0, const std::vector<PixelBox>& avoid = {});
 
  private:
   Drawing scene_;

@@ -16,7 +16,8 @@ const glm::vec3 kRodColour2{0.15f, 0.50f, 0.75f};
 const glm::vec3 kJointColour{0.06f, 0.06f, 0.07f};
 
 // Frame of a visual (link -1: the base).
-components::LinkPose visual_frame(const BodyVisual& b, const std::vector<components::LinkPose>& links,
+components::LinkPose visual_frame(const BodyVisual& b,
+                                  const std::vector<components::LinkPose>& links,
                                   const scene::UrdfVisual& v) {
   components::LinkPose at;
   if (v.link < 0) {
@@ -37,8 +38,8 @@ std::vector<std::pair<core::Vec3, core::Vec3>> rods(const BodyVisual& b,
   std::vector<bool> has_child(links.size(), false);
   for (std::size_t i = 0; i < links.size(); ++i) {
     const int parent = links[i].parent;
-    const core::Vec3 from = parent < 0 ? b.tree->params().base_position
-                                       : p[static_cast<std::size_t>(parent)].p;
+    const core::Vec3 from =
+        parent < 0 ? b.tree->params().base_position : p[static_cast<std::size_t>(parent)].p;
     if (parent >= 0) has_child[static_cast<std::size_t>(parent)] = true;
     out.emplace_back(from, p[i].p);
   }
@@ -131,8 +132,9 @@ void add_rod(std::vector<DrawItem>& items, const core::Vec3& a, const core::Vec3
   if (length < 1e-9) return;
   DrawItem rod;
   rod.shape = Shape::cylinder;
-  rod.model = glm::translate(glm::mat4(1.0f), to_glm(0.5 * (a + b))) * align_z(d / length) *
-              glm::scale(glm::mat4(1.0f), glm::vec3(radius, radius, 0.5f * static_cast<float>(length)));
+  rod.model =
+      glm::translate(glm::mat4(1.0f), to_glm(0.5 * (a + b))) * align_z(d / length) *
+      glm::scale(glm::mat4(1.0f), glm::vec3(radius, radius, 0.5f * static_cast<float>(length)));
   rod.material.colour = colour;
   items.push_back(rod);
 }
@@ -148,14 +150,17 @@ std::vector<components::LinkPose> tree_poses(const BodyVisual& tree, const PoseT
 }
 
 std::vector<core::Vec3> tree_points(const BodyVisual& b, const PoseTrack& poses, int index,
-                                    double t) {
+                                    double t, bool links_only) {
   const std::vector<components::LinkPose> p = tree_poses(b, poses, index, t);
-  std::vector<core::Vec3> out{b.tree->params().base_position};
+  std::vector<core::Vec3> out;
+  if (!links_only) out.push_back(b.tree->params().base_position);
   for (const auto& [from, to] : rods(b, p)) {
-    out.push_back(from);
+    // A rod from the base starts at the base; its end is the first joint.
+    if (!links_only || from != b.tree->params().base_position) out.push_back(from);
     out.push_back(to);
   }
   for (const auto& v : b.visuals) {
+    if (links_only && v.link < 0) continue;
     const components::LinkPose f = visual_frame(b, p, v);
     if (v.shape == scene::UrdfVisual::Shape::mesh) {
       // The corners of each part's bounding box, where it is drawn.
@@ -178,6 +183,36 @@ std::vector<core::Vec3> tree_points(const BodyVisual& b, const PoseTrack& poses,
   return out;
 }
 
+double hub_reach(const BodyVisual& b, const std::vector<components::LinkPose>& links, int link,
+                 const core::Vec3& centre, const core::Vec3& axis) {
+  auto radial = [&](const glm::vec4& p) {
+    const core::Vec3 d = core::Vec3(p.x, p.y, p.z) - centre;
+    return (d - axis.dot(d) * axis).norm();
+  };
+  double reach = 0.0;
+  auto add_box = [&](const glm::mat4& model) {
+    double far = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      far = std::max(far, radial(model * glm::vec4((k & 1) ? 1.0f : -1.0f, (k & 2) ? 1.0f : -1.0f,
+                                                   (k & 4) ? 1.0f : -1.0f, 1.0f)));
+    }
+    if (radial(model * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)) <= 0.25 * far) {
+      reach = std::max(reach, far);
+    }
+  };
+  for (const auto& v : b.visuals) {
+    if (v.link != link) continue;
+    const components::LinkPose f = visual_frame(b, links, v);
+    if (v.shape == scene::UrdfVisual::Shape::mesh) {
+      if (!v.triangles) continue;
+      for (const auto& part : v.triangles->parts) add_box(part_model(v, f, part));
+    } else {
+      add_box(primitive_model(v, f));
+    }
+  }
+  return reach;
+}
+
 void add_tree_items(std::vector<DrawItem>& items, const BodyVisual& b, const PoseTrack& poses,
                     int index, double t) {
   const std::vector<components::LinkPose> p = tree_poses(b, poses, index, t);
@@ -195,8 +230,7 @@ void add_tree_items(std::vector<DrawItem>& items, const BodyVisual& b, const Pos
           item.mesh_part = k;
           item.model = part_model(v, f, part);
           // The URDF's colour first, else the file's own for this part, else grey.
-          item.material.colour =
-              colour_of(!v.rgba_given && part.has_colour ? part.rgba : v.rgba);
+          item.material.colour = colour_of(!v.rgba_given && part.has_colour ? part.rgba : v.rgba);
           items.push_back(item);
         }
         continue;

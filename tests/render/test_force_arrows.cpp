@@ -156,11 +156,29 @@ TEST_CASE("force arrows: normal along the surface normal, friction in the plane,
                                       (f - n.dot(f) * n) / scales.force};
       const glm::vec3 tail = to_glm(force_arrow_tail(c, poses, 0.5, scales, eye));
       if (c.radius == 0.0) {
-        // Off the corner by 1.5 shaft radii along the surface, towards the camera.
-        const glm::vec3 lifted = to_glm(contact_point(c, poses, 0.5) + 0.01 * n);
+        // Off the corner by 1.5 shaft radii along the surface, out of the box: towards the
+        // camera, or, where the box is on the camera's side of the corner (a back corner),
+        // outwards from the box's centre.
+        const core::Vec3 corner = contact_point(c, poses, 0.5);
+        const glm::vec3 lifted = to_glm(corner + 0.01 * n);
         CHECK(glm::length(tail - lifted) == Approx(0.015f).margin(1e-5));
         CHECK(std::abs(glm::dot(tail - lifted, to_glm(n))) < 1e-5f);
-        CHECK(glm::dot(eye - lifted, tail - lifted) > 0.0f);
+        const core::Quat q = poses.orientation(c.body, 0.5);
+        // Out of the box: out of one of the three faces that meet at the corner.
+        auto leaves_box = [&](const core::Vec3& offset) {
+          const core::Vec3 local = q.conjugate() * offset;
+          return (c.local.array() * local.array() > 0.0).any();
+        };
+        CHECK(leaves_box(core::Vec3(tail.x, tail.y, tail.z) - corner));
+        core::Vec3 toward = core::Vec3(eye.x, eye.y, eye.z) - corner;
+        toward = (toward - n.dot(toward) * n).normalized();
+        if (leaves_box(0.01 * n + 0.015 * toward)) {
+          CHECK(glm::dot(eye - lifted, tail - lifted) > 0.0f);
+        } else {
+          core::Vec3 out = q * c.local;
+          out = (out - n.dot(out) * n).normalized();
+          CHECK(glm::dot(tail - lifted, to_glm(out)) == Approx(0.015f).margin(1e-5));
+        }
       } else {
         // Beside the ball, not inside it, on the camera's side.
         const core::Vec3 d = core::Vec3(tail.x, tail.y, tail.z) - g.sphere_p;

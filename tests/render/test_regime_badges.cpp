@@ -1,7 +1,9 @@
 // Stick / slip / open badges: the regime against the element's own threshold (random slips
 // on both sides of random thresholds), one badge per contact table and regime, and a layout
 // in which no two badges overlap.
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
 
 #include "render/camera.hpp"
@@ -196,4 +198,58 @@ TEST_CASE("badges: the layout leaves no two badges overlapping", "[render][badge
       }
     }
   }
+}
+
+TEST_CASE("badges: the layout keeps off the force arrows where a side of the point is free",
+          "[render][badges][forces]") {
+  std::mt19937 rng(37);
+  std::uniform_real_distribution<float> x(0.0f, 300.0f), w(20.0f, 90.0f), len(5.0f, 80.0f);
+  auto overlaps = [](const PixelBox& a, const PixelBox& b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+  };
+  int moved_aside = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<Badge> badges(1 + trial % 5);
+    std::vector<glm::vec2> sizes;
+    std::vector<PixelBox> arrows;
+    for (Badge& b : badges) {
+      b.anchor = {x(rng), 0.5f * x(rng)};
+      sizes.emplace_back(w(rng), 18.0f);
+      // An arrow from the point, horizontal or vertical (a friction or a normal force).
+      const int ax = static_cast<int>(b.anchor.x), ay = static_cast<int>(b.anchor.y);
+      const int l = static_cast<int>(len(rng));
+      arrows.push_back(rng() % 2 == 0 ? PixelBox{ax - 3, ay - 3, ax + l, ay + 3}
+                                      : PixelBox{ax - 3, ay - l, ax + 3, ay + 3});
+    }
+    lay_out_badges(badges, sizes, arrows);
+    for (std::size_t i = 0; i < badges.size(); ++i) {
+      const PixelBox& a = badges[i].box;
+      const glm::vec2 p = badges[i].anchor;
+      CHECK(a.x1 - a.x0 == static_cast<int>(std::ceil(sizes[i].x)));
+      // Beside its point: one of the four sides, or below them, stacked.
+      const bool right = a.x0 == static_cast<int>(p.x) + 8;
+      const bool left = a.x1 == static_cast<int>(p.x) - 8;
+      CHECK((right || left));
+      for (std::size_t j = i + 1; j < badges.size(); ++j) CHECK_FALSE(overlaps(a, badges[j].box));
+      const bool on_arrow = std::any_of(arrows.begin(), arrows.end(),
+                                        [&](const PixelBox& r) { return overlaps(a, r); });
+      if (!right || a.y0 < static_cast<int>(p.y)) ++moved_aside;
+      if (on_arrow) {
+        // Only when every other side of the point was taken by an arrow or a badge.
+        const int ax = static_cast<int>(p.x), ay = static_cast<int>(p.y);
+        const int bw = a.x1 - a.x0, bh = a.y1 - a.y0;
+        for (const PixelBox& side : {PixelBox{ax - 8 - bw, ay + 4, ax - 8, ay + 4 + bh},
+                                     PixelBox{ax + 8, ay - 4 - bh, ax + 8 + bw, ay - 4},
+                                     PixelBox{ax - 8 - bw, ay - 4 - bh, ax - 8, ay - 4}}) {
+          bool taken = std::any_of(arrows.begin(), arrows.end(),
+                                   [&](const PixelBox& r) { return overlaps(side, r); });
+          for (std::size_t j = 0; j < badges.size(); ++j) {
+            if (j != i) taken |= overlaps(side, badges[j].box);
+          }
+          CHECK(taken);
+        }
+      }
+    }
+  }
+  CHECK(moved_aside > 10);  // the arrows did move badges
 }

@@ -3,7 +3,8 @@
 // views with badges and its waist motor's arrow; its meshes at their links in their colours;
 // the floor at the pedestal's foot (and under everything for an arm moving below its base);
 // and on generated URDF chains (random link lengths, origins, orientations and axes), every
-// friction joint's badge dot drawn on the joint's projection in every view. Hand-made
+// friction joint's badge dot drawn on the joint's projection in every view, with the time
+// panel, inset, title and caption on and no link's picture under any of them. Hand-made
 // trajectories (joint angles from closed forms), as the other render tests use.
 // Regenerate the goldens after an intended change with
 //   STICTION_UPDATE_GOLDEN=1 ./build/tests/render/test_render "[golden]"
@@ -251,8 +252,10 @@ TEST_CASE("the floor under a fixed-base robot is at its base, unless a link goes
   CHECK_FALSE(tree_base_floor(two.drawing, PoseTrack(testing::two_link_trajectory(), two.drawing)));
 }
 
-TEST_CASE("generated URDF chains: every friction joint's badge dot is on its projection",
-          "[render][urdf][badges]") {
+TEST_CASE(
+    "generated URDF chains: every friction joint's badge dot is on its projection, no "
+    "link under a panel",
+    "[render][urdf][badges]") {
   std::mt19937 rng(3712);
   std::uniform_real_distribution<double> length(0.08, 0.35), angle(-3.0, 3.0), unit(-1.0, 1.0);
   const fs::path dir =
@@ -264,8 +267,10 @@ TEST_CASE("generated URDF chains: every friction joint's badge dot is on its pro
     urdf << "<?xml version=\"1.0\"?><robot name=\"g\"><link name=\"l0\"><visual><geometry>"
             "<box size=\"0.1 0.1 0.04\"/></geometry></visual></link>\n";
     std::vector<std::string> joints;
+    std::vector<double> reach;  // each moving link's box, along its x from its joint
     for (int i = 1; i <= n; ++i) {
       const double l = length(rng);
+      reach.push_back(l);
       core::Vec3 axis(unit(rng), unit(rng), unit(rng));
       if (axis.norm() < 0.2) axis = core::Vec3::UnitZ();
       const std::string name = "j" + std::to_string(i);
@@ -287,7 +292,11 @@ TEST_CASE("generated URDF chains: every friction joint's badge dot is on its pro
     std::ofstream(dir / "g.urdf") << urdf.str();
     std::ofstream(dir / "g.toml")
         << "name = \"g\"\n[bodies.arm]\ntype = \"urdf\"\nfile = "
-           "\"g.urdf\"\nbase = [0.0, 0.0, 0.5]\n[overlay]\nbadges = true\n";
+           "\"g.urdf\"\nbase = [0.0, 0.0, 0.5]\n[overlay]\nbadges = true\n"
+           "signal = \"arm.theta.j1\"\nlabel = \"first joint\"\nunit = \"rad\"\n"
+           "title = \"A generated chain framed beside the panels\"\n"
+           "caption = \"Badges at the joints, no link under a panel\"\n"
+           "[inset]\nsignals = [\"arm.theta.j1\"]\n";
     const scene::Scene s = scene::load_scene(scene::SceneSource((dir / "g.toml").string()));
     REQUIRE(static_cast<int>(s.drawing.sites.joints.size()) == n);
     // Joint i turns at rate w_i (odd joints stuck) from a random start.
@@ -313,9 +322,6 @@ TEST_CASE("generated URDF chains: every friction joint's badge dot is on its pro
       plain.width = 640;
       plain.height = 360;
       plain.camera.view = view;
-      plain.overlay.panel = false;
-      plain.overlay.layers.title = "";
-      plain.overlay.layers.caption = "";
       plain.overlay.layers.badges = false;
       RenderSettings badged = plain;
       badged.overlay.layers.badges = true;
@@ -327,7 +333,8 @@ TEST_CASE("generated URDF chains: every friction joint's badge dot is on its pro
       if (trial == 0)
         save(shown,
              std::string("generated_") + camera_view_names()[static_cast<int>(view)] + ".png");
-      const glm::mat4 vp = view_projection(badged, s.drawing, with.poses(), t);
+      const Camera camera = with.camera(t);  // framed beside the panels
+      const glm::mat4 vp = camera.projection(640.0f / 360.0f) * camera.view();
       // The joints from the tree's kinematics at the trajectory's angles.
       core::Vec q(n);
       for (int i = 0; i < n; ++i) q[i] = start[i] + rate[i] * t;
@@ -351,6 +358,44 @@ TEST_CASE("generated URDF chains: every friction joint's badge dot is on its pro
           }
         }
         CHECK(found);
+      }
+      // Every link (and, but under the follow view, which frames the links alone, the base)
+      // in the frame and clear of the panels: the corners of its box from the chain's own
+      // kinematics.
+      const FramePanels& panels = with.panels();
+      REQUIRE(panels.boxes.size() == 4);  // time panel, inset, title, caption
+      for (int i = view == CameraView::follow ? 0 : -1; i < n; ++i) {
+        components::LinkPose f;
+        core::Vec3 centre, half;
+        if (i < 0) {
+          f.p = core::Vec3(0.0, 0.0, 0.5);
+          centre = core::Vec3::Zero();
+          half = core::Vec3(0.05, 0.05, 0.02);
+        } else {
+          f = links[static_cast<std::size_t>(i)];
+          centre = core::Vec3(0.5 * reach[static_cast<std::size_t>(i)], 0.0, 0.0);
+          half = core::Vec3(0.5 * reach[static_cast<std::size_t>(i)], 0.015, 0.015);
+        }
+        float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
+        for (int k = 0; k < 8; ++k) {
+          const core::Vec3 corner =
+              f.p + f.q * (centre + core::Vec3((k & 1) ? half.x() : -half.x(),
+                                               (k & 2) ? half.y() : -half.y(),
+                                               (k & 4) ? half.z() : -half.z()));
+          glm::vec2 px;
+          REQUIRE(project(vp, to_glm(corner), 640, 360, px));
+          x0 = std::min(x0, px.x), x1 = std::max(x1, px.x), y0 = std::min(y0, px.y),
+          y1 = std::max(y1, px.y);
+        }
+        const PixelBox box{static_cast<int>(std::floor(x0)), static_cast<int>(std::floor(y0)),
+                           static_cast<int>(std::ceil(x1)), static_cast<int>(std::ceil(y1))};
+        INFO("link " << i << " at [" << box.x0 << ", " << box.x1 << ") x [" << box.y0 << ", "
+                     << box.y1 << ")");
+        CHECK(box.x0 >= 0);
+        CHECK(box.y0 >= 0);
+        CHECK(box.x1 <= 640);
+        CHECK(box.y1 <= 360);
+        for (const PixelBox& panel : panels.boxes) CHECK_FALSE(boxes_overlap(box, panel));
       }
     }
   }
