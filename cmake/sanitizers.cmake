@@ -12,16 +12,18 @@ set(STICTION_SANITIZER_FLAGS -fsanitize=address,undefined -fno-sanitize-recover=
 # The test folders the instrumented build builds and runs (tests/CMakeLists.txt): the scene
 # loader, the URDF loader and the fuzz regressions (scene, reliability), signals, limits and
 # the output directory with the real binary (reliability), components, contacts (the body
-# pairs), sources and the command line (app, which also runs the renderer with its video and
-# frames and draws every kind of figure with the instrumented binary). Left out to keep CI
+# pairs) and the command line (app, which also runs the renderer with its video and frames,
+# draws every kind of figure and runs every kind of source through the bundled scenes with the
+# instrumented binary). Left out to keep CI
 # within its time (every one still runs in the Release step): the folders made of whole
 # trial runs repeated many times over (ci, study, scenarios, and since 2026-12-05 events,
 # extremes and physics: closed-form checks whose code paths components and contacts run
 # instrumented on small scenes), render (its image comparisons; app renders videos and
-# frames instrumented), plot (layout arithmetic; app draws figures instrumented), cluster
-# (Slurm). See docs/sanitizers_fuzzing.md.
+# frames instrumented), plot (layout arithmetic; app draws figures instrumented), sources
+# (since 2026-12-07: prescribed forces, torques and moving surfaces, which app's runs of the
+# bundled scenes drive instrumented), cluster (Slurm). See docs/sanitizers_fuzzing.md.
 set(STICTION_SANITIZE_TESTS
-    "app;components;contacts;reliability;scene;sources"
+    "app;components;contacts;reliability;scene"
     CACHE STRING "With STICTION_SANITIZE: the tests/ folders to build and run")
 
 if(STICTION_SANITIZE OR STICTION_FUZZ)
