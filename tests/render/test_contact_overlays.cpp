@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "image/png.hpp"
+#include "overlay_pixels.hpp"
 #include "render/camera.hpp"
 #include "render/contact_sites.hpp"
 #include "render/force_arrows.hpp"
@@ -20,6 +21,7 @@
 
 using namespace stiction;
 using namespace stiction::render;
+using testing::nearest;
 namespace fs = std::filesystem;
 
 namespace {
@@ -104,24 +106,7 @@ RenderSettings plain_settings(const scene::Scene& s) {
 std::vector<glm::vec2> changed(const image::Image& a, const image::Image& b) {
   REQUIRE(a.width == b.width);
   REQUIRE(a.height == b.height);
-  std::vector<glm::vec2> out;
-  for (int y = 0; y < a.height; ++y) {
-    for (int x = 0; x < a.width; ++x) {
-      const std::size_t i = 4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(a.width) +
-                                 static_cast<std::size_t>(x));
-      int d = 0;
-      for (int c = 0; c < 3; ++c)
-        d = std::max(d, std::abs(int(a.pixels[i + c]) - int(b.pixels[i + c])));
-      if (d > 24) out.emplace_back(float(x), float(y));
-    }
-  }
-  return out;
-}
-
-float nearest(const std::vector<glm::vec2>& pixels, const glm::vec2& p) {
-  float best = std::numeric_limits<float>::infinity();
-  for (const glm::vec2& q : pixels) best = std::min(best, glm::length(q - p));
-  return best;
+  return testing::changed_pixels(a, b);
 }
 
 void save(const image::Image& frame, const std::string& name) {

@@ -28,6 +28,7 @@
 #include "core/simulation.hpp"
 #include "generated_mechanism.hpp"
 #include "image/png.hpp"
+#include "overlay_pixels.hpp"
 #include "render/camera.hpp"
 #include "render/contact_sites.hpp"
 #include "render/force_arrows.hpp"
@@ -38,6 +39,7 @@
 
 using namespace stiction;
 using namespace stiction::render;
+using testing::nearest;
 namespace fs = std::filesystem;
 
 namespace {
@@ -293,29 +295,11 @@ position = ")"
 // Pixels that differ between two frames of the same size, outside the panels.
 std::vector<glm::vec2> changed(const image::Image& a, const image::Image& b,
                                const FramePanels& panels) {
-  std::vector<glm::vec2> out;
-  for (int y = 0; y < a.height; ++y) {
-    for (int x = 0; x < a.width; ++x) {
-      const PixelBox pixel{x, y, x + 1, y + 1};
-      if (std::any_of(panels.boxes.begin(), panels.boxes.end(),
-                      [&](const PixelBox& p) { return boxes_overlap(pixel, p); })) {
-        continue;
-      }
-      const std::size_t i = 4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(a.width) +
-                                 static_cast<std::size_t>(x));
-      int d = 0;
-      for (int c = 0; c < 3; ++c)
-        d = std::max(d, std::abs(int(a.pixels[i + c]) - int(b.pixels[i + c])));
-      if (d > 24) out.emplace_back(float(x) + 0.5f, float(y) + 0.5f);
-    }
-  }
-  return out;
-}
-
-float nearest(const std::vector<glm::vec2>& pixels, const glm::vec2& p) {
-  float best = std::numeric_limits<float>::infinity();
-  for (const glm::vec2& q : pixels) best = std::min(best, glm::length(q - p));
-  return best;
+  return testing::changed_pixels(a, b, [&](int x, int y) {
+    const PixelBox pixel{x, y, x + 1, y + 1};
+    return std::any_of(panels.boxes.begin(), panels.boxes.end(),
+                       [&](const PixelBox& p) { return boxes_overlap(pixel, p); });
+  });
 }
 
 float segment_distance(const glm::vec2& p, const glm::vec2& a, const glm::vec2& b) {

@@ -21,6 +21,7 @@
 
 #include "image/compare.hpp"
 #include "image/png.hpp"
+#include "overlay_pixels.hpp"
 #include "render/camera.hpp"
 #include "render/mechanism_items.hpp"
 #include "render/regime_badges.hpp"
@@ -31,6 +32,7 @@
 
 using namespace stiction;
 using namespace stiction::render;
+using testing::nearest;
 namespace fs = std::filesystem;
 
 namespace {
@@ -107,24 +109,7 @@ glm::vec3 pixel_colour(const image::Image& im, glm::vec2 p) {
 
 // Pixels that differ between two frames of the same size.
 std::vector<glm::vec2> changed(const image::Image& a, const image::Image& b) {
-  std::vector<glm::vec2> out;
-  for (int y = 0; y < a.height; ++y) {
-    for (int x = 0; x < a.width; ++x) {
-      const std::size_t i = 4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(a.width) +
-                                 static_cast<std::size_t>(x));
-      int d = 0;
-      for (int c = 0; c < 3; ++c)
-        d = std::max(d, std::abs(int(a.pixels[i + c]) - int(b.pixels[i + c])));
-      if (d > 24) out.emplace_back(float(x) + 0.5f, float(y) + 0.5f);
-    }
-  }
-  return out;
-}
-
-float nearest(const std::vector<glm::vec2>& pixels, const glm::vec2& p) {
-  float best = std::numeric_limits<float>::infinity();
-  for (const glm::vec2& q : pixels) best = std::min(best, glm::length(q - p));
-  return best;
+  return testing::changed_pixels(a, b);
 }
 
 }  // namespace
