@@ -71,6 +71,8 @@ void ImplicitEulerStepper::build_islands(Network& network) {
       const Capabilities& c = network.capabilities(i);
       if (c.friction != nullptr && c.slip != nullptr) s.friction_elements.push_back(i);
     }
+    s.state_runs = runs_of(s.island.states);
+    s.solved_runs = runs_of(s.solved);
     s.share = static_cast<double>(s.island.states.size()) / dim;
     const auto n = static_cast<Eigen::Index>(s.solved.size());
     set_pattern(network, s);
@@ -79,7 +81,30 @@ void ImplicitEulerStepper::build_islands(Network& network) {
     s.residual = Vec::Zero(n);
     s.delta = Vec::Zero(n);
     s.probe_delta = Vec::Zero(n);
+    s.scale = Vec::Zero(n);
     islands_.push_back(std::move(s));
+  }
+}
+
+std::vector<ImplicitEulerStepper::Run> ImplicitEulerStepper::runs_of(
+    const std::vector<int>& entries) {
+  std::vector<Run> runs;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const int e = entries[k];
+    if (!runs.empty() && runs.back().entry + runs.back().length == e) {
+      ++runs.back().length;
+    } else {
+      runs.push_back({e, static_cast<int>(k), 1});
+    }
+  }
+  return runs;
+}
+
+void ImplicitEulerStepper::copy_states(const IslandSolve& s, const Vec& from, Vec& to) {
+  for (const Run& run : s.state_runs) {
+    const double* source = from.data() + run.entry;
+    double* target = to.data() + run.entry;
+    for (int k = 0; k < run.length; ++k) target[k] = source[k];
   }
 }
 
@@ -191,12 +216,18 @@ bool ImplicitEulerStepper::solve_stage(Network& network, double t, double h, Vec
   return true;
 }
 
-double ImplicitEulerStepper::scaled_norm(const IslandSolve& s, const Vec& correction,
-                                         const Vec& x) const {
+void ImplicitEulerStepper::set_scale(IslandSolve& s, const Vec& x) {
+  for (const Run& run : s.solved_runs) {
+    const double* at = x.data() + run.entry;
+    double* scale = s.scale.data() + run.index;
+    for (int k = 0; k < run.length; ++k) scale[k] = kRelative * std::abs(at[k]) + kAbsolute;
+  }
+}
+
+double ImplicitEulerStepper::scaled_norm(const IslandSolve& s, const Vec& correction) {
   double norm = 0.0;
   for (Eigen::Index r = 0; r < correction.size(); ++r) {
-    const double scale = kRelative * std::abs(x[s.solved[static_cast<std::size_t>(r)]]) + kAbsolute;
-    norm = std::max(norm, std::abs(correction[r]) / scale);
+    norm = std::max(norm, std::abs(correction[r]) / s.scale[r]);
   }
   return std::isfinite(norm) ? norm : std::numeric_limits<double>::infinity();
 }
@@ -253,7 +284,7 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
   } else {
     s.matrix.setIdentity();
   }
-  for (int e : s.island.states) probe_[e] = eval_[e];
+  copy_states(s, eval_, probe_);
   column_steps_.resize(static_cast<std::size_t>(n));
   double* values = s.sparse ? s.sparse_matrix.valuePtr() : nullptr;
   const int* outer = s.sparse ? s.sparse_matrix.outerIndexPtr() : nullptr;
@@ -306,12 +337,18 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
 void ImplicitEulerStepper::evaluate_iterate(Network& network, IslandSolve& s, double t_end,
                                             double h) {
   // x*: the solved entries from the iterate, the clamped friction states from the start.
-  for (int e : s.island.states) eval_[e] = start_[e];
-  for (int i : s.solved) eval_[i] = iterate_[i];
+  copy_states(s, start_, eval_);
+  for (const Run& run : s.solved_runs) {
+    const double* iterate = iterate_.data() + run.entry;
+    double* target = eval_.data() + run.entry;
+    for (int k = 0; k < run.length; ++k) target[k] = iterate[k];
+  }
   evaluate_part(network, s, t_end, eval_, h, f_);
-  for (Eigen::Index r = 0; r < s.residual.size(); ++r) {
-    const int i = s.solved[static_cast<std::size_t>(r)];
-    s.residual[r] = iterate_[i] - start_[i] - h * f_[i];
+  for (const Run& run : s.solved_runs) {
+    const double *iterate = iterate_.data() + run.entry, *start = start_.data() + run.entry,
+                 *f = f_.data() + run.entry;
+    double* residual = s.residual.data() + run.index;
+    for (int k = 0; k < run.length; ++k) residual[k] = iterate[k] - start[k] - h * f[k];
   }
 }
 
@@ -333,18 +370,27 @@ bool ImplicitEulerStepper::move_into_stuck_band(Network& network, IslandSolve& s
     alpha = std::min(alpha, std::clamp((target - s0).dot(d) / d.squaredNorm(), 0.0, 1.0));
   }
   if (!(alpha < 1.0)) return false;
-  for (int i : s.solved) iterate_[i] = last_eval_[i] + alpha * (iterate_[i] - last_eval_[i]);
+  for (const Run& run : s.solved_runs) {
+    double* iterate = iterate_.data() + run.entry;
+    const double* last = last_eval_.data() + run.entry;
+    for (int k = 0; k < run.length; ++k) iterate[k] = last[k] + alpha * (iterate[k] - last[k]);
+  }
   return true;
 }
 
 bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, double h, Vec& x,
                                  bool start_known) {
   const double t_end = t + h;
-  for (int e : s.island.states) start_[e] = eval_[e] = iterate_[e] = x[e];
+  copy_states(s, x, start_);
+  copy_states(s, x, eval_);
+  copy_states(s, x, iterate_);
+  set_scale(s, start_);
   if (!start_known) evaluate_part(network, s, t_end, x, h, f_);
-  const auto n = static_cast<Eigen::Index>(s.solved.size());
-  for (Eigen::Index r = 0; r < n; ++r)
-    s.residual[r] = -h * f_[s.solved[static_cast<std::size_t>(r)]];
+  for (const Run& run : s.solved_runs) {
+    const double* f = f_.data() + run.entry;
+    double* residual = s.residual.data() + run.index;
+    for (int k = 0; k < run.length; ++k) residual[k] = -h * f[k];
+  }
   int formed = 0;  // matrices formed during this step
   // A step that differs from the matrix's only in its last bits (a run loop's h = target - t
   // after t has summed many steps) keeps the matrix: I - h J barely changes, and forming it
@@ -355,18 +401,21 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
     ++formed;
   }
   correct(s);
-  double previous = scaled_norm(s, s.delta, start_);
+  double previous = scaled_norm(s, s.delta);
   int moves = 0, halvings = 0;
   for (int k = 0; k < kMaxIterations; ++k) {
-    for (int e : s.island.states) last_eval_[e] = eval_[e];
-    for (Eigen::Index r = 0; r < n; ++r)
-      iterate_[s.solved[static_cast<std::size_t>(r)]] -= s.delta[r];
+    copy_states(s, eval_, last_eval_);
+    for (const Run& run : s.solved_runs) {
+      double* iterate = iterate_.data() + run.entry;
+      const double* delta = s.delta.data() + run.index;
+      for (int k = 0; k < run.length; ++k) iterate[k] -= delta[k];
+    }
     evaluate_iterate(network, s, t_end, h);
     // Converged when the next Newton correction is below the tolerance: measured on the
     // correction, not the residual, since a stiff element's residual carries its stiffness
     // times the rounding of the position (K = 1e7 N/m turns 3e-17 m into 1e-9 m/s^2).
     correct(s);
-    double norm = scaled_norm(s, s.delta, start_);
+    double norm = scaled_norm(s, s.delta);
     if (norm > 0.1 * previous && norm > 1.0 && std::isfinite(norm)) {
       // Slow contraction. Either the step crossed a friction element's stuck band (Newton
       // from the sliding side overshoots it, from the other side back: a cycle around the
@@ -381,7 +430,11 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
       } else if (norm > previous && halvings < kMaxHalvings) {
         // Growing: the step jumped across kinks the band move does not know (several
         // corners of a tumbling box at once). Half of it, to break the cycle.
-        for (int i : s.solved) iterate_[i] = 0.5 * (last_eval_[i] + iterate_[i]);
+        for (const Run& run : s.solved_runs) {
+          double* iterate = iterate_.data() + run.entry;
+          const double* last = last_eval_.data() + run.entry;
+          for (int k = 0; k < run.length; ++k) iterate[k] = 0.5 * (last[k] + iterate[k]);
+        }
         ++halvings;
         moved = true;
       }
@@ -390,7 +443,7 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
         refresh_matrix(network, s, t_end, h);
         ++formed;
         correct(s);
-        norm = scaled_norm(s, s.delta, start_);
+        norm = scaled_norm(s, s.delta);
       }
     }
     // A correction that no longer shrinks, within kRoundingFloor tolerances, is rounding:
@@ -400,7 +453,11 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
     if (norm <= 1.0 || at_floor) {
       // Every entry moves by h times F at the solution: the positions by the new velocities
       // and a stuck friction state by the slip velocity there, alike (no drift).
-      for (int e : s.island.states) x[e] = start_[e] + h * f_[e];
+      for (const Run& run : s.state_runs) {
+        const double *start = start_.data() + run.entry, *f = f_.data() + run.entry;
+        double* to = x.data() + run.entry;
+        for (int k = 0; k < run.length; ++k) to[k] = start[k] + h * f[k];
+      }
       network.project(x, &s.island);
       return true;
     }
@@ -414,7 +471,36 @@ void ImplicitEulerStepper::correct(IslandSolve& s) {
   if (s.sparse && s.sparse_factored) {
     s.delta = s.sparse_lu->solve(s.residual);
   } else if (!s.sparse && s.residual.size() <= kInverseUnknowns) {
-    s.delta.noalias() = s.inverse * s.residual;
+    // delta = inverse * residual, column by column: each entry sums its products in column
+    // order from zero, as Eigen's matrix-vector kernel does (so the same bits), without
+    // that kernel's dispatch and blocking, which cost more than the 169 products of a body.
+    const int n = static_cast<int>(s.residual.size());
+    const double* inverse = s.inverse.data();
+    const double* residual = s.residual.data();
+    double* delta = s.delta.data();
+    // Four rows at a time, their sums held in registers over the columns.
+    int i = 0;
+    for (; i + 4 <= n; i += 4) {
+      double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
+      const double* column = inverse + i;
+      for (int j = 0; j < n; ++j, column += n) {
+        const double r = residual[j];
+        a += column[0] * r;
+        b += column[1] * r;
+        c += column[2] * r;
+        d += column[3] * r;
+      }
+      delta[i] = a;
+      delta[i + 1] = b;
+      delta[i + 2] = c;
+      delta[i + 3] = d;
+    }
+    for (; i < n; ++i) {
+      double a = 0.0;
+      const double* column = inverse + i;
+      for (int j = 0; j < n; ++j, column += n) a += column[0] * residual[j];
+      delta[i] = a;
+    }
   } else {
     s.delta.noalias() = s.lu.solve(s.residual);
   }
