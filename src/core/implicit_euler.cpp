@@ -20,6 +20,90 @@ std::vector<bool> implicitly_solved_slots(const Network& network) {
   return solved;
 }
 
+void small_inverse(const Eigen::MatrixXd& matrix, Eigen::MatrixXd& lu, Eigen::MatrixXd& inverse) {
+  const int n = static_cast<int>(matrix.rows());
+  if (n > kSmallInverseUnknowns || matrix.cols() != n) {
+    throw std::invalid_argument("small_inverse: a square matrix of at most 16 rows");
+  }
+  lu = matrix;
+  double* const a = lu.data();
+  const auto at = [&](int i, int j) -> double& { return a[i + j * n]; };
+  // PartialPivLU's unblocked_lu: the first largest |entry| of the column (at or below the
+  // diagonal) is the pivot; a zero column is left, its swap still recorded.
+  int swaps[kSmallInverseUnknowns];
+  for (int k = 0; k < n; ++k) {
+    int pivot = k;
+    double biggest = std::abs(at(k, k));
+    for (int i = k + 1; i < n; ++i) {
+      const double score = std::abs(at(i, k));
+      if (score > biggest) {
+        biggest = score;
+        pivot = i;
+      }
+    }
+    swaps[k] = pivot;
+    if (biggest != 0.0) {
+      if (pivot != k) {
+        for (int j = 0; j < n; ++j) std::swap(at(k, j), at(pivot, j));
+      }
+      const double diagonal = at(k, k);
+      for (int i = k + 1; i < n; ++i) at(i, k) /= diagonal;
+    }
+    for (int j = k + 1; j < n; ++j) {
+      const double u = at(k, j);
+      for (int i = k + 1; i < n; ++i) at(i, j) -= at(i, k) * u;
+    }
+  }
+  // P times the identity.
+  inverse.setIdentity(n, n);
+  double* const x = inverse.data();
+  const auto out = [&](int i, int j) -> double& { return x[i + j * n]; };
+  for (int k = 0; k < n; ++k) {
+    if (swaps[k] == k) continue;
+    for (int j = 0; j < n; ++j) std::swap(out(k, j), out(swaps[k], j));
+  }
+  // Eigen's triangular_solve_matrix: panels of max(mr, nr) columns (4 on SSE2 doubles);
+  // inside a panel column by column, the rows past it by the panel's sum, taken from zero in
+  // column order and added times -1 (gebp's alpha).
+  using Traits = Eigen::internal::gebp_traits<double, double>;
+  constexpr int kPanel = std::max<int>(Traits::mr, Traits::nr);
+  for (int k1 = 0; k1 < n; k1 += kPanel) {  // L, unit lower, from the top
+    const int width = std::min(n - k1, kPanel);
+    for (int i = k1; i < k1 + width; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const double b = out(i, j);
+        for (int r = i + 1; r < k1 + width; ++r) out(r, j) -= b * at(r, i);
+      }
+    }
+    for (int j = 0; j < n; ++j) {
+      for (int r = k1 + width; r < n; ++r) {
+        double sum = 0.0;
+        for (int c = k1; c < k1 + width; ++c) sum += at(r, c) * out(c, j);
+        out(r, j) = sum * -1.0 + out(r, j);
+      }
+    }
+  }
+  for (int k1 = 0; k1 < n; k1 += kPanel) {  // U, from the bottom
+    const int width = std::min(n - k1, kPanel);
+    const int top = n - k1 - width;  // the panel's first row
+    for (int i = n - 1 - k1; i >= top; --i) {
+      const double reciprocal = 1.0 / at(i, i);  // Eigen multiplies by it
+      for (int j = 0; j < n; ++j) {
+        out(i, j) *= reciprocal;
+        const double b = out(i, j);
+        for (int r = top; r < i; ++r) out(r, j) -= b * at(r, i);
+      }
+    }
+    for (int j = 0; j < n; ++j) {
+      for (int r = 0; r < top; ++r) {
+        double sum = 0.0;
+        for (int c = top; c < top + width; ++c) sum += at(r, c) * out(c, j);
+        out(r, j) = sum * -1.0 + out(r, j);
+      }
+    }
+  }
+}
+
 ImplicitEulerStepper::ImplicitEulerStepper(int state_dim, double dt)
     : dt_(dt),
       start_(Vec::Zero(state_dim)),
@@ -315,7 +399,10 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
       }
     }
   }
-  if (s.sparse) {
+  if (!s.sparse && n <= kSmallInverseUnknowns) {
+    // The same inverse as the branch below, for a fraction of its cost (small_inverse).
+    small_inverse(s.matrix, s.small_lu, s.inverse);
+  } else if (s.sparse) {
     s.sparse_lu->factorize(s.sparse_matrix);
     s.sparse_factored = s.sparse_lu->info() == Eigen::Success;
     // A singular pivot under the sparse ordering: the dense LU with partial pivoting takes
@@ -328,7 +415,7 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
   // solves cost more in their blocking than in their arithmetic at 13 unknowns (28% of a
   // step of 1000 spheres). Simplified Newton corrects the inverse's rounding as it does
   // the matrix's age.
-  if (!s.sparse && n <= kInverseUnknowns) s.inverse = s.lu.inverse();
+  if (!s.sparse && n > kSmallInverseUnknowns && n <= kInverseUnknowns) s.inverse = s.lu.inverse();
   s.lu_valid = true;
   s.lu_h = h;
   ++matrices_formed_;

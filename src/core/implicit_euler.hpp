@@ -53,6 +53,16 @@ namespace stiction::core {
 // (their law solves them in closed form). True = solved.
 std::vector<bool> implicitly_solved_slots(const Network& network);
 
+// The inverse of a square matrix of up to kSmallInverseUnknowns rows, bit for bit what
+// Eigen::PartialPivLU<MatrixXd>(matrix).inverse() gives (Eigen 3.4: its unblocked LU with
+// partial pivoting, the row swaps applied to the identity, then its triangular solves, which
+// update the rows past each panel of four columns by the panel's sum), without the blocked
+// kernels' packing, heap buffers and dispatch: on a body's 13 unknowns they cost three times
+// the arithmetic. Bit for bit under the build's flags (SSE2, no FMA contraction); with FMA
+// the same inverse to rounding. lu: scratch, n x n afterwards.
+inline constexpr int kSmallInverseUnknowns = 16;
+void small_inverse(const Eigen::MatrixXd& matrix, Eigen::MatrixXd& lu, Eigen::MatrixXd& inverse);
+
 class ImplicitEulerStepper final : public Stepper {
  public:
   ImplicitEulerStepper(int state_dim, double dt);
@@ -146,7 +156,8 @@ class ImplicitEulerStepper final : public Stepper {
     bool sparse_factored = false;  // false: the sparse LU failed, the dense one holds
     Eigen::SparseMatrix<double> sparse_matrix;
     std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> sparse_lu;
-    Eigen::MatrixXd inverse;  // of small islands only (kInverseUnknowns)
+    Eigen::MatrixXd inverse;   // of small islands only (kInverseUnknowns)
+    Eigen::MatrixXd small_lu;  // small_inverse's scratch
     Vec residual, delta, probe_delta;
     // Per solved entry: the tolerance of a correction at this step's start (scaled_norm).
     Vec scale;
