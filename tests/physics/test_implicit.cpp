@@ -17,9 +17,9 @@
 #include "sphere_fixture.hpp"
 
 using namespace stiction;
+using testing::SphereCase;
 using testing::column_at;
 using testing::random_sphere;
-using testing::SphereCase;
 
 namespace {
 
@@ -27,9 +27,7 @@ namespace {
 // `slope` whose downhill direction is `heading` (gravity tilted, as bench/peers does).
 std::string slope_scene(double slope, double heading, double mu, std::mt19937& rng, double dt,
                         double duration) {
-  auto uniform = [&](double lo, double hi) {
-    return std::uniform_real_distribution<>(lo, hi)(rng);
-  };
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
   const double g = 9.81, yaw = uniform(-3.0, 3.0);
   const double sx = uniform(0.05, 0.4), sy = uniform(0.05, 0.4), sz = uniform(0.03, 0.2);
   std::ostringstream s;
@@ -55,10 +53,9 @@ core::RunResult run_scene(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE(
-    "implicit: generated spheres at K = 1e7 stick on time and roll at the closed-form "
-    "speed at dt = 1e-3 and 1/240 s",
-    "[implicit]") {
+TEST_CASE("implicit: generated spheres at K = 1e7 stick on time and roll at the closed-form "
+          "speed at dt = 1e-3 and 1/240 s",
+          "[implicit]") {
   std::mt19937 rng(24);
   for (int k = 0; k < 6; ++k) {
     const SphereCase c = random_sphere(rng);
@@ -82,14 +79,11 @@ TEST_CASE(
   }
 }
 
-TEST_CASE(
-    "implicit: generated boxes held on slopes do not creep once settled, and sliding ones "
-    "accelerate at g (sin a - mu cos a)",
-    "[implicit]") {
+TEST_CASE("implicit: generated boxes held on slopes do not creep once settled, and sliding ones "
+          "accelerate at g (sin a - mu cos a)",
+          "[implicit]") {
   std::mt19937 rng(2024);
-  auto uniform = [&](double lo, double hi) {
-    return std::uniform_real_distribution<>(lo, hi)(rng);
-  };
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
   for (int k = 0; k < 4; ++k) {
     const double slope = uniform(0.1, 0.5), heading = uniform(-3.0, 3.0);
     const double dt = k % 2 == 0 ? 1.0 / 240.0 : 1.0 / 60.0;
@@ -122,14 +116,11 @@ TEST_CASE(
   }
 }
 
-TEST_CASE(
-    "implicit: a dozen separate spheres in one scene solve as a dozen blocks, and each "
-    "sticks on time",
-    "[implicit]") {
+TEST_CASE("implicit: a dozen separate spheres in one scene solve as a dozen blocks, and each "
+          "sticks on time",
+          "[implicit]") {
   std::mt19937 rng(12);
-  auto uniform = [&](double lo, double hi) {
-    return std::uniform_real_distribution<>(lo, hi)(rng);
-  };
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
   const int count = 12;
   std::ostringstream text;
   text.precision(17);
@@ -140,8 +131,8 @@ TEST_CASE(
     const double radius = uniform(0.02, 0.3), v0 = uniform(0.5, 2.0), mu = uniform(0.2, 0.8);
     expected.push_back(v0 / ((1.0 + 2.5) * mu * 9.81));  // solid: J = 2/5 M R^2
     text << "[bodies.s" << k << "]\ntype = \"rigid_body\"\nmass = " << uniform(0.1, 3.0)
-         << "\nshape = \"sphere\"\nradius = " << radius << "\nposition = [" << 2.0 * k << ", 0.0, "
-         << radius << "]\nvelocity = [" << v0 * std::cos(k) << ", " << v0 * std::sin(k)
+         << "\nshape = \"sphere\"\nradius = " << radius << "\nposition = [" << 2.0 * k
+         << ", 0.0, " << radius << "]\nvelocity = [" << v0 * std::cos(k) << ", " << v0 * std::sin(k)
          << ", 0.0]\n[impedances.g" << k << "]\ntype = \"kikuuwe_contact\"\nbody = \"s" << k
          << "\"\nstiffness = 1e7\ndamping = 10.0\nmu = " << mu << "\nsettle = true\n";
   }
@@ -155,27 +146,23 @@ TEST_CASE(
   for (const auto& history : r.slip_events) {
     const int k = std::stoi(history.component.substr(1));
     INFO(history.component);
-    CHECK(history.monitor.stick_time() ==
-          Approx(expected[static_cast<std::size_t>(k)]).epsilon(1e-6));
+    CHECK(history.monitor.stick_time() == Approx(expected[static_cast<std::size_t>(k)]).epsilon(1e-6));
   }
 }
 
-TEST_CASE(
-    "implicit: on planes of odd normals, a ball rolls down at 5/7 g sin a while a brick "
-    "dropped at an odd orientation tumbles, lands and slides",
-    "[implicit]") {
+TEST_CASE("implicit: on planes of odd normals, a ball rolls down at 5/7 g sin a while a brick "
+          "dropped at an odd orientation tumbles, lands and slides",
+          "[implicit]") {
   // A user's scene that once stopped with Newton stalled at its rounding floor (the
   // tumbling brick's angular velocity corrections jittered by 2e-13 for ever).
   std::mt19937 rng(7);
-  auto uniform = [&](double lo, double hi) {
-    return std::uniform_real_distribution<>(lo, hi)(rng);
-  };
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<>(lo, hi)(rng); };
   for (int k = 0; k < 3; ++k) {
     const double slope = uniform(0.2, 0.5), heading = uniform(-3.0, 3.0);
     const core::Vec3 n(std::sin(slope) * std::cos(heading), std::sin(slope) * std::sin(heading),
                        std::cos(slope));
-    const core::Quat q =
-        core::Quat(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)).normalized();
+    const core::Quat q = core::Quat(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1),
+                                    uniform(-1, 1)).normalized();
     std::ostringstream t;
     t.precision(17);
     t << "name = \"roll_down\"\ngravity = [0.0, 0.0, -9.81]\n[simulation]\n"
@@ -183,22 +170,18 @@ TEST_CASE(
       << "[bodies.ball]\ntype = \"rigid_body\"\nmass = " << uniform(0.2, 2.0)
       << "\nshape = \"sphere\"\nradius = " << uniform(0.02, 0.2) << "\n"
       << "[bodies.brick]\ntype = \"rigid_body\"\nmass = " << uniform(0.5, 2.0)
-      << "\nshape = \"box\"\nsize = [0.12, 0.08, 0.05]\nposition = ["
-      << 3.0 * std::cos(heading + 1.5) << ", " << 3.0 * std::sin(heading + 1.5)
-      << ", 0.1]\norientation = [" << q.w() << ", " << q.x() << ", " << q.y() << ", " << q.z()
-      << "]\n";
+      << "\nshape = \"box\"\nsize = [0.12, 0.08, 0.05]\nposition = [" << 3.0 * std::cos(heading + 1.5)
+      << ", " << 3.0 * std::sin(heading + 1.5) << ", 0.1]\norientation = [" << q.w() << ", "
+      << q.x() << ", " << q.y() << ", " << q.z() << "]\n";
     for (const char* body : {"ball", "brick"}) {
       t << "[impedances." << body << "_plane]\ntype = \"kikuuwe_contact\"\nbody = \"" << body
         << "\"\nnormal = [" << n.x() << ", " << n.y() << ", " << n.z() << "]\n"
-        << "stiffness = "
-        << (body[1] == 'a' ? "1e7\ndamping = 20.0\nmu = 0.9\nsettle = true\n"
-                           : "1e6\ndamping = 500.0\nmu = 0.2\n");
+        << "stiffness = " << (body[1] == 'a' ? "1e7\ndamping = 20.0\nmu = 0.9\nsettle = true\n"
+                                              : "1e6\ndamping = 500.0\nmu = 0.2\n");
     }
     INFO("case " << k << ": slope " << slope << " rad, heading " << heading);
     const core::RunResult r = run_scene(t.str());
-    if (r.instability)
-      FAIL(r.instability->component << " at " << r.instability->time << ": "
-                                    << r.instability->reason);
+    if (r.instability) FAIL(r.instability->component << " at " << r.instability->time << ": " << r.instability->reason);
     auto speed = [&](double at) {
       double sum = 0.0;
       for (const char* a : {"x", "y", "z"}) {
@@ -207,8 +190,7 @@ TEST_CASE(
       }
       return std::sqrt(sum);
     };
-    CHECK((speed(1.5) - speed(1.0)) / 0.5 ==
-          Approx(5.0 / 7.0 * 9.81 * std::sin(slope)).epsilon(1e-6));
+    CHECK((speed(1.5) - speed(1.0)) / 0.5 == Approx(5.0 / 7.0 * 9.81 * std::sin(slope)).epsilon(1e-6));
   }
 }
 
