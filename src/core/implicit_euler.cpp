@@ -20,6 +20,131 @@ std::vector<bool> implicitly_solved_slots(const Network& network) {
   return solved;
 }
 
+namespace {
+
+// Rows first_row .. end_row - 1 of every column j of x (n x n) less the panel's sum
+// a(r, first_col .. first_col + W - 1) x(first_col .., j), taken from zero in column order
+// and added times -1, as Eigen's gebp kernel does; W fixed so that the loop over the rows
+// is vectorized (each row's sum keeps its order).
+template <int W>
+void subtract_panel(const double* a, double* x, int n, int first_row, int end_row, int first_col) {
+  for (int j = 0; j < n; ++j) {
+    double* __restrict column = x + static_cast<std::ptrdiff_t>(j) * n;
+    double b[W];
+    const double* __restrict panel[W];
+    for (int c = 0; c < W; ++c) {
+      b[c] = column[first_col + c];
+      panel[c] = a + static_cast<std::ptrdiff_t>(first_col + c) * n;
+    }
+    for (int r = first_row; r < end_row; ++r) {
+      double sum = 0.0;
+      for (int c = 0; c < W; ++c) sum += panel[c][r] * b[c];
+      column[r] = sum * -1.0 + column[r];
+    }
+  }
+}
+
+void subtract_panel(const double* a, double* x, int n, int first_row, int end_row, int first_col,
+                    int width) {
+  if (first_row >= end_row) return;
+  switch (width) {
+    case 1:
+      return subtract_panel<1>(a, x, n, first_row, end_row, first_col);
+    case 2:
+      return subtract_panel<2>(a, x, n, first_row, end_row, first_col);
+    case 3:
+      return subtract_panel<3>(a, x, n, first_row, end_row, first_col);
+    case 4:
+      return subtract_panel<4>(a, x, n, first_row, end_row, first_col);
+    default:
+      for (int j = 0; j < n; ++j) {
+        for (int r = first_row; r < end_row; ++r) {
+          double sum = 0.0;
+          for (int c = first_col; c < first_col + width; ++c) {
+            sum += a[r + static_cast<std::ptrdiff_t>(c) * n] *
+                   x[c + static_cast<std::ptrdiff_t>(j) * n];
+          }
+          x[r + static_cast<std::ptrdiff_t>(j) * n] =
+              sum * -1.0 + x[r + static_cast<std::ptrdiff_t>(j) * n];
+        }
+      }
+  }
+}
+
+}  // namespace
+
+void small_inverse(const Eigen::MatrixXd& matrix, Eigen::MatrixXd& lu, Eigen::MatrixXd& inverse) {
+  const int n = static_cast<int>(matrix.rows());
+  if (n > kSmallInverseUnknowns || matrix.cols() != n) {
+    throw std::invalid_argument("small_inverse: a square matrix of at most 16 rows");
+  }
+  lu = matrix;
+  double* const a = lu.data();
+  const auto at = [&](int i, int j) -> double& { return a[i + j * n]; };
+  // PartialPivLU's unblocked_lu: the first largest |entry| of the column (at or below the
+  // diagonal) is the pivot; a zero column is left, its swap still recorded.
+  int swaps[kSmallInverseUnknowns];
+  for (int k = 0; k < n; ++k) {
+    int pivot = k;
+    double biggest = std::abs(at(k, k));
+    for (int i = k + 1; i < n; ++i) {
+      const double score = std::abs(at(i, k));
+      if (score > biggest) {
+        biggest = score;
+        pivot = i;
+      }
+    }
+    swaps[k] = pivot;
+    if (biggest != 0.0) {
+      if (pivot != k) {
+        for (int j = 0; j < n; ++j) std::swap(at(k, j), at(pivot, j));
+      }
+      const double diagonal = at(k, k);
+      for (int i = k + 1; i < n; ++i) at(i, k) /= diagonal;
+    }
+    for (int j = k + 1; j < n; ++j) {
+      const double u = at(k, j);
+      for (int i = k + 1; i < n; ++i) at(i, j) -= at(i, k) * u;
+    }
+  }
+  // P times the identity.
+  inverse.setIdentity(n, n);
+  double* const x = inverse.data();
+  const auto out = [&](int i, int j) -> double& { return x[i + j * n]; };
+  for (int k = 0; k < n; ++k) {
+    if (swaps[k] == k) continue;
+    for (int j = 0; j < n; ++j) std::swap(out(k, j), out(swaps[k], j));
+  }
+  // Eigen's triangular_solve_matrix: panels of max(mr, nr) columns (4 on SSE2 doubles);
+  // inside a panel column by column, the rows past it by the panel's sum, taken from zero in
+  // column order and added times -1 (gebp's alpha).
+  using Traits = Eigen::internal::gebp_traits<double, double>;
+  constexpr int kPanel = std::max<int>(Traits::mr, Traits::nr);
+  for (int k1 = 0; k1 < n; k1 += kPanel) {  // L, unit lower, from the top
+    const int width = std::min(n - k1, kPanel);
+    for (int i = k1; i < k1 + width; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const double b = out(i, j);
+        for (int r = i + 1; r < k1 + width; ++r) out(r, j) -= b * at(r, i);
+      }
+    }
+    subtract_panel(lu.data(), x, n, k1 + width, n, k1, width);
+  }
+  for (int k1 = 0; k1 < n; k1 += kPanel) {  // U, from the bottom
+    const int width = std::min(n - k1, kPanel);
+    const int top = n - k1 - width;  // the panel's first row
+    for (int i = n - 1 - k1; i >= top; --i) {
+      const double reciprocal = 1.0 / at(i, i);  // Eigen multiplies by it
+      for (int j = 0; j < n; ++j) {
+        out(i, j) *= reciprocal;
+        const double b = out(i, j);
+        for (int r = top; r < i; ++r) out(r, j) -= b * at(r, i);
+      }
+    }
+    subtract_panel(lu.data(), x, n, 0, top, top, width);
+  }
+}
+
 ImplicitEulerStepper::ImplicitEulerStepper(int state_dim, double dt)
     : dt_(dt),
       start_(Vec::Zero(state_dim)),
@@ -71,6 +196,8 @@ void ImplicitEulerStepper::build_islands(Network& network) {
       const Capabilities& c = network.capabilities(i);
       if (c.friction != nullptr && c.slip != nullptr) s.friction_elements.push_back(i);
     }
+    s.state_runs = runs_of(s.island.states);
+    s.solved_runs = runs_of(s.solved);
     s.share = static_cast<double>(s.island.states.size()) / dim;
     const auto n = static_cast<Eigen::Index>(s.solved.size());
     set_pattern(network, s);
@@ -79,7 +206,30 @@ void ImplicitEulerStepper::build_islands(Network& network) {
     s.residual = Vec::Zero(n);
     s.delta = Vec::Zero(n);
     s.probe_delta = Vec::Zero(n);
+    s.scale = Vec::Zero(n);
     islands_.push_back(std::move(s));
+  }
+}
+
+std::vector<ImplicitEulerStepper::Run> ImplicitEulerStepper::runs_of(
+    const std::vector<int>& entries) {
+  std::vector<Run> runs;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const int e = entries[k];
+    if (!runs.empty() && runs.back().entry + runs.back().length == e) {
+      ++runs.back().length;
+    } else {
+      runs.push_back({e, static_cast<int>(k), 1});
+    }
+  }
+  return runs;
+}
+
+void ImplicitEulerStepper::copy_states(const IslandSolve& s, const Vec& from, Vec& to) {
+  for (const Run& run : s.state_runs) {
+    const double* source = from.data() + run.entry;
+    double* target = to.data() + run.entry;
+    for (int k = 0; k < run.length; ++k) target[k] = source[k];
   }
 }
 
@@ -191,12 +341,18 @@ bool ImplicitEulerStepper::solve_stage(Network& network, double t, double h, Vec
   return true;
 }
 
-double ImplicitEulerStepper::scaled_norm(const IslandSolve& s, const Vec& correction,
-                                         const Vec& x) const {
+void ImplicitEulerStepper::set_scale(IslandSolve& s, const Vec& x) {
+  for (const Run& run : s.solved_runs) {
+    const double* at = x.data() + run.entry;
+    double* scale = s.scale.data() + run.index;
+    for (int k = 0; k < run.length; ++k) scale[k] = kRelative * std::abs(at[k]) + kAbsolute;
+  }
+}
+
+double ImplicitEulerStepper::scaled_norm(const IslandSolve& s, const Vec& correction) {
   double norm = 0.0;
   for (Eigen::Index r = 0; r < correction.size(); ++r) {
-    const double scale = kRelative * std::abs(x[s.solved[static_cast<std::size_t>(r)]]) + kAbsolute;
-    norm = std::max(norm, std::abs(correction[r]) / scale);
+    norm = std::max(norm, std::abs(correction[r]) / s.scale[r]);
   }
   return std::isfinite(norm) ? norm : std::numeric_limits<double>::infinity();
 }
@@ -253,7 +409,7 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
   } else {
     s.matrix.setIdentity();
   }
-  for (int e : s.island.states) probe_[e] = eval_[e];
+  copy_states(s, eval_, probe_);
   column_steps_.resize(static_cast<std::size_t>(n));
   double* values = s.sparse ? s.sparse_matrix.valuePtr() : nullptr;
   const int* outer = s.sparse ? s.sparse_matrix.outerIndexPtr() : nullptr;
@@ -284,7 +440,10 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
       }
     }
   }
-  if (s.sparse) {
+  if (!s.sparse && n <= kSmallInverseUnknowns) {
+    // The same inverse as the branch below, for a fraction of its cost (small_inverse).
+    small_inverse(s.matrix, s.small_lu, s.inverse);
+  } else if (s.sparse) {
     s.sparse_lu->factorize(s.sparse_matrix);
     s.sparse_factored = s.sparse_lu->info() == Eigen::Success;
     // A singular pivot under the sparse ordering: the dense LU with partial pivoting takes
@@ -297,7 +456,7 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
   // solves cost more in their blocking than in their arithmetic at 13 unknowns (28% of a
   // step of 1000 spheres). Simplified Newton corrects the inverse's rounding as it does
   // the matrix's age.
-  if (!s.sparse && n <= kInverseUnknowns) s.inverse = s.lu.inverse();
+  if (!s.sparse && n > kSmallInverseUnknowns && n <= kInverseUnknowns) s.inverse = s.lu.inverse();
   s.lu_valid = true;
   s.lu_h = h;
   ++matrices_formed_;
@@ -306,12 +465,18 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
 void ImplicitEulerStepper::evaluate_iterate(Network& network, IslandSolve& s, double t_end,
                                             double h) {
   // x*: the solved entries from the iterate, the clamped friction states from the start.
-  for (int e : s.island.states) eval_[e] = start_[e];
-  for (int i : s.solved) eval_[i] = iterate_[i];
+  copy_states(s, start_, eval_);
+  for (const Run& run : s.solved_runs) {
+    const double* iterate = iterate_.data() + run.entry;
+    double* target = eval_.data() + run.entry;
+    for (int k = 0; k < run.length; ++k) target[k] = iterate[k];
+  }
   evaluate_part(network, s, t_end, eval_, h, f_);
-  for (Eigen::Index r = 0; r < s.residual.size(); ++r) {
-    const int i = s.solved[static_cast<std::size_t>(r)];
-    s.residual[r] = iterate_[i] - start_[i] - h * f_[i];
+  for (const Run& run : s.solved_runs) {
+    const double *iterate = iterate_.data() + run.entry, *start = start_.data() + run.entry,
+                 *f = f_.data() + run.entry;
+    double* residual = s.residual.data() + run.index;
+    for (int k = 0; k < run.length; ++k) residual[k] = iterate[k] - start[k] - h * f[k];
   }
 }
 
@@ -333,18 +498,27 @@ bool ImplicitEulerStepper::move_into_stuck_band(Network& network, IslandSolve& s
     alpha = std::min(alpha, std::clamp((target - s0).dot(d) / d.squaredNorm(), 0.0, 1.0));
   }
   if (!(alpha < 1.0)) return false;
-  for (int i : s.solved) iterate_[i] = last_eval_[i] + alpha * (iterate_[i] - last_eval_[i]);
+  for (const Run& run : s.solved_runs) {
+    double* iterate = iterate_.data() + run.entry;
+    const double* last = last_eval_.data() + run.entry;
+    for (int k = 0; k < run.length; ++k) iterate[k] = last[k] + alpha * (iterate[k] - last[k]);
+  }
   return true;
 }
 
 bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, double h, Vec& x,
                                  bool start_known) {
   const double t_end = t + h;
-  for (int e : s.island.states) start_[e] = eval_[e] = iterate_[e] = x[e];
+  copy_states(s, x, start_);
+  copy_states(s, x, eval_);
+  copy_states(s, x, iterate_);
+  set_scale(s, start_);
   if (!start_known) evaluate_part(network, s, t_end, x, h, f_);
-  const auto n = static_cast<Eigen::Index>(s.solved.size());
-  for (Eigen::Index r = 0; r < n; ++r)
-    s.residual[r] = -h * f_[s.solved[static_cast<std::size_t>(r)]];
+  for (const Run& run : s.solved_runs) {
+    const double* f = f_.data() + run.entry;
+    double* residual = s.residual.data() + run.index;
+    for (int k = 0; k < run.length; ++k) residual[k] = -h * f[k];
+  }
   int formed = 0;  // matrices formed during this step
   // A step that differs from the matrix's only in its last bits (a run loop's h = target - t
   // after t has summed many steps) keeps the matrix: I - h J barely changes, and forming it
@@ -355,18 +529,21 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
     ++formed;
   }
   correct(s);
-  double previous = scaled_norm(s, s.delta, start_);
+  double previous = scaled_norm(s, s.delta);
   int moves = 0, halvings = 0;
   for (int k = 0; k < kMaxIterations; ++k) {
-    for (int e : s.island.states) last_eval_[e] = eval_[e];
-    for (Eigen::Index r = 0; r < n; ++r)
-      iterate_[s.solved[static_cast<std::size_t>(r)]] -= s.delta[r];
+    copy_states(s, eval_, last_eval_);
+    for (const Run& run : s.solved_runs) {
+      double* iterate = iterate_.data() + run.entry;
+      const double* delta = s.delta.data() + run.index;
+      for (int k = 0; k < run.length; ++k) iterate[k] -= delta[k];
+    }
     evaluate_iterate(network, s, t_end, h);
     // Converged when the next Newton correction is below the tolerance: measured on the
     // correction, not the residual, since a stiff element's residual carries its stiffness
     // times the rounding of the position (K = 1e7 N/m turns 3e-17 m into 1e-9 m/s^2).
     correct(s);
-    double norm = scaled_norm(s, s.delta, start_);
+    double norm = scaled_norm(s, s.delta);
     if (norm > 0.1 * previous && norm > 1.0 && std::isfinite(norm)) {
       // Slow contraction. Either the step crossed a friction element's stuck band (Newton
       // from the sliding side overshoots it, from the other side back: a cycle around the
@@ -381,7 +558,11 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
       } else if (norm > previous && halvings < kMaxHalvings) {
         // Growing: the step jumped across kinks the band move does not know (several
         // corners of a tumbling box at once). Half of it, to break the cycle.
-        for (int i : s.solved) iterate_[i] = 0.5 * (last_eval_[i] + iterate_[i]);
+        for (const Run& run : s.solved_runs) {
+          double* iterate = iterate_.data() + run.entry;
+          const double* last = last_eval_.data() + run.entry;
+          for (int k = 0; k < run.length; ++k) iterate[k] = 0.5 * (last[k] + iterate[k]);
+        }
         ++halvings;
         moved = true;
       }
@@ -390,7 +571,7 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
         refresh_matrix(network, s, t_end, h);
         ++formed;
         correct(s);
-        norm = scaled_norm(s, s.delta, start_);
+        norm = scaled_norm(s, s.delta);
       }
     }
     // A correction that no longer shrinks, within kRoundingFloor tolerances, is rounding:
@@ -400,7 +581,11 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
     if (norm <= 1.0 || at_floor) {
       // Every entry moves by h times F at the solution: the positions by the new velocities
       // and a stuck friction state by the slip velocity there, alike (no drift).
-      for (int e : s.island.states) x[e] = start_[e] + h * f_[e];
+      for (const Run& run : s.state_runs) {
+        const double *start = start_.data() + run.entry, *f = f_.data() + run.entry;
+        double* to = x.data() + run.entry;
+        for (int k = 0; k < run.length; ++k) to[k] = start[k] + h * f[k];
+      }
       network.project(x, &s.island);
       return true;
     }
@@ -414,7 +599,45 @@ void ImplicitEulerStepper::correct(IslandSolve& s) {
   if (s.sparse && s.sparse_factored) {
     s.delta = s.sparse_lu->solve(s.residual);
   } else if (!s.sparse && s.residual.size() <= kInverseUnknowns) {
-    s.delta.noalias() = s.inverse * s.residual;
+    // delta = inverse * residual, column by column: each entry sums its products in column
+    // order from zero, as Eigen's matrix-vector kernel does (so the same bits), without
+    // that kernel's dispatch and blocking, which cost more than the 169 products of a body.
+    const int n = static_cast<int>(s.residual.size());
+    const double* inverse = s.inverse.data();
+    const double* residual = s.residual.data();
+    double* delta = s.delta.data();
+    // Eight rows at a time, their sums in four pairs held in registers over the columns
+    // (independent chains of additions, as in Eigen's kernel), then two, then one.
+    using Pair = Eigen::Array2d;
+    const auto pair_at = [](const double* at) { return Eigen::Map<const Pair>(at); };
+    int i = 0;
+    for (; i + 8 <= n; i += 8) {
+      Pair a = Pair::Zero(), b = Pair::Zero(), c = Pair::Zero(), d = Pair::Zero();
+      const double* column = inverse + i;
+      for (int j = 0; j < n; ++j, column += n) {
+        const double r = residual[j];
+        a += pair_at(column) * r;
+        b += pair_at(column + 2) * r;
+        c += pair_at(column + 4) * r;
+        d += pair_at(column + 6) * r;
+      }
+      Eigen::Map<Pair>(delta + i) = a;
+      Eigen::Map<Pair>(delta + i + 2) = b;
+      Eigen::Map<Pair>(delta + i + 4) = c;
+      Eigen::Map<Pair>(delta + i + 6) = d;
+    }
+    for (; i + 2 <= n; i += 2) {
+      Pair a = Pair::Zero();
+      const double* column = inverse + i;
+      for (int j = 0; j < n; ++j, column += n) a += pair_at(column) * residual[j];
+      Eigen::Map<Pair>(delta + i) = a;
+    }
+    for (; i < n; ++i) {
+      double a = 0.0;
+      const double* column = inverse + i;
+      for (int j = 0; j < n; ++j, column += n) a += column[0] * residual[j];
+      delta[i] = a;
+    }
   } else {
     s.delta.noalias() = s.lu.solve(s.residual);
   }
