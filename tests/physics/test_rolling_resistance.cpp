@@ -124,7 +124,7 @@ TEST_CASE(
       const double a_r = b.rolling * kG / ((1.0 + b.k) * b.radius);
       const double t_stop = uniform(0.5, 2.0);
       b.v0 = a_r * t_stop;
-      const double hold = 5.0, duration = t_stop + 1.0 + hold;
+      const double hold = 10.0, duration = t_stop + 1.0 + hold;  // the issue: drift 0 for 10 s
       const core::RunResult r = run(ball_scene(b, in.name, in.dt, duration));
       INFO(in.name << " case " << k << ": m " << b.mass << ", R " << b.radius << ", J/(mR^2) "
                    << b.k << ", mu " << b.mu << ", c " << b.rolling << ", v0 " << b.v0 << ", a_r "
@@ -159,7 +159,7 @@ TEST_CASE(
     }
     figure("rolling", in.name, "deceleration vs c g / ((1 + k) R), relative", worst_a);
     figure("rolling", in.name, "stop (stick event) vs v0 / a_r, s", worst_t);
-    figure("rolling", in.name, "creep of p and q over 5 s after the stop", worst_creep);
+    figure("rolling", in.name, "creep of p and q over 10 s after the stop", worst_creep);
   }
 }
 
