@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "plot/text_fit.hpp"
 
@@ -105,6 +106,26 @@ Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, doub
   Legend L = lowest
                  ? *lowest
                  : shape_legend(panel, entries, painter, m, std::max(1, n), max_width, m.legend());
+  L.place = LegendPlace::above;
+  return L;
+}
+
+Legend legend_above_anyhow(const Panel& panel, Painter& painter, const Metrics& m,
+                           double max_width) {
+  const std::vector<int> entries = legend_entries(panel);
+  const int n = static_cast<int>(entries.size());
+  // The least height within max_width: labels whole before shortened, the legend's size
+  // before the floor of its text, more columns before fewer.
+  std::optional<Legend> pick;
+  auto rank = [](const Legend& L) { return std::make_tuple(L.shortened, L.height); };
+  for (const double size : {m.legend(), m.floor(m.legend())}) {
+    for (int columns = std::max(1, n); columns >= 1; --columns) {
+      Legend L = shape_legend(panel, entries, painter, m, columns, max_width, size);
+      if (L.width > max_width + 0.5) continue;
+      if (!pick || rank(L) < rank(*pick)) pick = std::move(L);
+    }
+  }
+  Legend L = pick ? *pick : shape_legend(panel, entries, painter, m, 1, max_width, m.legend());
   L.place = LegendPlace::above;
   return L;
 }
@@ -223,31 +244,6 @@ std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painte
     return pick->place;
   }
   return std::nullopt;
-}
-
-InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                     const Rect& f, const PanelInk& ink, long& ink_under) {
-  std::vector<Candidate> found = inside_places(panel, painter, m, f, ink, m.legend());
-  for (Candidate& c : inside_places(panel, painter, m, f, ink, m.floor(m.legend()))) {
-    found.push_back(std::move(c));
-  }
-  if (found.empty()) {
-    // Too big for the frame in every shape: one row, its labels shortened to the frame's
-    // width, at the top (the caller checks that it fits the frame's height).
-    const std::vector<int> entries = legend_entries(panel);
-    Legend L = shape_legend(panel, entries, painter, m, static_cast<int>(entries.size()), f.width(),
-                            m.legend());
-    const Rect box{std::round(f.x0), std::round(f.y0), std::round(f.x0 + L.width),
-                   std::round(f.y0 + L.height)};
-    ink_under = ink.data.count(box);
-    return InsidePlace{L, box};
-  }
-  const Candidate* pick = nullptr;
-  for (const Candidate& c : found) {
-    if (!pick || c.data < pick->data || (c.data == pick->data && c.score < pick->score)) pick = &c;
-  }
-  ink_under = pick->data;
-  return pick->place;
 }
 
 void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Rect& box,

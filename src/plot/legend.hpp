@@ -56,6 +56,13 @@ Legend legend_beside(const Panel& panel, Painter& painter, const Metrics& m, dou
 Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
                     int max_rows = 2);
 
+// Above the panel when it has no other place (no free corner inside, no room above in two
+// rows nor beside the axes): the shape of the least height within `max_width`, labels whole
+// if any shape keeps them so, else shortened by the text rule; in one column if nothing
+// narrower fits (the caller checks the width).
+Legend legend_above_anyhow(const Panel& panel, Painter& painter, const Metrics& m,
+                           double max_width);
+
 // In the panel's caption row: its entries side by side in one row without a box, labels whole
 // at the legend's size or the floor of its text, at most `max_width` wide (the frame's width
 // less the caption's); none when it is wider at the floor.
@@ -77,8 +84,10 @@ struct PanelInk {
 // left; the middles of the edges; places along the edges) and shape (one to four columns),
 // the one whose box, with a margin, covers the least data (an event mark counting a quarter
 // of a data pixel), its text at `size` (the legend's, or the floor of its text); the first in
-// that order on a tie; none when that covers more than kLegendDataShare of the panel's data.
-// `ink_under` gets the data pixels under it.
+// that order on a tie; none when that covers more than kLegendDataShare of the panel's data
+// (a legend never goes over data: with no free place it goes outside, legend_above_anyhow).
+// Shapes with shortened labels only when no shape keeps them whole. `ink_under` gets the data
+// pixels under it.
 struct InsidePlace {
   Legend legend;
   Rect box;
@@ -86,13 +95,6 @@ struct InsidePlace {
 std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
                                              const Rect& frame, const PanelInk& ink, double size,
                                              long& ink_under);
-
-// The place inside with the least data under it whatever the share (at the legend's size
-// or the floor of its text), for a figure with no room outside the axes (`ink_under` gets
-// the count of data pixels under its box). Shapes with shortened labels only when no shape
-// keeps them whole, here and in free_place_inside.
-InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                     const Rect& frame, const PanelInk& ink, long& ink_under);
 
 // The box and its entries: a line sample in the series' style, then the label.
 void draw_legend(Painter& painter, const Panel& panel, const Legend& legend, const Rect& box,
