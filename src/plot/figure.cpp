@@ -81,8 +81,10 @@ void draw_references(Painter& painter, const Panel& panel, const Axis& y, const 
 
 FigureLayout draw(const Figure& figure, cairo_t* cr) { return draw_figure(figure, cr, nullptr); }
 
-FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedText>* texts) {
-  check_size(figure);
+FigureLayout draw_figure(const Figure& given, cairo_t* cr, std::vector<PlacedText>* texts) {
+  check_size(given);
+  // A legend entry shown in an earlier panel's legend is not repeated (legend.hpp).
+  const Figure figure = shared_legend_entries(given);
   const PixelSize size = pixel_size(figure);
   FigureLayout layout;
   layout.width = size.width;

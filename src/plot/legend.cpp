@@ -17,8 +17,62 @@ std::vector<int> legend_entries(const Panel& panel) {
   for (std::size_t k = 0; k < panel.references.size(); ++k) {
     if (!panel.references[k].label.empty()) entries.push_back(-1 - static_cast<int>(k));
   }
-  if (entries.size() < 2 && !(entries.size() == 1 && panel.label.empty())) entries.clear();
+  if (entries.size() < 2 &&
+      !(entries.size() == 1 && (panel.label.empty() || panel.legend_keeps_one_entry))) {
+    entries.clear();
+  }
   return entries;
+}
+
+namespace {
+
+bool same_style(const LineStyle& a, const LineStyle& b) {
+  return a.colour.r == b.colour.r && a.colour.g == b.colour.g && a.colour.b == b.colour.b &&
+         a.colour.a == b.colour.a && a.dash == b.dash && a.width == b.width;
+}
+
+LineStyle style_of(const Panel& panel, std::size_t i) {
+  return panel.series[i].style ? *panel.series[i].style : series_style(static_cast<int>(i));
+}
+
+}  // namespace
+
+Figure shared_legend_entries(const Figure& given) {
+  Figure figure = given;
+  struct Shown {
+    std::string label;
+    LineStyle style;
+  };
+  std::vector<Shown> shown;
+  for (Panel& panel : figure.panels) {
+    const std::vector<int> entries = legend_entries(panel);
+    if (entries.empty()) continue;
+    std::vector<int> repeated;
+    for (int i : entries) {
+      if (i < 0) continue;
+      const LineStyle style = style_of(panel, static_cast<std::size_t>(i));
+      if (std::any_of(shown.begin(), shown.end(), [&](const Shown& e) {
+            return e.label == panel.series[i].label && same_style(e.style, style);
+          })) {
+        repeated.push_back(i);
+      }
+    }
+    const std::size_t left = entries.size() - repeated.size();
+    // Left out when the legend keeps what the reader cannot get from the earlier one: no
+    // entry (the same legend again), a reference line alone, or two entries or more.
+    const bool alone_reference =
+        left == 1 && std::any_of(entries.begin(), entries.end(), [&](int i) {
+          return i < 0 && std::find(repeated.begin(), repeated.end(), i) == repeated.end();
+        });
+    if (!repeated.empty() && (left == 0 || left >= 2 || alone_reference)) {
+      for (int i : repeated) panel.series[i].label.clear();
+      panel.legend_keeps_one_entry = alone_reference;
+    }
+    for (int i : legend_entries(panel)) {
+      if (i >= 0) shown.push_back({panel.series[i].label, style_of(panel, i)});
+    }
+  }
+  return figure;
 }
 
 Legend shape_legend(const Panel& panel, const std::vector<int>& entries, Painter& painter,

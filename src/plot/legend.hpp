@@ -40,6 +40,13 @@ struct Legend {
 // (one series: the axis label already names it).
 std::vector<int> legend_entries(const Panel& panel);
 
+// The figure with its legends shared (matplotlib's figure legend, per entry): a series entry
+// whose label and style are already in an earlier panel's legend is left out of a later
+// one (Fig. 7's "joint 0", "joint 1" in both panels: the torque panel's legend keeps
+// "friction level F" alone), unless that would leave a single series entry, which the axis
+// label names no better.
+Figure shared_legend_entries(const Figure& figure);
+
 // The legend in `columns` columns (entries down each column), at font size `size`, its labels
 // fitted to `max_width` in all by the text rule (smaller, then shortened at whole words).
 Legend shape_legend(const Panel& panel, const std::vector<int>& entries, Painter& painter,

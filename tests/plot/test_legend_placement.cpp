@@ -270,3 +270,43 @@ TEST_CASE("a legend covers no data when no corner is free", "[plot][legend]") {
   WARN(figures << " figures: legends inside " << inside << ", outside " << outside << ", left out "
                << left_out);
 }
+
+// A legend entry already in an earlier panel's legend (same label, same line) is not
+// repeated: Fig. 7's torque panel keeps "friction level F" alone, and a panel whose entries
+// are all in the legend above has none. An entry that would be left alone without a
+// reference line keeps its panel's legend whole.
+TEST_CASE("legend entries shown in an earlier panel are not repeated", "[plot][legend]") {
+  auto series = [](const std::string& label, double gain) {
+    plot::Series s;
+    s.label = label;
+    for (int k = 0; k <= 200; ++k) {
+      s.x.push_back(0.01 * k);
+      s.y.push_back(gain * std::sin(0.03 * k));
+    }
+    return s;
+  };
+  plot::Figure figure;
+  figure.print = plot::Figure::Print{88.0, 100.0, 8.0, 300.0};
+  figure.panels.resize(4);
+  const char* names[] = {"angle", "torque", "rate", "error"};
+  for (int p = 0; p < 4; ++p) figure.panels[p].label = names[p];
+  for (int p = 0; p < 3; ++p) {
+    figure.panels[p].series.push_back(series("joint 0", 1.0 + p));
+    figure.panels[p].series.push_back(series("joint 1", -1.0 - p));
+  }
+  figure.panels[1].references.push_back(plot::ReferenceLine{0.5, "friction level F"});
+  // joint 0 as above, and a new series: the legend keeps both.
+  figure.panels[3].series.push_back(series("joint 0", 2.0));
+  figure.panels[3].series.push_back(series("joint 2", 0.5));
+  const plot::FigureLayout layout =
+      plot::write_figure(figure, kOut / "shared_entries.png", plot::Format::png);
+  std::vector<std::vector<std::string>> entries(4);
+  for (const plot::TextBox& t : layout.texts) {
+    if (t.role == plot::TextRole::legend_entry && t.panel >= 0) entries[t.panel].push_back(t.given);
+  }
+  CHECK(entries[0] == std::vector<std::string>{"joint 0", "joint 1"});
+  CHECK(entries[1] == std::vector<std::string>{"friction level F"});
+  CHECK(entries[2].empty());
+  CHECK(entries[3] == std::vector<std::string>{"joint 0", "joint 2"});
+  CHECK(plot::layout_problems(layout).empty());
+}
