@@ -547,7 +547,7 @@ TEST_CASE("compare without --signals draws the signals that differ most", "[plot
   const std::vector<plot::Run> same{{"a", &a}, {"a again", &a}};
   const plot::PlotSpec fallback = plot::default_comparison_spec(same);
   CHECK(!fallback.panels.empty());
-  // At most four signals in at most three panels, however many differ.
+  // At most kCompareSignals signals, each in a panel of its own, however many differ.
   core::Trajectory many({"t", "s0.x", "s1.x", "s2.x", "s3.x", "s4.x", "s5.x"});
   core::Trajectory others(many.columns());
   for (int i = 0; i <= 100; ++i) {
