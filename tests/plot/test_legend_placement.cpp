@@ -218,8 +218,8 @@ TEST_CASE("a legend covers no data when no corner is free", "[plot][legend]") {
       for (int j = 0; j < 2; ++j) {
         plot::Series angle, torque;
         angle.label = torque.label = "joint " + std::to_string(j);
-        for (int k = 0; k <= 20000; ++k) {
-          const double t = 20.0 * k / 20000;
+        for (int k = 0; k <= 4000; ++k) {
+          const double t = 20.0 * k / 4000;
           angle.x.push_back(t);
           angle.y.push_back(std::clamp(t - 1.0 - j, 0.0, 3.6) * (j ? 2.1 : 3.6));
           torque.x.push_back(t);
