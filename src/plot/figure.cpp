@@ -81,8 +81,10 @@ void draw_references(Painter& painter, const Panel& panel, const Axis& y, const 
 
 FigureLayout draw(const Figure& figure, cairo_t* cr) { return draw_figure(figure, cr, nullptr); }
 
-FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedText>* texts) {
-  check_size(figure);
+FigureLayout draw_figure(const Figure& given, cairo_t* cr, std::vector<PlacedText>* texts) {
+  check_size(given);
+  // A legend entry shown in an earlier panel's legend is not repeated (legend.hpp).
+  const Figure figure = shared_legend_entries(given);
   const PixelSize size = pixel_size(figure);
   FigureLayout layout;
   layout.width = size.width;
@@ -355,58 +357,65 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
           legend_boxes[p] = inside->box;
           continue;
         }
-        if (crowded[p]) {  // no room outside either: where the least data is
-          const InsidePlace least =
-              least_inked_place_inside(panel_at(p), painter, m, f, ink, legend_ink[p]);
-          legends[p] = least.legend;
-          legend_boxes[p] = least.box;
-          // No room even for one row: left out, and reported.
-          if (least.box.height() > f.height() || least.box.width() > f.width() + 1) {
-            legends[p].entries.clear();
-          }
-          continue;
-        }
-        // Outside: in the caption row when it fits there (no room taken), else where it costs
-        // the data least room, as a fraction of the figure (beside
-        // the axes every panel narrows, unless a legend is there already), a legend with
-        // shortened labels counting as worse beside and not going above at all.
-        const Legend on_top = legend_above(panel_at(p), painter, m, f.width(), 2);
-        // Beside the axes at most 40% of the figure's width and half the panels' width, or
-        // the width of the legends there already (its labels smaller, down to their floor, or
-        // shortened to fit).
-        const double beside_width =
-            std::min(0.4 * size.width, std::max(0.5 * free_width, outside_width) - 16 * s);
-        const Legend beside =
-            legend_beside(panel_at(p), painter, m, beside_width, frames.back().y1 - f.y0);
-        // Not above when that would leave the panels too short to hold two tick labels, nor
-        // in more than two rows (a column of entries goes beside the axes).
-        const bool room_above =
-            on_top.rows <= 2 && !on_top.shortened && on_top.width <= f.width() &&
-            panel_h - (on_top.height + 6 * s) / static_cast<double>(n_panels) > 3 * tick_line;
-        const double cost_above = room_above ? (on_top.height + 6 * s) / size.height
-                                             : std::numeric_limits<double>::infinity();
-        // Not beside when the panels would keep less than half the width they have without
-        // legends beside them (a legend as narrow as those there already costs nothing).
-        const double narrower = std::max(0.0, beside.width + 16 * s - outside_width);
-        const bool room_beside = beside.width + 16 * s <= outside_width + 0.5 ||
-                                 beside.width + 16 * s <= 0.5 * free_width;
-        const double cost_beside = room_beside
-                                       ? narrower / size.width + (beside.shortened ? 0.15 : 0.0)
-                                       : std::numeric_limits<double>::infinity();
-        moved = true;
-        if (std::isinf(cost_above) && std::isinf(cost_beside)) {
-          // Above in as many rows as it takes, labels whole, while the panels keep room for
-          // two tick labels; else inside where the least data is (the next pass).
-          const Legend tall = legend_above(panel_at(p), painter, m, f.width(), n_entries(p));
-          if (tall.shortened || tall.width > f.width() ||
-              panel_h - (tall.height + 6 * s) / static_cast<double>(n_panels) <= 3 * tick_line) {
-            crowded[p] = true;
+        if (crowded[p]) {
+          // No free corner and no room above in two rows or beside the axes: above the
+          // panel all the same, in as many rows as it takes, its labels shortened by the text
+          // rule if they must be -- never over the data (a legend there hid Fig. 7's torque
+          // band). Left out, and reported, when the panels would keep no room for two tick
+          // labels.
+          const Legend tall = legend_above_anyhow(panel_at(p), painter, m, f.width());
+          if (tall.width > f.width() + 0.5 ||
+              panel_h - (tall.height + 6 * s) / static_cast<double>(n_panels) <= 2 * tick_line) {
+            legends[p] = Legend{};
+            legend_ink[p] = 0;
             continue;
           }
           places[p] = LegendPlace::above;
           above_rows[p] = n_entries(p);
+          moved = true;
         } else {
-          places[p] = cost_above <= cost_beside ? LegendPlace::above : LegendPlace::right;
+          // Outside: in the caption row when it fits there (no room taken), else where it costs
+          // the data least room, as a fraction of the figure (beside
+          // the axes every panel narrows, unless a legend is there already), a legend with
+          // shortened labels counting as worse beside and not going above at all.
+          const Legend on_top = legend_above(panel_at(p), painter, m, f.width(), 2);
+          // Beside the axes at most 40% of the figure's width and half the panels' width, or
+          // the width of the legends there already (its labels smaller, down to their floor, or
+          // shortened to fit).
+          const double beside_width =
+              std::min(0.4 * size.width, std::max(0.5 * free_width, outside_width) - 16 * s);
+          const Legend beside =
+              legend_beside(panel_at(p), painter, m, beside_width, frames.back().y1 - f.y0);
+          // Not above when that would leave the panels too short to hold two tick labels, nor
+          // in more than two rows (a column of entries goes beside the axes).
+          const bool room_above =
+              on_top.rows <= 2 && !on_top.shortened && on_top.width <= f.width() &&
+              panel_h - (on_top.height + 6 * s) / static_cast<double>(n_panels) > 3 * tick_line;
+          const double cost_above = room_above ? (on_top.height + 6 * s) / size.height
+                                               : std::numeric_limits<double>::infinity();
+          // Not beside when the panels would keep less than half the width they have without
+          // legends beside them (a legend as narrow as those there already costs nothing).
+          const double narrower = std::max(0.0, beside.width + 16 * s - outside_width);
+          const bool room_beside = beside.width + 16 * s <= outside_width + 0.5 ||
+                                   beside.width + 16 * s <= 0.5 * free_width;
+          const double cost_beside = room_beside
+                                         ? narrower / size.width + (beside.shortened ? 0.15 : 0.0)
+                                         : std::numeric_limits<double>::infinity();
+          moved = true;
+          if (std::isinf(cost_above) && std::isinf(cost_beside)) {
+            // Above in as many rows as it takes, labels whole, while the panels keep room for
+            // two tick labels; else inside where the least data is (the next pass).
+            const Legend tall = legend_above(panel_at(p), painter, m, f.width(), n_entries(p));
+            if (tall.shortened || tall.width > f.width() ||
+                panel_h - (tall.height + 6 * s) / static_cast<double>(n_panels) <= 3 * tick_line) {
+              crowded[p] = true;
+              continue;
+            }
+            places[p] = LegendPlace::above;
+            above_rows[p] = n_entries(p);
+          } else {
+            places[p] = cost_above <= cost_beside ? LegendPlace::above : LegendPlace::right;
+          }
         }
       }
       if (places[p] == LegendPlace::caption) {
@@ -419,7 +428,14 @@ FigureLayout draw_figure(const Figure& figure, cairo_t* cr, std::vector<PlacedTe
         places[p] = LegendPlace::above;
         moved = true;
       }
-      if (places[p] == LegendPlace::above) {
+      if (places[p] == LegendPlace::above && crowded[p]) {
+        // Above because it has no other place: whatever shape fits the panel's width.
+        legends[p] = legend_above_anyhow(panel_at(p), painter, m, f.width());
+        if (legends[p].height + 6 * s > above[p] + 0.5) {
+          above[p] = legends[p].height + 6 * s;
+          moved = true;
+        }
+      } else if (places[p] == LegendPlace::above) {
         legends[p] = legend_above(panel_at(p), painter, m, f.width(), above_rows[p]);
         if (legends[p].rows > above_rows[p] || legends[p].shortened ||
             legends[p].width > f.width() + 0.5) {

@@ -77,6 +77,9 @@ struct Panel {
   std::optional<double> y_min, y_max;     // fixed range instead of the data's
   std::vector<ReferenceLine> references;  // always inside the vertical range
   std::string caption{};  // a line above the panel, e.g. a long component name and what it is
+  // Set by the layout (shared_legend_entries): the panel's other entries are in an earlier
+  // panel's legend, so one entry left (a reference line) still gets a legend.
+  bool legend_keeps_one_entry = false;
 };
 
 struct EventMarker {

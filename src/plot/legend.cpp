@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "plot/text_fit.hpp"
 
@@ -16,8 +17,62 @@ std::vector<int> legend_entries(const Panel& panel) {
   for (std::size_t k = 0; k < panel.references.size(); ++k) {
     if (!panel.references[k].label.empty()) entries.push_back(-1 - static_cast<int>(k));
   }
-  if (entries.size() < 2 && !(entries.size() == 1 && panel.label.empty())) entries.clear();
+  if (entries.size() < 2 &&
+      !(entries.size() == 1 && (panel.label.empty() || panel.legend_keeps_one_entry))) {
+    entries.clear();
+  }
   return entries;
+}
+
+namespace {
+
+bool same_style(const LineStyle& a, const LineStyle& b) {
+  return a.colour.r == b.colour.r && a.colour.g == b.colour.g && a.colour.b == b.colour.b &&
+         a.colour.a == b.colour.a && a.dash == b.dash && a.width == b.width;
+}
+
+LineStyle style_of(const Panel& panel, std::size_t i) {
+  return panel.series[i].style ? *panel.series[i].style : series_style(static_cast<int>(i));
+}
+
+}  // namespace
+
+Figure shared_legend_entries(const Figure& given) {
+  Figure figure = given;
+  struct Shown {
+    std::string label;
+    LineStyle style;
+  };
+  std::vector<Shown> shown;
+  for (Panel& panel : figure.panels) {
+    const std::vector<int> entries = legend_entries(panel);
+    if (entries.empty()) continue;
+    std::vector<int> repeated;
+    for (int i : entries) {
+      if (i < 0) continue;
+      const LineStyle style = style_of(panel, static_cast<std::size_t>(i));
+      if (std::any_of(shown.begin(), shown.end(), [&](const Shown& e) {
+            return e.label == panel.series[i].label && same_style(e.style, style);
+          })) {
+        repeated.push_back(i);
+      }
+    }
+    const std::size_t left = entries.size() - repeated.size();
+    // Left out when the legend keeps what the reader cannot get from the earlier one: no
+    // entry (the same legend again), a reference line alone, or two entries or more.
+    const bool alone_reference =
+        left == 1 && std::any_of(entries.begin(), entries.end(), [&](int i) {
+          return i < 0 && std::find(repeated.begin(), repeated.end(), i) == repeated.end();
+        });
+    if (!repeated.empty() && (left == 0 || left >= 2 || alone_reference)) {
+      for (int i : repeated) panel.series[i].label.clear();
+      panel.legend_keeps_one_entry = alone_reference;
+    }
+    for (int i : legend_entries(panel)) {
+      if (i >= 0) shown.push_back({panel.series[i].label, style_of(panel, i)});
+    }
+  }
+  return figure;
 }
 
 Legend shape_legend(const Panel& panel, const std::vector<int>& entries, Painter& painter,
@@ -105,6 +160,26 @@ Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, doub
   Legend L = lowest
                  ? *lowest
                  : shape_legend(panel, entries, painter, m, std::max(1, n), max_width, m.legend());
+  L.place = LegendPlace::above;
+  return L;
+}
+
+Legend legend_above_anyhow(const Panel& panel, Painter& painter, const Metrics& m,
+                           double max_width) {
+  const std::vector<int> entries = legend_entries(panel);
+  const int n = static_cast<int>(entries.size());
+  // The least height within max_width: labels whole before shortened, the legend's size
+  // before the floor of its text, more columns before fewer.
+  std::optional<Legend> pick;
+  auto rank = [](const Legend& L) { return std::make_tuple(L.shortened, L.height); };
+  for (const double size : {m.legend(), m.floor(m.legend())}) {
+    for (int columns = std::max(1, n); columns >= 1; --columns) {
+      Legend L = shape_legend(panel, entries, painter, m, columns, max_width, size);
+      if (L.width > max_width + 0.5) continue;
+      if (!pick || rank(L) < rank(*pick)) pick = std::move(L);
+    }
+  }
+  Legend L = pick ? *pick : shape_legend(panel, entries, painter, m, 1, max_width, m.legend());
   L.place = LegendPlace::above;
   return L;
 }
@@ -223,31 +298,6 @@ std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painte
     return pick->place;
   }
   return std::nullopt;
-}
-
-InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                     const Rect& f, const PanelInk& ink, long& ink_under) {
-  std::vector<Candidate> found = inside_places(panel, painter, m, f, ink, m.legend());
-  for (Candidate& c : inside_places(panel, painter, m, f, ink, m.floor(m.legend()))) {
-    found.push_back(std::move(c));
-  }
-  if (found.empty()) {
-    // Too big for the frame in every shape: one row, its labels shortened to the frame's
-    // width, at the top (the caller checks that it fits the frame's height).
-    const std::vector<int> entries = legend_entries(panel);
-    Legend L = shape_legend(panel, entries, painter, m, static_cast<int>(entries.size()), f.width(),
-                            m.legend());
-    const Rect box{std::round(f.x0), std::round(f.y0), std::round(f.x0 + L.width),
-                   std::round(f.y0 + L.height)};
-    ink_under = ink.data.count(box);
-    return InsidePlace{L, box};
-  }
-  const Candidate* pick = nullptr;
-  for (const Candidate& c : found) {
-    if (!pick || c.data < pick->data || (c.data == pick->data && c.score < pick->score)) pick = &c;
-  }
-  ink_under = pick->data;
-  return pick->place;
 }
 
 void draw_legend(Painter& painter, const Panel& panel, const Legend& L, const Rect& box,

@@ -40,6 +40,13 @@ struct Legend {
 // (one series: the axis label already names it).
 std::vector<int> legend_entries(const Panel& panel);
 
+// The figure with its legends shared (matplotlib's figure legend, per entry): a series entry
+// whose label and style are already in an earlier panel's legend is left out of a later
+// one (Fig. 7's "joint 0", "joint 1" in both panels: the torque panel's legend keeps
+// "friction level F" alone), unless that would leave a single series entry, which the axis
+// label names no better.
+Figure shared_legend_entries(const Figure& figure);
+
 // The legend in `columns` columns (entries down each column), at font size `size`, its labels
 // fitted to `max_width` in all by the text rule (smaller, then shortened at whole words).
 Legend shape_legend(const Panel& panel, const std::vector<int>& entries, Painter& painter,
@@ -55,6 +62,13 @@ Legend legend_beside(const Panel& panel, Painter& painter, const Metrics& m, dou
 // shortened.
 Legend legend_above(const Panel& panel, Painter& painter, const Metrics& m, double max_width,
                     int max_rows = 2);
+
+// Above the panel when it has no other place (no free corner inside, no room above in two
+// rows nor beside the axes): the shape of the least height within `max_width`, labels whole
+// if any shape keeps them so, else shortened by the text rule; in one column if nothing
+// narrower fits (the caller checks the width).
+Legend legend_above_anyhow(const Panel& panel, Painter& painter, const Metrics& m,
+                           double max_width);
 
 // In the panel's caption row: its entries side by side in one row without a box, labels whole
 // at the legend's size or the floor of its text, at most `max_width` wide (the frame's width
@@ -77,8 +91,10 @@ struct PanelInk {
 // left; the middles of the edges; places along the edges) and shape (one to four columns),
 // the one whose box, with a margin, covers the least data (an event mark counting a quarter
 // of a data pixel), its text at `size` (the legend's, or the floor of its text); the first in
-// that order on a tie; none when that covers more than kLegendDataShare of the panel's data.
-// `ink_under` gets the data pixels under it.
+// that order on a tie; none when that covers more than kLegendDataShare of the panel's data
+// (a legend never goes over data: with no free place it goes outside, legend_above_anyhow).
+// Shapes with shortened labels only when no shape keeps them whole. `ink_under` gets the data
+// pixels under it.
 struct InsidePlace {
   Legend legend;
   Rect box;
@@ -86,13 +102,6 @@ struct InsidePlace {
 std::optional<InsidePlace> free_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
                                              const Rect& frame, const PanelInk& ink, double size,
                                              long& ink_under);
-
-// The place inside with the least data under it whatever the share (at the legend's size
-// or the floor of its text), for a figure with no room outside the axes (`ink_under` gets
-// the count of data pixels under its box). Shapes with shortened labels only when no shape
-// keeps them whole, here and in free_place_inside.
-InsidePlace least_inked_place_inside(const Panel& panel, Painter& painter, const Metrics& m,
-                                     const Rect& frame, const PanelInk& ink, long& ink_under);
 
 // The box and its entries: a line sample in the series' style, then the label.
 void draw_legend(Painter& painter, const Panel& panel, const Legend& legend, const Rect& box,

@@ -898,8 +898,11 @@ PlotSpec default_comparison_spec(const std::vector<Run>& runs) {
     return drift_comparison_spec();
   }
   // The signals that differ most between the runs (run_difference, relative to each one's
-  // range): the first, and those within kCompareShare of it, at most kCompareSignals signals
-  // in at most kComparePanels panels (signal groups), in the order of the columns.
+  // range): the first, and those within kCompareShare of it, at most kCompareSignals, in the
+  // order of the columns, each in a panel of its own. One signal per panel, the runs told
+  // apart by colour, makes the legend the runs' names alone, shown once for the figure (a
+  // panel of two axes of two runs had four "run: axis" entries, and on an 88 x 70 mm page
+  // legends beside the axes took 40% of its width).
   std::vector<std::pair<double, std::size_t>> scored;
   for (std::size_t i = 0; i < common.size(); ++i) {
     if (common[i] == "t") continue;
@@ -909,22 +912,22 @@ PlotSpec default_comparison_spec(const std::vector<Run>& runs) {
   std::stable_sort(scored.begin(), scored.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   std::vector<std::size_t> picked;
-  std::vector<std::string> groups;
   for (const auto& [d, i] : scored) {
     if (picked.size() >= kCompareSignals || d < kCompareShare * scored.front().first) break;
-    const std::string& c = common[i];
-    const std::size_t first = c.find('.');
-    const std::string group = first == std::string::npos ? c : c.substr(0, c.find('.', first + 1));
-    const bool new_group = std::find(groups.begin(), groups.end(), group) == groups.end();
-    if (new_group && groups.size() >= kComparePanels) continue;
-    if (new_group) groups.push_back(group);
     picked.push_back(i);
   }
   if (!picked.empty()) {
     std::sort(picked.begin(), picked.end());
-    std::vector<std::string> chosen;
-    for (std::size_t i : picked) chosen.push_back(common[i]);
-    return comparison_spec(runs, chosen, {});
+    PlotSpec spec;
+    for (std::size_t i : picked) {
+      PlotSpec one = comparison_spec(runs, {common[i]}, {});
+      if (spec.panels.empty()) {
+        spec = std::move(one);
+      } else {
+        spec.panels.insert(spec.panels.end(), one.panels.begin(), one.panels.end());
+      }
+    }
+    return spec;
   }
   // The runs agree everywhere: the first default figure of what they share.
   std::vector<PlotSpec> specs = default_plot_specs(common);

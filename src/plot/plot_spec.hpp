@@ -184,10 +184,11 @@ FigureLayout write_comparison_plot(const PlotSpec& spec, const std::vector<Run>&
 // when every run has the arm's joint angles; else the signals common to all runs that differ
 // most between them (the largest gap of a run from the first, relative to the signal's range
 // over the runs): the one that differs most and those within kCompareShare of it, at most
-// kCompareSignals signals in at most kComparePanels panels, as comparison_spec draws them;
-// runs that agree everywhere: the first default figure of their common columns.
-inline constexpr std::size_t kCompareSignals = 4;
-inline constexpr std::size_t kComparePanels = 3;
+// kCompareSignals, each in a panel of its own as comparison_spec draws a column given alone
+// (so the legend is the runs' names, shown once); runs that agree everywhere: the first
+// default figure of their common columns.
+inline constexpr std::size_t kCompareSignals = 3;
+inline constexpr std::size_t kComparePanels = kCompareSignals;
 inline constexpr double kCompareShare = 0.25;
 PlotSpec default_comparison_spec(const std::vector<Run>& runs);
 // A comparison of chosen signals: one panel per signal group among `signals` (each a column

@@ -193,3 +193,120 @@ TEST_CASE("legends go inside where they cover the least data, else outside the a
                          << "; the largest share of a panel's data under a legend inside: "
                          << worst);
 }
+
+// A legend never covers data, even where no corner of a panel is free and the page leaves no
+// room above or beside the axes: it then goes outside all the same (the caption row, above
+// in as many rows as it takes) rather than over the data. Fig. 7's torque panel is the case
+// reported: two motor torques dithering over a band that fills the panel from 4 s on, with
+// a reference line, squeezed onto small pages with a four-row column of event labels.
+TEST_CASE("a legend covers no data when no corner is free", "[plot][legend]") {
+  fs::create_directories(kOut);
+  int inside = 0, outside = 0, figures = 0, left_out = 0;
+  for (const double width_mm : {70.0, 80.0, 88.0, 100.0, 120.0}) {
+    for (const double height_mm : {50.0, 60.0, 70.0, 85.0, 100.0}) {
+      plot::Figure figure;
+      figure.title = "Two-link arm, joint friction (cf. paper Fig. 7)";
+      figure.print = plot::Figure::Print{width_mm, height_mm, 8.0, 300.0};
+      figure.panels.resize(2);
+      plot::Panel& angles = figure.panels[0];
+      angles.label = "Joint angle θ";
+      angles.unit = "rad";
+      plot::Panel& torques = figure.panels[1];
+      torques.label = "Motor torque";
+      torques.unit = "N·m";
+      torques.references.push_back(plot::ReferenceLine{0.5, "friction level F"});
+      for (int j = 0; j < 2; ++j) {
+        plot::Series angle, torque;
+        angle.label = torque.label = "joint " + std::to_string(j);
+        for (int k = 0; k <= 4000; ++k) {
+          const double t = 20.0 * k / 4000;
+          angle.x.push_back(t);
+          angle.y.push_back(std::clamp(t - 1.0 - j, 0.0, 3.6) * (j ? 2.1 : 3.6));
+          torque.x.push_back(t);
+          // A ramp to the friction level, held, then dithering over [0.2, 0.48] from 4 s.
+          torque.y.push_back(t < 4.0 ? std::min(0.52, 0.3 * t * (j ? 1.2 : 1.0))
+                                     : (k % 2 == j ? 0.48 : 0.2));
+        }
+        angles.series.push_back(std::move(angle));
+        torques.series.push_back(std::move(torque));
+      }
+      for (const double t : {1.005, 1.571, 4.636, 4.651}) {
+        plot::EventMarker e;
+        e.x = t;
+        e.label = "joint1_friction slip " + std::to_string(t).substr(0, 5) + " s";
+        e.kind = "slip";
+        figure.events.push_back(e);
+      }
+      const std::string name = "crowded_" + std::to_string(static_cast<int>(width_mm)) + "x" +
+                               std::to_string(static_cast<int>(height_mm));
+      const plot::FigureLayout layout =
+          plot::write_figure(figure, kOut / (name + ".png"), plot::Format::png);
+      ++figures;
+      INFO(name);
+      for (std::size_t k = 0; k < layout.legends.size(); ++k) {
+        const plot::Rect& box = layout.legends[k];
+        const int p = layout.legend_panels[k];
+        if (layout.legend_outside[k]) {
+          ++outside;
+          for (const plot::Rect& f : layout.panels) CHECK_FALSE(box.overlaps(f));
+          continue;
+        }
+        ++inside;
+        const long inked = ink_under(figure, layout, p, box);
+        const long data = ink_under(figure, layout, p, layout.panels[p]);
+        INFO("legend of panel " << p << " over " << inked << " of " << data << " data pixels");
+        CHECK(static_cast<double>(inked) <= 0.05 * static_cast<double>(data));
+      }
+      // From 70 mm high every panel's legend is shown somewhere; on smaller pages one may be
+      // left out (and reported) rather than drawn over the data.
+      if (height_mm >= 70.0) {
+        CHECK(layout.legends.size() == 2);
+        CHECK(layout.legends_left_out.empty());
+      } else {
+        left_out += static_cast<int>(layout.legends_left_out.size());
+      }
+    }
+  }
+  WARN(figures << " figures: legends inside " << inside << ", outside " << outside << ", left out "
+               << left_out);
+}
+
+// A legend entry already in an earlier panel's legend (same label, same line) is not
+// repeated: Fig. 7's torque panel keeps "friction level F" alone, and a panel whose entries
+// are all in the legend above has none. An entry that would be left alone without a
+// reference line keeps its panel's legend whole.
+TEST_CASE("legend entries shown in an earlier panel are not repeated", "[plot][legend]") {
+  auto series = [](const std::string& label, double gain) {
+    plot::Series s;
+    s.label = label;
+    for (int k = 0; k <= 200; ++k) {
+      s.x.push_back(0.01 * k);
+      s.y.push_back(gain * std::sin(0.03 * k));
+    }
+    return s;
+  };
+  plot::Figure figure;
+  figure.print = plot::Figure::Print{88.0, 100.0, 8.0, 300.0};
+  figure.panels.resize(4);
+  const char* names[] = {"angle", "torque", "rate", "error"};
+  for (int p = 0; p < 4; ++p) figure.panels[p].label = names[p];
+  for (int p = 0; p < 3; ++p) {
+    figure.panels[p].series.push_back(series("joint 0", 1.0 + p));
+    figure.panels[p].series.push_back(series("joint 1", -1.0 - p));
+  }
+  figure.panels[1].references.push_back(plot::ReferenceLine{0.5, "friction level F"});
+  // joint 0 as above, and a new series: the legend keeps both.
+  figure.panels[3].series.push_back(series("joint 0", 2.0));
+  figure.panels[3].series.push_back(series("joint 2", 0.5));
+  const plot::FigureLayout layout =
+      plot::write_figure(figure, kOut / "shared_entries.png", plot::Format::png);
+  std::vector<std::vector<std::string>> entries(4);
+  for (const plot::TextBox& t : layout.texts) {
+    if (t.role == plot::TextRole::legend_entry && t.panel >= 0) entries[t.panel].push_back(t.given);
+  }
+  CHECK(entries[0] == std::vector<std::string>{"joint 0", "joint 1"});
+  CHECK(entries[1] == std::vector<std::string>{"friction level F"});
+  CHECK(entries[2].empty());
+  CHECK(entries[3] == std::vector<std::string>{"joint 0", "joint 2"});
+  CHECK(plot::layout_problems(layout).empty());
+}

@@ -547,7 +547,7 @@ TEST_CASE("compare without --signals draws the signals that differ most", "[plot
   const std::vector<plot::Run> same{{"a", &a}, {"a again", &a}};
   const plot::PlotSpec fallback = plot::default_comparison_spec(same);
   CHECK(!fallback.panels.empty());
-  // At most four signals in at most three panels, however many differ.
+  // At most kCompareSignals signals, each in a panel of its own, however many differ.
   core::Trajectory many({"t", "s0.x", "s1.x", "s2.x", "s3.x", "s4.x", "s5.x"});
   core::Trajectory others(many.columns());
   for (int i = 0; i <= 100; ++i) {
@@ -563,4 +563,53 @@ TEST_CASE("compare without --signals draws the signals that differ most", "[plot
   CHECK(signals <= plot::kCompareSignals);
   CHECK(capped.panels.size() <= plot::kComparePanels);
   CHECK(signals >= 3);
+}
+
+TEST_CASE("compare without --signals: a panel per signal, the runs' names once as its legend",
+          "[plot][compare]") {
+  // Two runs of a contact: both axes of its force and its normal force differ (as
+  // roll_to_slip against sphere_roll), with long run names.
+  auto run = [](double gain) {
+    core::Trajectory t({"t", "ground.f.x", "ground.f.z", "ground.n_force", "ball.p.x"});
+    for (int i = 0; i <= 2000; ++i) {
+      const double time = 1e-3 * i;
+      const double row[] = {time, gain * std::sin(9 * time), 300 * gain * (i % 97 == 0),
+                            200 * gain * std::abs(std::cos(5 * time)), time};
+      t.append(row);
+    }
+    return t;
+  };
+  const core::Trajectory a = run(0.05), b = run(1.0);
+  const std::vector<plot::Run> runs{{"roll_to_slip_hollow", &a}, {"sphere_roll_long_name", &b}};
+  const plot::PlotSpec spec = plot::default_comparison_spec(runs);
+  REQUIRE(spec.panels.size() == 3);
+  for (const plot::PanelSpec& p : spec.panels) CHECK(p.signals.size() == 1);
+  const plot::Figure figure = plot::make_comparison_figure(spec, runs);
+  std::vector<std::string> labels;
+  int panels_with_labels = 0;
+  for (const plot::Panel& p : figure.panels) {
+    bool any = false;
+    for (const plot::Series& s : p.series) {
+      if (s.label.empty()) continue;
+      labels.push_back(s.label);
+      any = true;
+    }
+    panels_with_labels += any ? 1 : 0;
+  }
+  CHECK(panels_with_labels == 1);
+  CHECK(labels == std::vector<std::string>{"roll_to_slip_hollow", "sphere_roll_long_name"});
+  // On an 88 x 70 mm page the legend takes little of it and the panels most.
+  plot::Figure page = figure;
+  page.print = plot::Figure::Print{88.0, 70.0, 8.0, 300.0};
+  const plot::FigureLayout layout = plot::write_figure(
+      page, std::filesystem::path(STICTION_TEST_OUTPUT_DIR) / "compare_88x70.png",
+      plot::Format::png);
+  double legend_area = 0.0, data_area = 0.0;
+  for (const plot::Rect& r : layout.legends) legend_area += r.width() * r.height();
+  for (const plot::Rect& r : layout.panels) data_area += r.width() * r.height();
+  const double page_area = static_cast<double>(layout.width) * layout.height;
+  INFO("legends " << legend_area / page_area << ", panels " << data_area / page_area);
+  CHECK(legend_area <= 0.06 * page_area);
+  CHECK(data_area >= 0.2 * page_area);
+  CHECK(plot::layout_problems(layout).empty());
 }
