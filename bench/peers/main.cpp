@@ -10,7 +10,8 @@
 //   ramp_grid,pinch (default: all).
 // --spheres: the sizes N of the spheres problem (default 1,10,100,1000).
 // --engines: a comma-separated list of engine names to keep (stiction,ode,bullet,mujoco,
-//   dart,siconos; the start of the name, any case). Ratios are to the rows kept.
+//   dart,siconos; the start of the name, any case), or of an engine and its settings
+//   ("stiction implicit" keeps stiction's implicit rows alone). Ratios are to the rows kept.
 #include <time.h>
 
 #include <algorithm>
@@ -390,8 +391,8 @@ int main(int argc, char** argv) {
 #endif
 
   if (!options.engines.empty()) {
-    // Keep the engines named (by the start of their name, any case); the first row stays
-    // stiction rk4 whenever stiction is kept.
+    // Keep the engines named (by the start of their name, or of their name and settings, any
+    // case); the first row stays stiction rk4 whenever all of stiction is kept.
     auto lower = [](std::string text) {
       for (char& ch : text) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
       return text;
@@ -399,7 +400,9 @@ int main(int argc, char** argv) {
     Peers kept;
     for (auto& peer : peers) {
       for (const std::string& name : options.engines) {
-        if (lower(peer->engine()).rfind(lower(name), 0) == 0) {
+        // An engine ("ode") or an engine and the start of its settings ("stiction implicit").
+        const std::string full = lower(peer->engine() + " " + peer->settings());
+        if (lower(peer->engine()).rfind(lower(name), 0) == 0 || full.rfind(lower(name), 0) == 0) {
           kept.push_back(std::move(peer));
           break;
         }

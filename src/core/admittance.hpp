@@ -44,6 +44,14 @@ class Admittance {
   // Called once after every full step: bring the state back to its manifold (unit
   // quaternions). Never inside a derivative, so RK stages see plain vector arithmetic.
   virtual void project(VecRef /*x*/) const {}
+  // For an implicit Euler step x = start + h A(x, u_hat): sets the entries of `iterate` whose
+  // equation involves the component's own state alone (kinematics: a quaternion given the
+  // iterate's angular velocity) to that equation's exact solution. Newton's iteration with a
+  // matrix kept over several steps converges on such rows only as fast as the matrix is fresh
+  // (a rolling sphere's quaternion block goes stale as it turns); solved here, they follow the
+  // other rows. The default leaves the iterate as it is.
+  virtual void solve_kinematics(const double* /*start*/, double* /*iterate*/,
+                                double /*h*/) const {}
 
   virtual std::vector<SignalInfo> signals() const = 0;
   virtual void write_signals(ConstVecRef x, VecRef out) const = 0;

@@ -538,6 +538,7 @@ bool ImplicitEulerStepper::solve(Network& network, IslandSolve& s, double t, dou
       const double* delta = s.delta.data() + run.index;
       for (int k = 0; k < run.length; ++k) iterate[k] -= delta[k];
     }
+    network.solve_kinematics(start_, iterate_, h, &s.island);
     evaluate_iterate(network, s, t_end, h);
     // Converged when the next Newton correction is below the tolerance: measured on the
     // correction, not the residual, since a stiff element's residual carries its stiffness

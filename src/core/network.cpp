@@ -386,6 +386,15 @@ void Network::project(VecRef x, const Island* part) const {
   });
 }
 
+void Network::solve_kinematics(const Vec& start, Vec& iterate, double h,
+                               const Island* part) const {
+  for_each_index(part ? &part->admittances : nullptr, admittances_.size(), [&](std::size_t j) {
+    const Slot& s = admittance_slots_[j];
+    admittances_[j]->solve_kinematics(start.data() + s.state_offset,
+                                      iterate.data() + s.state_offset, h);
+  });
+}
+
 std::vector<std::string> Network::signal_columns() const {
   std::vector<std::string> names;
   for (const auto& a : admittances_) {

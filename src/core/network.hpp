@@ -57,6 +57,9 @@ class Network {
   double friction_cap_energy(ConstVecRef x, const Island* part = nullptr);
   // Normalizes the quaternions (of the island's bodies only, with `part`).
   void project(VecRef x, const Island* part = nullptr) const;
+  // Each admittance's Admittance::solve_kinematics on its slices of start and iterate.
+  void solve_kinematics(const Vec& start, Vec& iterate, double h,
+                        const Island* part = nullptr) const;
   // Admittance derivatives with no forces applied: the position rates (p_dot = v,
   // q_dot = Q(w, q), theta_dot = omega) of a state, for partitioned integrators (with
   // `part`, the island's entries only).

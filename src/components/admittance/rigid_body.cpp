@@ -63,6 +63,21 @@ void RigidBody::derivative_at(const double* x_data, const double* u_data, double
 
 void RigidBody::project(VecRef x) const { x.segment<4>(6).normalize(); }
 
+void RigidBody::solve_kinematics(const double* start, double* iterate, double h) const {
+  // q = q0 + h/2 q (x) (0, w) with w the iterate's: q = (I - a)^-1 q0 where a, the right
+  // product by (0, h w / 2), is skew with a^2 = -|h w / 2|^2 I, so (I - a)^-1 = (I + a) /
+  // (1 + |h w / 2|^2).
+  const Vec3 a = 0.5 * h * Vec3(iterate[10], iterate[11], iterate[12]);
+  const double qw = start[6];
+  const Vec3 qv(start[7], start[8], start[9]);
+  const double scale = 1.0 / (1.0 + a.squaredNorm());
+  const Vec3 v = qw * a + qv.cross(a);
+  iterate[6] = (qw - qv.dot(a)) * scale;
+  iterate[7] = (qv[0] + v[0]) * scale;
+  iterate[8] = (qv[1] + v[1]) * scale;
+  iterate[9] = (qv[2] + v[2]) * scale;
+}
+
 std::vector<core::SignalInfo> RigidBody::signals() const {
   return {{.name = "p", .axes = core::xyz_axes(), .unit = "m", .frame = "world",
            .description = "position of the centre of mass"},

@@ -32,6 +32,7 @@ class RigidBody final : public core::Body {
   }
   void derivative_at(const double* x, const double* u_hat, double* x_dot) const override;
   void project(core::VecRef x) const override;
+  void solve_kinematics(const double* start, double* iterate, double h) const override;
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x, core::VecRef out) const override;
   double energy(core::ConstVecRef x) const override;
