@@ -72,24 +72,18 @@ class IslandSystem {
   Network& network() { return network_; }
   const Island& island() const { return island_; }
 
-  // Calls of the three maps below: the work of this island's analysis (radius_work).
-  long evaluations() const { return evaluations_; }
-
   void derivative(const Vec& y, double tau, Vec& out) {
-    ++evaluations_;
     place(y);
     network_.derivative_part(t_, full_.data(), tau, out_.data(), island_);
     take(out);
   }
   // With the clamped friction held at its value at x.
   void derivative_friction_held(const Vec& y, double tau, Vec& out) {
-    ++evaluations_;
     place(y);
     network_.derivative_friction_held(t_, full_, tau, out_, x_, &island_);
     take(out);
   }
   void kinematics(const Vec& y, Vec& out) {
-    ++evaluations_;
     place(y);
     network_.kinematics(full_, out_, &island_);
     take(out);
@@ -111,7 +105,6 @@ class IslandSystem {
   Vec& full_;
   Vec& out_;
   Vec y_;
-  long evaluations_ = 0;
 };
 
 // Whether the forward and backward differences of a column agree: the state is not on a
@@ -644,12 +637,11 @@ bool unstable_step(const StepRadius& r, double headroom, bool chatter_counts) {
 namespace {
 struct SearchStopped {};  // unwinds the search from inside its lambdas
 
-// One radius's work in AnalysisBudget units: the eigenvalue problems it may solve (the cubes
-// of the irreducible blocks of the site's pattern; a block a bound settles costs less) and n
-// for each island evaluation it made.
-double radius_work(const Sparsity& sparsity, const IslandSystem& sys) {
-  return sparsity.eigen_work +
-         static_cast<double>(sys.size()) * static_cast<double>(sys.evaluations());
+// One radius's work in AnalysisBudget units: an eigenvalue problem per irreducible block of
+// the site's pattern (its size cubed; a block a bound settles costs less) and the Jacobian's
+// n^2 entries.
+double radius_work(const Sparsity& sparsity, int n) {
+  return sparsity.eigen_work + static_cast<double>(n) * static_cast<double>(n);
 }
 
 // Which sampled states each island is analysed at. One island: all of them. Several: each
@@ -716,16 +708,18 @@ StepLimit predict_step_limit(Network& network, const std::string& integrator,
   auto radius_at = [&](Site& site, double h) {
     auto it = site.radii.find(h);
     if (it != site.radii.end()) return it->second;
-    if (budget != nullptr && budget->spent > budget->limit) throw SearchStopped{};
     const TimedState& s = states[site.state];
     auto& room = scratch[site.state];
     if (!room) room.emplace(s.x);
     IslandSystem sys(network, islands[site.island], s.t, s.x, room->full, room->out);
     if (!site.sparsity) site.sparsity = state_sparsity(sys);
+    if (budget != nullptr) {
+      budget->spent += radius_work(*site.sparsity, sys.size());
+      if (budget->spent > budget->limit) throw SearchStopped{};
+    }
     site.linearization.sparsity = &*site.sparsity;
     site.linearization.verdict_only = true;
     StepRadius r = island_step_radius(sys, integrator, h, site.linearization, solved);
-    if (budget != nullptr) budget->spent += radius_work(*site.sparsity, sys);
     if (r.full <= 1.0 + kUnstableGrowth) r.friction_cap = 0.0;
     site.radii.emplace(h, r);
     return r;

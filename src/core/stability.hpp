@@ -83,13 +83,10 @@ inline bool analysable(const Network& network) {
   return largest_island_states(network) <= kMaxAnalysedStates;
 }
 
-// Work the step analysis may spend, shared by the searches it is passed to. Each spectral
-// radius of an island of n states counts the eigenvalue problems it may solve, the cubes of
-// the sizes of the irreducible blocks of the island's sparsity pattern (core/spectrum.hpp),
-// plus n for every evaluation of the island it made (its Jacobians; the pattern, at the
-// first radius of a state). Counted after each radius; a search stops at its next radius
-// once the budget is spent. Machine-independent, so that `check` gives the same answer on
-// any machine.
+// Work the step analysis may spend, in units of one radius (the cube of the size of each
+// irreducible block of the island's sparsity pattern, core/spectrum.hpp, plus n^2 for its
+// Jacobian, summed), shared by the searches it is passed to. Machine-independent, so that
+// `check` gives the same answer on any machine.
 struct AnalysisBudget {
   double limit = 0.0;
   double spent = 0.0;
