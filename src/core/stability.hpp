@@ -38,8 +38,7 @@ struct TimedState {
 // most kMaxSampledStates in all (each regime's first ones first), so that the analysis
 // stays within seconds whatever the scene.
 inline constexpr std::size_t kMaxSampledStates = 48;
-std::vector<TimedState> sample_states(Network& network, const RunOptions& options,
-                                      int per_regime);
+std::vector<TimedState> sample_states(Network& network, const RunOptions& options, int per_regime);
 
 // A step is called unstable where it amplifies some mode by more than this per step: such
 // growth runs away within tens of steps. Weaker growth is left out on purpose: a rolling
@@ -84,18 +83,19 @@ inline bool analysable(const Network& network) {
   return largest_island_states(network) <= kMaxAnalysedStates;
 }
 
-// Work the step analysis may spend, in units of one dense radius (the cube of each coupled
-// group's size, plus n^2 for its Jacobian, summed), shared by the searches it is passed to.
-// Machine-independent, so that `check` gives the same answer on any machine.
+// Work the step analysis may spend, in units of one radius (the cube of the size of each
+// irreducible block of the island's sparsity pattern, core/spectrum.hpp, plus n^2 for its
+// Jacobian, summed), shared by the searches it is passed to. Machine-independent, so that
+// `check` gives the same answer on any machine.
 struct AnalysisBudget {
   double limit = 0.0;
   double spent = 0.0;
 };
 
 struct StepLimit {
-  bool skipped = false;      // too many states for the dense analysis (kMaxAnalysedStates)
-  bool interrupted = false;  // `stop` was set, or the budget ran out, before the search ended
-  bool over_budget = false;  // the budget ran out: no answer
+  bool skipped = false;        // too many states for the dense analysis (kMaxAnalysedStates)
+  bool interrupted = false;    // `stop` was set, or the budget ran out, before the search ended
+  bool over_budget = false;    // the budget ran out: no answer
   double max_step = 0.0;       // largest stable step found (0: none above h_min)
   double limiting_time = 0.0;  // time of the sampled state that limits it
   bool unbounded = false;      // stable up to h_max
