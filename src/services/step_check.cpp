@@ -130,29 +130,77 @@ StepCheck check_step(scene::Scene& scene) {
   return c;
 }
 
-StepCheck SharedStepChecks::check(scene::Scene& scene) {
-  const DynamicsFingerprint fingerprint = dynamics_fingerprint(scene);
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& [known, c] : known_) {
-      if (!(known == fingerprint)) continue;
-      StepCheck shared = c;
-      shared.dt = scene.run.dt;
-      shared.shared = true;
-      shared.cached = false;
-      shared.analysis_seconds = 0.0;
-      return shared;
+SharedStepChecks::SharedStepChecks(std::function<scene::Scene(std::size_t)> load)
+    : load_(std::move(load)) {}
+
+std::size_t SharedStepChecks::representative(const DynamicsFingerprint& fingerprint,
+                                             std::size_t point) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& [known, first] : firsts_) {
+    if (known == fingerprint) return first;
+  }
+  // Points below `point` not yet fingerprinted: the first of them with this fingerprint
+  // represents it. Each point is loaded here at most once per process.
+  for (; scanned_ < point; ++scanned_) {
+    try {
+      scene::Scene earlier = load_(scanned_);
+      DynamicsFingerprint f = dynamics_fingerprint(earlier);
+      const bool match = f == fingerprint;
+      bool known = false;
+      for (const auto& entry : firsts_) known = known || entry.first == f;
+      if (!known) firsts_.emplace_back(std::move(f), scanned_);
+      if (match) return scanned_++;
+    } catch (const std::exception&) {
+      // A point that does not load (its row says why) represents nothing.
     }
   }
-  StepCheck c = check_step(scene);
-  const std::lock_guard<std::mutex> lock(mutex_);
-  known_.emplace_back(fingerprint, c);
+  if (scanned_ == point) {
+    firsts_.emplace_back(fingerprint, point);
+    ++scanned_;
+  }
+  return point;
+}
+
+StepCheck SharedStepChecks::check(scene::Scene& scene, std::size_t point) {
+  const std::size_t first = representative(dynamics_fingerprint(scene), point);
+  std::promise<StepCheck> promise;
+  std::shared_future<StepCheck> analysis;
+  bool mine = false;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto found = analyses_.find(first);
+    if (found != analyses_.end()) {
+      analysis = found->second;
+    } else {
+      analysis = promise.get_future().share();
+      analyses_.emplace(first, analysis);
+      mine = true;
+    }
+  }
+  if (mine) {
+    try {
+      if (first == point) {
+        promise.set_value(check_step(scene));
+      } else {
+        scene::Scene represented = load_(first);
+        promise.set_value(check_step(represented));
+      }
+    } catch (...) {
+      promise.set_exception(std::current_exception());  // the waiters see it too
+    }
+  }
+  StepCheck c = analysis.get();  // rethrows sys::Interrupted from the analysing thread
+  if (first == point) return c;
+  c.dt = scene.run.dt;
+  c.shared = true;
+  c.cached = false;
+  c.analysis_seconds = 0.0;
   return c;
 }
 
 std::size_t SharedStepChecks::analysed() const {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return known_.size();
+  return analyses_.size();
 }
 
 StepCheck step_check_from(const core::StepLimit& limit, const std::string& integrator, double dt,

@@ -14,6 +14,10 @@
 // settings (step_check_cache.hpp), so a repeated run pays nothing.
 #pragma once
 
+#include <cstddef>
+#include <functional>
+#include <future>
+#include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -76,19 +80,36 @@ inline constexpr int kStatesPerRegime = 48;
 // arrives during the analysis.
 StepCheck check_step(scene::Scene& scene);
 
-// The step checks of several scenes that may share their linear dynamics (a sweep's points,
-// from any thread): a scene whose DynamicsFingerprint matches one already analysed takes its
-// limits (`shared`), judged at its own step; the others are analysed and kept. The limits
-// also depend on the regimes a pilot visits, which a friction coefficient can change: the
-// guard confirms by a trial before it refuses, and every run keeps its own monitors.
+// The step checks of a sweep's points (from any thread), shared among points of the same
+// linear dynamics: a point whose DynamicsFingerprint matches an earlier point's takes the
+// limits of the analysis of the first point of the whole sweep (the lowest index) with that
+// fingerprint, judged at its own step (`shared`). The limits also depend on the regimes a
+// pilot visits, which a friction coefficient can change, so which point is analysed is a
+// property of the plan, never of the order in which threads or shards meet the points: a
+// point's verdict is the same unsharded, sharded, on any number of threads and after a
+// resubmission (a Slurm array's merged table equals the unsharded one). The guard confirms
+// by a trial before it refuses or warns, and every run keeps its own monitors.
 class SharedStepChecks {
  public:
-  StepCheck check(scene::Scene& scene);
+  // `load(i)`: the scene of the sweep's point i as the point runs it (values and overrides
+  // applied); it may throw (that point has no fingerprint and represents nothing).
+  explicit SharedStepChecks(std::function<scene::Scene(std::size_t)> load);
+  // The check of `scene`, the scene of point `point`.
+  StepCheck check(scene::Scene& scene, std::size_t point);
   std::size_t analysed() const;
 
  private:
+  // The lowest point index whose fingerprint matches `fingerprint`, at most `point`.
+  std::size_t representative(const DynamicsFingerprint& fingerprint, std::size_t point);
+
+  std::function<scene::Scene(std::size_t)> load_;
   mutable std::mutex mutex_;
-  std::vector<std::pair<DynamicsFingerprint, StepCheck>> known_;
+  // Fingerprints of points 0 .. scanned_-1, as the distinct ones with the first point that has
+  // each (points that did not load are skipped).
+  std::size_t scanned_ = 0;
+  std::vector<std::pair<DynamicsFingerprint, std::size_t>> firsts_;
+  // Each representative's analysis, computed once by the first thread that needs it.
+  std::map<std::size_t, std::shared_future<StepCheck>> analyses_;
 };
 
 // The limits of a prediction (core::predict_step_limit from lowest_step up) as a check of

@@ -6,9 +6,9 @@
 namespace stiction::services {
 
 StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_work,
-                     SharedStepChecks* shared) {
+                     SharedStepChecks* shared, std::size_t point) {
   StepGuard guard;
-  guard.check = shared != nullptr ? shared->check(scene) : check_step(scene);
+  guard.check = shared != nullptr ? shared->check(scene, point) : check_step(scene);
   const std::string verdict = guard.check.verdict();
   if (verdict == "unstable") {
     if (force) {

@@ -28,10 +28,11 @@ struct StepGuard {
 };
 
 // `force`: --force-step. `suggestion_work`: the component-steps the trials of a refusal's
-// suggestion may take (suggest_step.hpp; the trial of the step itself takes kTrialWork). `shared`: step checks shared among scenes of the same dynamics (a
-// sweep's points).
+// suggestion may take (suggest_step.hpp; the trial of the step itself takes kTrialWork).
+// `shared`: the step checks of a sweep's points, shared among points of the same dynamics;
+// `point`: the index of the sweep's point `scene` is.
 StepGuard guard_step(scene::Scene& scene, bool force, double suggestion_work = kSuggestionWork,
-                     SharedStepChecks* shared = nullptr);
+                     SharedStepChecks* shared = nullptr, std::size_t point = 0);
 
 // The guard's warning located as the scene's warnings are: at [simulation] dt of the scene
 // file, or on the command line (file "(command line)", key "--dt") when --dt set the step.

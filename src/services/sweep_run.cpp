@@ -79,7 +79,11 @@ class PointRunner {
  public:
   PointRunner(const SweepSettings& settings, const SweepPlan& plan, const SweepSignals& signals,
               const fs::path& out)
-      : settings_(settings), plan_(plan), signals_(signals), out_(out) {}
+      : settings_(settings),
+        plan_(plan),
+        signals_(signals),
+        out_(out),
+        shared_checks_([this](std::size_t i) { return point_scene(plan_.points.at(i)); }) {}
 
   // The point's table row; empty when a signal stopped it before it had one.
   std::vector<std::string> run(const SweepPoint& point) const {
@@ -88,9 +92,7 @@ class PointRunner {
     for (std::size_t k = 0; k < point.values.size(); ++k) row[1 + k] = point.values[k];
     const std::size_t base = 1 + point.values.size();  // status, steps, wall_s, suggested_dt, note
     try {
-      scene::Scene scene =
-          scene::load_scene(settings_.scene, point_overrides(settings_, plan_, point));
-      apply_overrides(scene, settings_.run);
+      scene::Scene scene = point_scene(point);
       if (scene.network->signal_columns() != signals_.signals) {
         row[base] = "error";
         row[base + 4] = "the values of this point change the scene's signals";
@@ -101,7 +103,7 @@ class PointRunner {
       // point predicted unstable, and failing a trial, is not simulated; its row says so and
       // suggests a step.
       const StepGuard guard =
-          guard_step(scene, settings_.force_step, kSuggestionBudget, &shared_checks_);
+          guard_step(scene, settings_.force_step, kSuggestionBudget, &shared_checks_, point.index);
       if (guard.refusal) {
         row[base] = "refused";
         row[base + 3] = number_text(guard.refusal->dt);
@@ -172,6 +174,13 @@ class PointRunner {
   }
 
  private:
+  scene::Scene point_scene(const SweepPoint& point) const {
+    scene::Scene scene =
+        scene::load_scene(settings_.scene, point_overrides(settings_, plan_, point));
+    apply_overrides(scene, settings_.run);
+    return scene;
+  }
+
   fs::path point_dir(const SweepPoint& point) const {
     char leaf[32];
     std::snprintf(leaf, sizeof leaf, "%06zu", point.index);
@@ -197,7 +206,9 @@ class PointRunner {
   const SweepPlan& plan_;
   const SweepSignals& signals_;
   fs::path out_;
-  // The points of one dynamics share one step analysis (a sweep of mu analyses once).
+  // The points of one dynamics share one step analysis, the first point's of the whole plan
+  // (a sweep of mu analyses once, and a shard gives each point the verdict the unsharded
+  // sweep gives it).
   mutable SharedStepChecks shared_checks_;
 };
 
