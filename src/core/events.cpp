@@ -67,7 +67,17 @@ bool SlipMonitor::fit_zero(std::span<const Sample> samples, bool growing, double
   return std::isfinite(t0);
 }
 
-void SlipMonitor::observe(double t, const Vec3& slip, bool open, Law law) {
+std::pair<double, double> SlipMonitor::contact_change(double t, double closure) const {
+  // A lift-off from closure1_ > 0 to closure <= 0; a touch-down from closure1_ < 0 (a contact
+  // exactly at zero before, open there, touches down after it, not at it).
+  const bool crossed = closure1_ > 0.0 ? closure <= 0.0 : closure1_ < 0.0 && closure > 0.0;
+  if (std::isfinite(closure1_) && std::isfinite(closure) && crossed) {
+    return {t1_ + (t - t1_) * closure1_ / (closure1_ - closure), 0.0};
+  }
+  return {t, t - t1_};
+}
+
+void SlipMonitor::observe(double t, const Vec3& slip, bool open, Law law, double closure) {
   const double speed = slip.norm();
   const bool held = law == Law::held;
   const State now = open ? State::open : (speed > threshold_ && !held ? State::slip : State::stick);
@@ -93,6 +103,7 @@ void SlipMonitor::observe(double t, const Vec3& slip, bool open, Law law) {
     t1_ = t;
     s1_ = speed;
     v1_ = slip;
+    closure1_ = closure;
     return;
   }
   // What waited for this step.
@@ -150,7 +161,8 @@ void SlipMonitor::observe(double t, const Vec3& slip, bool open, Law law) {
         }
         sliding_.clear();
       } else {
-        commit(State::open, t, t - t1_);  // lift-off
+        const auto [time, uncertainty] = contact_change(t, closure);
+        commit(State::open, time, uncertainty);  // lift-off
         sliding_.clear();
       }
       break;
@@ -196,20 +208,23 @@ void SlipMonitor::observe(double t, const Vec3& slip, bool open, Law law) {
         onset_ = {{t, speed}};
         sliding_ = {{t, speed}};
       } else if (now == State::open) {
-        commit(State::open, t, t - t1_);
+        const auto [time, uncertainty] = contact_change(t, closure);
+        commit(State::open, time, uncertainty);
         calm_ = -1.0;
       }
       break;
     }
     case State::open:
       if (now != State::open) {
-        commit(now, t, t - t1_);  // touch-down, stuck or sliding
+        const auto [time, uncertainty] = contact_change(t, closure);
+        commit(now, time, uncertainty);  // touch-down, stuck or sliding
         if (now == State::slip) sliding_ = {{t, speed}};
       }
       break;
   }
   state_ = now;
   t1_ = t;
+  closure1_ = closure;
   rise1_ = speed - s1_;
   s1_ = speed;
   v1_ = slip;

@@ -1,5 +1,6 @@
 #include "core/slip_observer.hpp"
 
+#include <limits>
 #include <optional>
 
 #include "core/body.hpp"
@@ -89,7 +90,9 @@ void SlipObserver::observe_from(std::size_t m, double time, ConstVecRef x_hat, C
     law = c.friction->regime(x_hat, y, tau) == 1 ? SlipMonitor::Law::held
                                                  : SlipMonitor::Law::released;
   }
-  monitor.observe(time, slip, open, law);
+  const double closure = contacts_[m] != nullptr ? contacts_[m]->contact_closure(x_hat)
+                                                : std::numeric_limits<double>::quiet_NaN();
+  monitor.observe(time, slip, open, law, closure);
 }
 
 void SlipObserver::observe(std::size_t m, double time, const Vec& state, double tau) {

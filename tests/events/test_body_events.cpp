@@ -342,9 +342,11 @@ TEST_CASE(
     CHECK(body.initial == "open");
     REQUIRE_FALSE(body.events.empty());
     CHECK(body.events[0].kind == "land");
-    // Touch-down is the end of the first step in contact.
-    CHECK(body.events[0].time >= t_fall);
-    CHECK(body.events[0].time <= t_fall + kDt + 1e-9);
+    // Touch-down is where the first corner's closure crosses zero within its step (core/
+    // events.hpp): the fall time to a small part of a step (seen: 0.029 steps; the contact
+    // force acts in the landing step's later stages).
+    CHECK(std::abs(body.events[0].time - t_fall) <= 0.05 * kDt);
+    CHECK(body.events[0].uncertainty == 0.0);
     // It may hop: the contact's damping clamps the normal force to zero on the rebound
     // (a restitution of about e^-2 at critical damping), so a lift-off and a second landing
     // can follow, each lift-off after a landing; it ends at rest on its face.

@@ -3,6 +3,7 @@
 // derivative, and the run loop (which reads slips from the next step's first evaluation)
 // gives exactly the events of a loop that evaluates the maps at every step, as it did before.
 #include <catch2/catch.hpp>
+#include <limits>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -107,7 +108,9 @@ std::vector<core::SlipHistory> events_evaluating_every_step(scene::Scene& scene,
                   ? core::SlipMonitor::Law::held
                   : core::SlipMonitor::Law::released;
       }
-      monitor.observe(time, slip, open, law);
+      const double closure = c.contact != nullptr ? c.contact->contact_closure(x_hat)
+                                                  : std::numeric_limits<double>::quiet_NaN();
+      monitor.observe(time, slip, open, law, closure);
     }
   };
   auto stepper = core::make_stepper(options.integrator, net.state_dim(), T);

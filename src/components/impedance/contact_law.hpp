@@ -31,6 +31,13 @@ inline double contact_normal_force(const ContactCoefficients& c, double depth, d
   return depth > 0.0 ? std::max(0.0, c.k * depth - c.b * v_n) : 0.0;
 }
 
+// core::NormalContact::contact_closure of that law: min(K d, K d - B v_n), continuous, > 0
+// exactly where N > 0 (pressed and not pulling away faster than the spring pushes). A
+// touch-down crosses zero with the depth (K d), a lift-off with the law's force.
+inline double contact_closure(const ContactCoefficients& c, double depth, double v_n) {
+  return std::min(c.k * depth, c.k * depth - c.b * v_n);
+}
+
 // The elliptic limit of anisotropic friction (friction_law.hpp's ContactFriction): the
 // implicit update of eq. (19) with the anchor's velocity w in the normal cone of the
 // ellipse E = {f : (f_a / (mu N))^2 + (f_b / (mu_2 N))^2 <= 1} (maximum dissipation):

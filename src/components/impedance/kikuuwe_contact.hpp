@@ -14,6 +14,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 
 #include "components/impedance/contact_capabilities.hpp"
 #include "components/impedance/contact_law.hpp"
@@ -82,6 +83,14 @@ class KikuuweContact final : public core::Impedance, public ContactCapabilities 
                               core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref, core::VecRef u,
                               core::VecRef y_dot) const override;
   double contact_normal_force(core::ConstVecRef x_hat) const override { return normal_force(x_hat); }
+  double contact_closure(core::ConstVecRef x_hat) const override {
+    const core::Vec3 p_c = x_hat.segment<3>(0);
+    if (bounded_ && !params_.extent.contains(p_c - params_.extent.centre)) {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    return components::contact_closure(coefficients_, params_.offset - n_.dot(p_c),
+                                       n_.dot(core::Vec3(x_hat.segment<3>(3))));
+  }
   const KikuuweContactParams& params() const { return params_; }
   // The friction coefficients (an anisotropic law's axis along t1, t2 included).
   const ContactFriction& friction() const { return coefficients_.friction; }

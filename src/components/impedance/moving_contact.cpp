@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace stiction::components {
@@ -94,6 +95,13 @@ double MovingContact::normal_force(const Touch& c) const {
   return c.inside ? components::contact_normal_force(coefficients_, c.depth,
                                                      c.surface.frame.n.dot(c.v_rel))
                   : 0.0;
+}
+
+double MovingContact::contact_closure(ConstVecRef x_hat) const {
+  const Touch c = touch(x_hat);
+  return c.inside ? components::contact_closure(coefficients_, c.depth,
+                                                c.surface.frame.n.dot(c.v_rel))
+                  : std::numeric_limits<double>::quiet_NaN();
 }
 
 void MovingContact::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, double tau, VecRef u,

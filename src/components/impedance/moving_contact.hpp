@@ -72,6 +72,7 @@ class MovingContact final : public core::Impedance,
   double contact_normal_force(core::ConstVecRef x_hat) const override {
     return normal_force(touch(x_hat));
   }
+  double contact_closure(core::ConstVecRef x_hat) const override;
 
   SurfaceState surface(double s) const;
   // Distance the belt has moved by time s (integral of its speed; 0 without a belt), for

@@ -41,6 +41,11 @@ double PairContact::contact_normal_force(ConstVecRef x_hat) const {
   return components::contact_normal_force(coefficients_, x_hat[0], normal_of(x_hat).dot(v_rel));
 }
 
+double PairContact::contact_closure(ConstVecRef x_hat) const {
+  const Vec3 v_rel = x_hat.segment<3>(4);
+  return components::contact_closure(coefficients_, x_hat[0], normal_of(x_hat).dot(v_rel));
+}
+
 void PairContact::evaluate(double /*t*/, ConstVecRef x_hat, ConstVecRef y, double tau, VecRef u,
                            VecRef y_dot) const {
   const Vec3 n = normal_of(x_hat);

@@ -68,6 +68,7 @@ class PairContact final : public core::Impedance, public ContactCapabilities {
                               core::ConstVecRef u_ref, core::ConstVecRef y_dot_ref, core::VecRef u,
                               core::VecRef y_dot) const override;
   double contact_normal_force(core::ConstVecRef x_hat) const override;
+  double contact_closure(core::ConstVecRef x_hat) const override;
   const PairContactParams& params() const { return params_; }
 
  private:
