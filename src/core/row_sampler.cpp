@@ -62,7 +62,9 @@ RowSampler::RowSampler(Network& network, const RunOptions& options, const Steppe
   // to a bound: the rows actually produced may be far fewer (instability, interrupt), and a
   // long run should grow rather than ask for everything up front.
   if (sink != nullptr) {
-    block_.resize(kBlockRows * columns.size());
+    block_capacity_ = std::max<std::size_t>(
+        1, std::min(kBlockRows, kBlockBytes / (sizeof(double) * columns.size())));
+    block_.resize(block_capacity_ * columns.size());
   } else {
     result.trajectory.reserve_rows(static_cast<int>(std::min(total_samples_, 1L << 20)));
   }
@@ -94,7 +96,7 @@ void RowSampler::emit(double ts, const Vec& values) {
   }
   if (sink_ != nullptr) {
     std::copy(row_.begin(), row_.end(), block_.begin() + block_rows_ * row_.size());
-    if (++block_rows_ == kBlockRows) flush();
+    if (++block_rows_ == block_capacity_) flush();
   } else {
     result_.trajectory.append(row_.data());
   }

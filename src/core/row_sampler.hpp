@@ -50,7 +50,11 @@ class RowSampler final : public RunObserver {
   // Writes the rows in (t0_, t1_] from the pending step, its end derivative in f1_.
   void sample_dense();
 
+  // Rows per block to the sink: at most kBlockRows, and at most kBlockBytes of them (a scene
+  // of 120000 columns would otherwise fill a 245 MB block).
   static constexpr std::size_t kBlockRows = 256;
+  static constexpr std::size_t kBlockBytes = 256 * 1024;
+  std::size_t block_capacity_ = kBlockRows;
 
   Network& network_;
   const Stepper& stepper_;

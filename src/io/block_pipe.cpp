@@ -18,7 +18,9 @@ double thread_cpu_seconds() {
 BlockPipe::BlockPipe(std::size_t columns, Consumer consumer, std::size_t blocks,
                      std::size_t block_rows)
     : columns_(columns),
-      block_rows_(std::max<std::size_t>(block_rows, 1)),
+      block_rows_(std::max<std::size_t>(
+          std::min(block_rows, kBlockBytes / (sizeof(double) * std::max<std::size_t>(columns, 1))),
+          1)),
       consumer_(std::move(consumer)),
       blocks_(std::max<std::size_t>(blocks, 2), std::vector<double>(block_rows_ * columns)),
       counts_(blocks_.size(), 0),

@@ -1,7 +1,8 @@
 // Rows handed from the simulating thread to a writer thread (issue 36 item 4): the producer
 // copies rows into one of a fixed ring of blocks and goes back to the physics; the writer
 // thread hands full blocks to a consumer (CsvStream's: format and write), so formatting and
-// writing overlap the simulation. Memory: blocks x block_rows x columns doubles, fixed.
+// writing overlap the simulation. Memory: blocks x block_rows x columns doubles, fixed, with
+// block_rows lowered to keep a block within kBlockBytes (never below one row).
 //
 // Failure policy: an exception thrown by the consumer stops the writer; the producer sees it
 // (the same exception, rethrown) at its next push() or at close(), so a write error
@@ -25,6 +26,9 @@ class BlockPipe {
   using Consumer = std::function<void(const double* rows, std::size_t count)>;
   static constexpr std::size_t kBlocks = 16;
   static constexpr std::size_t kBlockRows = 256;
+  // A block holds at most this many bytes: a scene of 120000 columns (40000 springs) took a
+  // 3.9 GB ring at 256 rows a block, whose first touch was most of its run.
+  static constexpr std::size_t kBlockBytes = 256 * 1024;
 
   BlockPipe(std::size_t columns, Consumer consumer, std::size_t blocks = kBlocks,
             std::size_t block_rows = kBlockRows);
