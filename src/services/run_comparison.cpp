@@ -225,6 +225,7 @@ class Comparer {
         comp = std::max(comp, std::max(s->signal_largest(cc), s->travel(cc)));
       }
     }
+    const std::size_t first_final = out_.finals.size();  // column c is finals[first_final + c - 1]
     for (int c = 1; c < a.column_count(); ++c) {
       const Column& col = columns[c];
       ComparedQuantity q;
@@ -241,7 +242,7 @@ class Comparer {
       q.judged = setup_.rule.judges(q.component, q.cls);
       out_.finals.push_back(q);
     }
-    if (rates) shift_in_time(run, other, duration);
+    if (rates) shift_in_time(run, other, duration, first_final);
     for (ComparedQuantity& q : out_.finals) {
       if (q.judged) {
         out_.judged.push_back(q.name);
@@ -269,14 +270,16 @@ class Comparer {
   // The finals' time shifts (the top of run_comparison.hpp). One shift must carry a whole
   // motion: a body's position and velocity along one axis, its orientation with its spin, a
   // joint's angle with its speed. Its least-squares value s over the group's columns (each
-  // weighted by its tolerance) is accepted when it is within the time tolerance and every
-  // column's error less s times its rate is within its value tolerance; each column then
-  // carries |s| as its time_shift. A bounce out of phase shifts p.z and v.z together; an
+  // weighted by its tolerance) carries the motion when every column's error less s times its
+  // rate is within its value tolerance; each column then carries |s| as its time_shift (else
+  // infinity), judged against the time tolerance. A bounce out of phase shifts p.z and v.z together; an
   // amplitude error (an oscillator's swing 2% too wide) does not fit one shift and is judged
   // by value.
-  void shift_in_time(const core::RunResult& run, const core::RunResult& other, double duration) {
+  // `first`: the index in finals of the first signal column (column 1).
+  void shift_in_time(const core::RunResult& run, const core::RunResult& other, double duration,
+                     std::size_t first) {
     std::map<std::string, std::vector<std::size_t>> groups;
-    for (std::size_t k = 0; k < out_.finals.size(); ++k) {
+    for (std::size_t k = first; k < out_.finals.size(); ++k) {
       const ComparedQuantity& q = out_.finals[k];
       if (q.cls == "element_state" || !q.error) continue;
       const std::string axis = q.cls == "orientation" || q.cls == "spin"
@@ -284,14 +287,12 @@ class Comparer {
                                    : q.name.substr(signal_of(q.name).size());
       groups[q.component + "|" + axis].push_back(k);
     }
-    const core::Trajectory& a = run.trajectory;
     for (const auto& [key, members] : groups) {
       double num = 0.0, den = 0.0;
       std::vector<double> delta(members.size()), rate(members.size());
       for (std::size_t m = 0; m < members.size(); ++m) {
         const ComparedQuantity& q = out_.finals[members[m]];
-        const auto c = static_cast<std::size_t>(
-            std::find(a.columns().begin(), a.columns().end(), q.name) - a.columns().begin());
+        const std::size_t c = members[m] - first + 1;
         // run(T) = other(T + s): the difference is s times the rate (the two runs' mean).
         delta[m] = setup_.final_factor * (q.value - q.other);
         rate[m] = 0.5 * (run.end_rates[c] + other.end_rates[c]);
@@ -303,9 +304,22 @@ class Comparer {
       const double s = num / den;
       const double time_tolerance =
           setup_.rule.tolerance(out_.finals[members.front()].cls) * duration;
-      bool fits = std::abs(s) <= time_tolerance;
+      // Whether s carries the motion; its size is then judged by within() (time_tolerance).
+      // What s leaves must be within the value's tolerance and, for a position, within the
+      // same fraction of its largest magnitude rather than of its path: a swing 1% too wide
+      // differs by 1% of its amplitude in angle, inside 1e-3 of a 5-period path (20
+      // amplitudes), and would pass as a shift of its speed.
+      bool fits = true;
       for (std::size_t m = 0; m < members.size() && fits; ++m) {
-        fits = std::abs(delta[m] - s * rate[m]) <= out_.finals[members[m]].tolerance;
+        const ComparedQuantity& q = out_.finals[members[m]];
+        double allowed = q.tolerance;
+        if (setup_.scales != nullptr) {
+          const std::size_t c = members[m] - first + 1;
+          allowed = std::min(allowed, setup_.rule.tolerance(q.cls) *
+                                          std::max(setup_.scales->signal_largest(c),
+                                                   kClassFloor * q.scale));
+        }
+        fits = std::abs(delta[m] - s * rate[m]) <= allowed;
       }
       for (const std::size_t k : members) {
         ComparedQuantity& q = out_.finals[k];

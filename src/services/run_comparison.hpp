@@ -31,8 +31,9 @@
 //     must carry the whole motion (a body's position and velocity along an axis, its
 //     orientation with its spin, a joint's angle with its speed; rates from
 //     core::RunResult::end_rates), each value's error less s times its rate within its
-//     tolerance, and |s| within the tolerance times the run's duration. An amplitude error
-//     fits no single shift and is judged by value.
+//     tolerance (for a position also within that fraction of its largest magnitude), and
+//     |s| within the tolerance times the run's duration. An amplitude error fits no single
+//     shift and is judged by value.
 //   - Forces, slips and internal states of impedances (`element_state`) get an estimate and
 //     are never judged by default.
 #pragma once
