@@ -222,24 +222,6 @@ void RowSampler::sample_dense() {
   }
 }
 
-void RowSampler::measure_end_rates(const Vec& x, double h) {
-  // One derivative and two signal evaluations per run, for the verdict (not counted in
-  // `evaluations`, the integrator's cost). The difference is taken over a thousandth of the
-  // step: well inside the fastest motion the step resolves, far above rounding.
-  Vec x_dot(x.size()), at(n_), moved(n_);
-  network_.derivative(t_reached_, x, h, x_dot);
-  network_.write_signals(t_reached_, x, h, at);
-  const double delta = 1e-3 * h;
-  const Vec ahead = x + delta * x_dot;
-  network_.write_signals(t_reached_ + delta, ahead, h, moved);
-  result_.end_rates.assign(static_cast<std::size_t>(n_) + 1, 0.0);
-  result_.end_rates[0] = 1.0;
-  for (int i = 0; i < n_; ++i) result_.end_rates[static_cast<std::size_t>(i) + 1] = (moved[i] - at[i]) / delta;
-  for (int c : wrapped_) {
-    result_.end_rates[static_cast<std::size_t>(c) + 1] = (unwrap_toward(moved[c], at[c]) - at[c]) / delta;
-  }
-}
-
 void RowSampler::finish(const Vec& x) {
   const RowTimer timer(result_.row_seconds);
   const double h_last = dense_ ? t1_ - t0_ : T_;
@@ -267,7 +249,6 @@ void RowSampler::finish(const Vec& x) {
           unwrap_toward(result_.end_row[static_cast<std::size_t>(c) + 1], last_row_[static_cast<std::size_t>(c) + 1]);
     }
   }
-  if (x_is_reached && x.allFinite() && !network_.capture_pending()) measure_end_rates(x, h_last);
   if (sink_ != nullptr) {
     flush();
     sink_->finish();

@@ -40,8 +40,7 @@ class RowSampler final : public RunObserver {
 
  private:
   void emit(double ts, const Vec& values);
-  // RunResult::end_rates at the state x the run ended in, with the last step h as tau.
-  void measure_end_rates(const Vec& x, double h);
+
   // A row with a value that is not finite, from a finite state (the state itself is the
   // InstabilityObserver's): an instability at that row, never a run that ends `ok`.
   Verdict stop_if_non_finite();

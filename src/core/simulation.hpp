@@ -70,12 +70,6 @@ struct RunResult {
   // puts no row at the time reached, the signals there (summary.json's `final`). Empty if
   // no row was written.
   std::vector<double> end_row;
-  // The time derivative of each end_row column at the state the run ended in (a forward
-  // difference of the signals along the network's derivative there; 1 for the time column);
-  // empty when the run did not end on a finite state it stepped to. The accuracy verdict
-  // reads a final value that moves fast at the end as a shift in time
-  // (services/run_comparison.hpp).
-  std::vector<double> end_rates;
   long steps = 0;
   long evaluations = 0;  // network evaluations (the integrator's cost)
   double wall_seconds = 0.0;

@@ -222,7 +222,6 @@ AccuracyEstimate estimate_accuracy(scene::Scene& scene, const core::RunResult& r
     f.value = q.value;
     f.error = q.error.value_or(std::numeric_limits<double>::quiet_NaN());
     f.scale = q.scale;
-    f.time_shift = q.time_shift;
     f.judged = q.judged;
     estimate.finals.push_back(f);
   }
@@ -309,8 +308,6 @@ nlohmann::ordered_json accuracy_json(const AccuracyEstimate& e) {
                       {{"value", f.value},
                        {"error", std::isfinite(f.error) ? json(f.error) : json(nullptr)},
                        {"scale", f.scale},
-                       {"time_shift",
-                        std::isfinite(f.time_shift) ? json(f.time_shift) : json(nullptr)},
                        {"judged", f.judged}});
   }
   j["final"] = std::move(finals);

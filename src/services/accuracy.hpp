@@ -10,7 +10,6 @@
 
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -52,9 +51,6 @@ struct FinalAccuracy {
   double value = 0.0;
   double error = 0.0;
   double scale = 0.0;   // largest magnitude of the signal over the companion run
-  // The error as a shift in time (s; NaN: none), where the value moves at the end
-  // (run_comparison.hpp).
-  double time_shift = std::numeric_limits<double>::quiet_NaN();
   bool judged = false;  // a body's signal: it counts for the verdict
 };
 

@@ -197,10 +197,6 @@ class Comparer {
     if (a.row_count() == 0 || b.row_count() == 0 || a.column_count() != b.column_count()) return;
     const int la = a.row_count() - 1, lb = b.row_count() - 1;
     const MotionScales* s = setup_.scales;
-    const auto columns_count = static_cast<std::size_t>(a.column_count());
-    const bool rates =
-        run.end_rates.size() == columns_count && other.end_rates.size() == columns_count;
-    const double duration = a.at(la, 0);
     struct Column {
       Owner owner;
       std::string cls;
@@ -225,7 +221,6 @@ class Comparer {
         comp = std::max(comp, std::max(s->signal_largest(cc), s->travel(cc)));
       }
     }
-    const std::size_t first_final = out_.finals.size();  // column c is finals[first_final + c - 1]
     for (int c = 1; c < a.column_count(); ++c) {
       const Column& col = columns[c];
       ComparedQuantity q;
@@ -240,93 +235,19 @@ class Comparer {
       q.tolerance = setup_.rule.tolerance(col.cls) * q.scale +
                     kRounding * component_largest[col.owner.component];
       q.judged = setup_.rule.judges(q.component, q.cls);
-      out_.finals.push_back(q);
-    }
-    if (rates) shift_in_time(run, other, duration, first_final);
-    for (ComparedQuantity& q : out_.finals) {
       if (q.judged) {
         out_.judged.push_back(q.name);
         const double rel = q.relative_error();
         if (!(rel <= out_.worst_final)) out_.worst_final = rel;
         worst(rel, q.name);
         if (!q.within()) {
-          std::string in_time;
-          if (std::isfinite(q.time_shift)) {
-            in_time = format(", and a shift of %.2g s in time, above %g of the run's %.3g s",
-                             q.time_shift, setup_.rule.tolerance(q.cls), q.time_scale);
-          } else if (q.time_scale > 0.0) {
-            in_time = ", and no one shift in time carries its motion";
-          }
           out_.reasons.push_back(
               q.name + format(" = %.7g has an estimated error of %.2g, above %g of its scale %.3g",
                               q.value, q.error ? *q.error : kNaN, setup_.rule.tolerance(q.cls),
-                              q.scale) +
-              in_time);
+                              q.scale));
         }
       }
-    }
-  }
-
-  // The finals' time shifts (the top of run_comparison.hpp). One shift must carry a whole
-  // motion: a body's position and velocity along one axis, its orientation with its spin, a
-  // joint's angle with its speed. Its least-squares value s over the group's columns (each
-  // weighted by its tolerance) carries the motion when every column's error less s times its
-  // rate is within its value tolerance; each column then carries |s| as its time_shift (else
-  // infinity), judged against the time tolerance. A bounce out of phase shifts p.z and v.z together; an
-  // amplitude error (an oscillator's swing 2% too wide) does not fit one shift and is judged
-  // by value.
-  // `first`: the index in finals of the first signal column (column 1).
-  void shift_in_time(const core::RunResult& run, const core::RunResult& other, double duration,
-                     std::size_t first) {
-    std::map<std::string, std::vector<std::size_t>> groups;
-    for (std::size_t k = first; k < out_.finals.size(); ++k) {
-      const ComparedQuantity& q = out_.finals[k];
-      if (q.cls == "element_state" || !q.error) continue;
-      const std::string axis = q.cls == "orientation" || q.cls == "spin"
-                                   ? std::string("rotation")
-                                   : q.name.substr(signal_of(q.name).size());
-      groups[q.component + "|" + axis].push_back(k);
-    }
-    for (const auto& [key, members] : groups) {
-      double num = 0.0, den = 0.0;
-      std::vector<double> delta(members.size()), rate(members.size());
-      for (std::size_t m = 0; m < members.size(); ++m) {
-        const ComparedQuantity& q = out_.finals[members[m]];
-        const std::size_t c = members[m] - first + 1;
-        // run(T) = other(T + s): the difference is s times the rate (the two runs' mean).
-        delta[m] = setup_.final_factor * (q.value - q.other);
-        rate[m] = 0.5 * (run.end_rates[c] + other.end_rates[c]);
-        const double w = q.tolerance > 0.0 ? 1.0 / (q.tolerance * q.tolerance) : 0.0;
-        num += w * delta[m] * rate[m];
-        den += w * rate[m] * rate[m];
-      }
-      if (!(den > 0.0)) continue;  // nothing in the group moves at the end
-      const double s = num / den;
-      const double time_tolerance =
-          setup_.rule.tolerance(out_.finals[members.front()].cls) * duration;
-      // Whether s carries the motion; its size is then judged by within() (time_tolerance).
-      // What s leaves must be within the value's tolerance and, for a position, within the
-      // same fraction of its largest magnitude rather than of its path: a swing 1% too wide
-      // differs by 1% of its amplitude in angle, inside 1e-3 of a 5-period path (20
-      // amplitudes), and would pass as a shift of its speed.
-      bool fits = true;
-      for (std::size_t m = 0; m < members.size() && fits; ++m) {
-        const ComparedQuantity& q = out_.finals[members[m]];
-        double allowed = q.tolerance;
-        if (setup_.scales != nullptr) {
-          const std::size_t c = members[m] - first + 1;
-          allowed = std::min(allowed, setup_.rule.tolerance(q.cls) *
-                                          std::max(setup_.scales->signal_largest(c),
-                                                   kClassFloor * q.scale));
-        }
-        fits = std::abs(delta[m] - s * rate[m]) <= allowed;
-      }
-      for (const std::size_t k : members) {
-        ComparedQuantity& q = out_.finals[k];
-        q.time_scale = duration;
-        q.time_tolerance = time_tolerance;
-        q.time_shift = fits ? std::abs(s) : kInf;
-      }
+      out_.finals.push_back(q);
     }
   }
 
@@ -557,9 +478,8 @@ double MotionScales::signal_largest(std::size_t column) const {
 
 double ComparedQuantity::relative_error() const {
   if (!error) return kInf;
-  const double by_value = !(scale > 0.0) ? (*error > tolerance ? kInf : 0.0) : *error / scale;
-  const double by_time = time_scale > 0.0 && std::isfinite(time_shift) ? time_shift / time_scale : kInf;
-  return std::min(by_value, by_time);
+  if (!(scale > 0.0)) return *error > tolerance ? kInf : 0.0;
+  return *error / scale;
 }
 
 RunComparison compare_runs(const core::Network& network, const core::RunResult& run,

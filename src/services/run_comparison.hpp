@@ -25,15 +25,7 @@
 //     the signal actually had (MotionScales): the path it travelled for positions, angles and
 //     orientations, the largest magnitude for speeds; never below 1% of the largest such
 //     scale of the same class in the scene, so that a joint that never moved is judged
-//     against the motion of the mechanism it belongs to, not in microradians. A motion that
-//     moves fast at the end (a bounce in progress, a spinning body's orientation) is also
-//     measured in time, as the distance between the two runs' graphs: one shift s in time
-//     must carry the whole motion (a body's position and velocity along an axis, its
-//     orientation with its spin, a joint's angle with its speed; rates from
-//     core::RunResult::end_rates), each value's error less s times its rate within its
-//     tolerance (for a position also within that fraction of its largest magnitude), and
-//     |s| within the tolerance times the run's duration. An amplitude error fits no single
-//     shift and is judged by value.
+//     against the motion of the mechanism it belongs to, not in microradians.
 //   - Forces, slips and internal states of impedances (`element_state`) get an estimate and
 //     are never judged by default.
 #pragma once
@@ -125,19 +117,11 @@ struct ComparedQuantity {
   double located = 0.0;         // events: the run's location uncertainty (s)
   double scale = 0.0;           // events: own time scale (s, phase_scale); finals: the signal's
   double tolerance = 0.0;       // absolute
-  // Finals: the shift in time that carries the value's motion (s, see the top of this file;
-  // NaN where either run has no rates or the motion does not move at the end, infinity where
-  // no one shift fits it), and its tolerance (the rule's tolerance times the run's duration).
-  double time_shift = std::numeric_limits<double>::quiet_NaN();
-  double time_scale = 0.0;  // the run's duration
-  double time_tolerance = 0.0;
   bool judged = false;
   std::string note;  // why not comparable ("only in the run", "counts not converged")
-  bool within() const {
-    return error && (*error <= tolerance || time_shift <= time_tolerance);
-  }
-  // The error relative to the scale, or the time shift relative to the run's duration where
-  // that is smaller (infinity when not comparable).
+  bool within() const { return error && *error <= tolerance; }
+  // error / tolerance * relative tolerance: the error relative to the scale (infinity when
+  // not comparable).
   double relative_error() const;
 };
 

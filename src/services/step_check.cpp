@@ -198,11 +198,6 @@ StepCheck SharedStepChecks::check(scene::Scene& scene, std::size_t point) {
   return c;
 }
 
-std::size_t SharedStepChecks::analysed() const {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  return analyses_.size();
-}
-
 StepCheck step_check_from(const core::StepLimit& limit, const std::string& integrator, double dt,
                           double lowest_step) {
   StepCheck c;

@@ -96,7 +96,6 @@ class SharedStepChecks {
   explicit SharedStepChecks(std::function<scene::Scene(std::size_t)> load);
   // The check of `scene`, the scene of point `point`.
   StepCheck check(scene::Scene& scene, std::size_t point);
-  std::size_t analysed() const;
 
  private:
   // The lowest point index whose fingerprint matches `fingerprint`, at most `point`.

@@ -312,9 +312,9 @@ TEST_CASE("cli: a step above the predicted limit is refused before anything is s
   CHECK(o.code == 3);
   CHECK_THAT(o.out, Contains("above rk4's predicted instability limit"));
   CHECK_THAT(o.out, Contains("a trial at dt = 0.002 s: it failed: unstable at t = "));
-  // sphere_roll's touch-downs are located within their steps and the phase of its bounce at
-  // the end is judged in time (docs/accuracy.md), so halving from the chatter limit reaches a
-  // step whose trial is accurate (1.06e-5 s), and `run` at it says so (no warning).
+  // sphere_roll's touch-downs are located within their steps (docs/events.md), so halving
+  // from the chatter limit reaches a step whose 2 s trial is accurate (2.66e-6 s; the
+  // bounce's phase at the end decides, docs/accuracy.md).
   CHECK_THAT(o.out, Contains("a step that works: --dt "));
   CHECK_THAT(o.out, Contains("halved"));
   CHECK_THAT(o.out, Contains("--force-step"));

@@ -21,6 +21,12 @@ using stiction::testing::Outcome;
 
 namespace {
 
+// A command's arguments followed by more.
+std::vector<std::string> joined(std::vector<std::string> args, const std::vector<std::string>& extra) {
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
 fs::path scratch(const std::string& name) {
   return stiction::testing::scratch_dir("stiction_test_sweep_", name);
 }
@@ -175,11 +181,7 @@ TEST_CASE("sweep: four shards as separate processes merge into the unsharded tab
       "--vary",  "bodies.a_sphere_with_a_rather_long_name_for_the_table.velocity[0]=0.3,0.6",
       "--quiet", "-j",
       "1"};
-  auto with = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = sweep;
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
-  };
+  auto with = [&](const std::vector<std::string>& extra) { return joined(sweep, extra); };
   REQUIRE(stiction::testing::run_stiction(with({"--out", "whole"}), dir).code == 0);
 
   // Four processes at once, as a job array would start them.
@@ -265,11 +267,7 @@ TEST_CASE("sweep: a point gets the same verdict in any shard: its dynamics' firs
                                        "--set",     "bodies.sphere.velocity[0]=1",
                                        "--quiet",   "-j",
                                        "1"};
-  auto with = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = sweep;
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
-  };
+  auto with = [&](const std::vector<std::string>& extra) { return joined(sweep, extra); };
   REQUIRE(stiction::testing::run_stiction(with({"--out", "whole"}), dir).code == 0);
   // The second shard first: it meets point 1 before any other point.
   REQUIRE(stiction::testing::run_stiction(with({"--out", "sharded", "--shard", "1/2"}), dir).code == 0);
