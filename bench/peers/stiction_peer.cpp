@@ -6,6 +6,7 @@
 // at 1e-4 s and implicit at 1/60 s; its scenes are written here (ramp_scene, pinch_scene).
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <numbers>
 #include <stdexcept>
@@ -175,7 +176,9 @@ class StictionPeer final : public Peer {
       default:
         scene_ = scene::load_scene(scene_file(c.problem));
     }
-    stepper_ = core::make_stepper(integrator_, scene_.network->state_dim(), dt_, tolerance_);
+    // With the network: sdirk on several islands steps each on its own (core/island_sdirk.hpp).
+    stepper_ = core::make_stepper(integrator_, scene_.network->state_dim(), dt_, tolerance_,
+                                  std::numeric_limits<double>::infinity(), scene_.network.get());
     x_ = scene_.network->initial_state();
     t_ = 0.0;
     steps_ = 0;

@@ -164,8 +164,40 @@ void ImplicitEulerStepper::prepare(Network& network) {
       separable_.push_back(i);
     }
   }
+  for (StepGroup& g : groups_) {
+    g.separable.clear();
+    for (int i : separable_) {
+      if (std::binary_search(g.part.impedances.begin(), g.part.impedances.end(), i)) {
+        g.separable.push_back(i);
+      }
+    }
+  }
   build_islands(network);
   prepared_ = true;
+}
+
+void ImplicitEulerStepper::set_step_groups(const std::vector<Island>& groups) {
+  const int dim = static_cast<int>(start_.size());
+  group_of_state_.assign(static_cast<std::size_t>(dim), -1);
+  groups_.clear();
+  for (const Island& part : groups) {
+    StepGroup g;
+    g.part = part;
+    g.runs = runs_of(part.states);
+    g.share = static_cast<double>(part.states.size()) / std::max(1, dim);
+    for (int e : part.states) {
+      group_of_state_[static_cast<std::size_t>(e)] = static_cast<int>(groups_.size());
+    }
+    groups_.push_back(std::move(g));
+  }
+}
+
+void ImplicitEulerStepper::copy_runs(const std::vector<Run>& runs, const Vec& from, Vec& to) {
+  for (const Run& run : runs) {
+    const double* source = from.data() + run.entry;
+    double* target = to.data() + run.entry;
+    for (int k = 0; k < run.length; ++k) target[k] = source[k];
+  }
 }
 
 void ImplicitEulerStepper::build_islands(Network& network) {
@@ -209,6 +241,12 @@ void ImplicitEulerStepper::build_islands(Network& network) {
     s.scale = Vec::Zero(n);
     islands_.push_back(std::move(s));
   }
+  for (StepGroup& g : groups_) g.islands.clear();
+  for (std::size_t k = 0; k < islands_.size() && !groups_.empty(); ++k) {
+    const int g = group_of_state_[static_cast<std::size_t>(islands_[k].island.states.front())];
+    if (g < 0) throw std::logic_error("implicit: an island outside every step group");
+    groups_[static_cast<std::size_t>(g)].islands.push_back(static_cast<int>(k));
+  }
 }
 
 std::vector<ImplicitEulerStepper::Run> ImplicitEulerStepper::runs_of(
@@ -233,9 +271,10 @@ void ImplicitEulerStepper::copy_states(const IslandSolve& s, const Vec& from, Ve
   }
 }
 
-void ImplicitEulerStepper::update_detached(Network& network, const Vec& x, double h) {
+void ImplicitEulerStepper::update_detached(Network& network, const Vec& x, double h,
+                                           const std::vector<int>* contacts) {
   bool changed = false;
-  for (int i : separable_) {
+  for (int i : contacts != nullptr ? *contacts : separable_) {
     const NormalContact* contact = network.capabilities(i).contact;
     const ConstVecRef x_hat = network.impedance_input(i, x);
     const double gap = contact->gap(x_hat);
@@ -247,9 +286,10 @@ void ImplicitEulerStepper::update_detached(Network& network, const Vec& x, doubl
   if (changed) build_islands(network);
 }
 
-bool ImplicitEulerStepper::attach_closed(Network& network, const Vec& x) {
+bool ImplicitEulerStepper::attach_closed(Network& network, const Vec& x,
+                                         const std::vector<int>* contacts) {
   bool closed = false;
-  for (int i : separable_) {
+  for (int i : contacts != nullptr ? *contacts : separable_) {
     char& flag = detached_[static_cast<std::size_t>(i)];
     if (flag == 0) continue;
     const double gap = network.capabilities(i).contact->gap(network.impedance_input(i, x));
@@ -338,6 +378,48 @@ bool ImplicitEulerStepper::solve_stage(Network& network, double t, double h, Vec
     if (separable_.empty() || !attach_closed(network, stage_)) break;
   }
   x = stage_;
+  return true;
+}
+
+bool ImplicitEulerStepper::solve_stage(Network& network, double t, double h, Vec& x, int group) {
+  if (!prepared_) prepare(network);
+  StepGroup& g = groups_.at(static_cast<std::size_t>(group));
+  if (!g.separable.empty()) update_detached(network, x, h, &g.separable);
+  if (keep_start_slope_ && f_start_.size() != f_.size()) f_start_ = Vec::Zero(f_.size());
+  for (;;) {
+    // The group's first evaluation: every island's first residual in it.
+    network.derivative_part(t + h, x.data(), h, f_.data(), g.part);
+    part_evaluations_ += g.share;
+    evaluations_ = whole_evaluations_ + static_cast<long>(part_evaluations_);
+    if (keep_start_slope_) copy_runs(g.runs, f_, f_start_);
+    copy_runs(g.runs, x, stage_);
+    for (int k : g.islands) {
+      IslandSolve& s = islands_[static_cast<std::size_t>(k)];
+      if (!solve(network, s, t, h, stage_, true)) {
+        failed_ = &s;
+        return false;
+      }
+    }
+    if (g.separable.empty() || !attach_closed(network, stage_, &g.separable)) break;
+  }
+  copy_runs(g.runs, stage_, x);
+  return true;
+}
+
+bool ImplicitEulerStepper::apply_inverse(Vec& v, int group) {
+  const StepGroup& g = groups_.at(static_cast<std::size_t>(group));
+  for (int k : g.islands) {
+    if (!islands_[static_cast<std::size_t>(k)].lu_valid) return false;
+  }
+  for (int k : g.islands) {
+    IslandSolve& s = islands_[static_cast<std::size_t>(k)];
+    for (Eigen::Index r = 0; r < s.residual.size(); ++r) {
+      s.residual[r] = v[s.solved[static_cast<std::size_t>(r)]];
+    }
+    correct(s);
+    for (Eigen::Index r = 0; r < s.delta.size(); ++r)
+      v[s.solved[static_cast<std::size_t>(r)]] = s.delta[r];
+  }
   return true;
 }
 

@@ -107,6 +107,17 @@ class ImplicitEulerStepper final : public Stepper {
   // Solving ODEs II, section IV.8). False (v unchanged) if there is no matrix yet.
   bool apply_inverse(Vec& v);
 
+  // Step groups: parts of the network that no element can couple (core/islands.hpp's
+  // islands of the network's structure, each contact between bodies included), which an
+  // integrator may advance on steps of their own (core/island_sdirk.hpp). A group's Newton
+  // islands are the islands within it; its stage is solved from its own entries alone.
+  // Call before the first step; the groups must cover the islands of the network.
+  void set_step_groups(const std::vector<Island>& groups);
+  // solve_stage and apply_inverse for group g's entries only (the others untouched, and
+  // not read: they may be at other times). slope() and start_slope() are set on its entries.
+  bool solve_stage(Network& network, double t, double h, Vec& x, int group);
+  bool apply_inverse(Vec& v, int group);
+
  private:
   static constexpr int kMaxIterations = 16;
   static constexpr int kMaxSplits = 6;
@@ -165,7 +176,19 @@ class ImplicitEulerStepper final : public Stepper {
     double lu_h = 0.0;
   };
 
+  // A step group (set_step_groups): its part of the network, its entries in stretches, its
+  // Newton islands (indices into islands_, kept by build_islands) and contacts between its
+  // bodies.
+  struct StepGroup {
+    Island part;
+    std::vector<Run> runs;
+    std::vector<int> islands;
+    std::vector<int> separable;
+    double share = 0.0;
+  };
+
   void prepare(Network& network);
+  static void copy_runs(const std::vector<Run>& runs, const Vec& from, Vec& to);
   // The island's pattern (compressed or one column per evaluation) and, for a large sparse
   // island, its sparse matrix's structure.
   void set_pattern(Network& network, IslandSolve& s) const;
@@ -176,10 +199,12 @@ class ImplicitEulerStepper final : public Stepper {
   void build_islands(Network& network);
   // Detaches the contacts between bodies that a step of h from x cannot close, attaches the
   // others; rebuilds the islands if that changed anything.
-  void update_detached(Network& network, const Vec& x, double h);
+  // contacts: those to look at (nullptr: every separable one).
+  void update_detached(Network& network, const Vec& x, double h,
+                       const std::vector<int>* contacts = nullptr);
   // Attaches the detached contacts that are closed at x; true if there were any (the step
   // that led to x is then taken again).
-  bool attach_closed(Network& network, const Vec& x);
+  bool attach_closed(Network& network, const Vec& x, const std::vector<int>* contacts = nullptr);
   // Every island from (t, x) by h: with splits (a step) or without (a stage); false if an
   // island failed (the failing one in failed_).
   bool solve_islands(Network& network, double t, double h, Vec& x, bool may_split);
@@ -230,6 +255,8 @@ class ImplicitEulerStepper final : public Stepper {
   std::vector<double> column_steps_;
   bool keep_start_slope_ = false;
   Vec f_start_;
+  std::vector<StepGroup> groups_;
+  std::vector<int> group_of_state_;  // per state entry (-1: in no group)
 };
 
 }  // namespace stiction::core

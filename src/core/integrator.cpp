@@ -6,6 +6,7 @@
 
 #include "core/hermite.hpp"
 #include "core/implicit_euler.hpp"
+#include "core/island_sdirk.hpp"
 #include "core/sdirk.hpp"
 #include "core/step_control.hpp"
 
@@ -50,7 +51,7 @@ const Tableau& tableau_by_name(const std::string& name) {
 }
 
 std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,
-                                      double tolerance, double max_step) {
+                                      double tolerance, double max_step, const Network* network) {
   switch (integrator_traits(name).method) {  // throws for an unknown name
     case Method::explicit_rk:
       return std::make_unique<RungeKuttaStepper>(tableau_by_name(name), state_dim, dt);
@@ -63,6 +64,13 @@ std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, do
       return std::make_unique<AdaptiveRk4Stepper>(state_dim, dt, tolerance, max_step);
     case Method::sdirk:
       if (!(tolerance > 0.0)) throw std::invalid_argument(name + " needs a tolerance > 0");
+      if (network != nullptr) {
+        std::vector<Island> groups = step_groups(*network);
+        if (groups.size() > 1) {
+          return std::make_unique<IslandSdirkStepper>(
+              sdirk_tableau_by_name(name), std::move(groups), state_dim, dt, tolerance, max_step);
+        }
+      }
       return std::make_unique<SdirkStepper>(sdirk_tableau_by_name(name), state_dim, dt, tolerance,
                                             max_step);
   }
@@ -187,12 +195,13 @@ double AdaptiveRk4Stepper::error_of(Network& network, double t, double h, const 
 
 double AdaptiveRk4Stepper::switch_point(Network& network, double t, double h, const Vec& x,
                                         std::size_t start_regimes) {
-  const double at = locate_switch(network, t, h, x, start_regimes, h,
-                                  [&](double length, Vec& probe) {
-                                    rk4_.step(network, t, length, probe);
-                                    return true;
-                                  },
-                                  probe_);
+  const double at = locate_switch(
+      network, t, h, x, start_regimes, h,
+      [&](double length, Vec& probe) {
+        rk4_.step(network, t, length, probe);
+        return true;
+      },
+      probe_);
   evaluations_ = rk4_.evaluations();
   return at;
 }

@@ -47,6 +47,12 @@ const Tableau& euler_tableau();
 const Tableau& heun_tableau();
 const Tableau& rk4_tableau();
 
+// The end of a step taken by one part of the network on its own (Stepper::part_step_ends).
+struct PartStepEnd {
+  double time = 0.0;
+  double length = 0.0;  // the step's length
+  int segment = 0;      // which of the stepper's kept steps (Stepper::part_step_state)
+};
 
 class Stepper {
  public:
@@ -64,6 +70,20 @@ class Stepper {
   // The state derivative at the start of the step advance() just took, where a variable-step
   // method keeps it for its dense output (core/row_sampler.hpp), or nullptr.
   virtual const Vec* start_derivative() const { return nullptr; }
+  // Whether the stepper itself gives the state at times inside the step advance() just took
+  // (interpolate), rather than leaving it to a Hermite of the step's two ends: one whose
+  // parts take steps of their own within it (core/island_sdirk.hpp).
+  virtual bool interpolates() const { return false; }
+  // The state at time t inside the last step (t in [start, end]) into x, every entry.
+  virtual void interpolate(double /*t*/, Vec& /*x*/) const {}
+  // A stepper whose parts take steps of their own: the ends of the steps of the part that
+  // holds impedance `impedance` within (t0, t1], oldest first (none from the others)...
+  virtual void part_step_ends(int /*impedance*/, double /*t0*/, double /*t1*/,
+                              std::vector<PartStepEnd>& ends) const {
+    ends.clear();
+  }
+  // ... and the state at one of them, on that part's entries of x.
+  virtual void part_step_state(int /*impedance*/, int /*segment*/, Vec& /*x*/) const {}
 
  protected:
   long evaluations_ = 0;
@@ -169,10 +189,13 @@ class AdaptiveRk4Stepper final : public Stepper {
 // euler | symplectic_euler | heun | rk4 | implicit use dt (implicit: core/implicit_euler.hpp);
 // the adaptive ones (rk4_adaptive; sdirk2, sdirk4: core/sdirk.hpp) use dt as their first step
 // and need tolerance > 0. Throws std::invalid_argument naming the known integrators.
-// max_step bounds an adaptive integrator's step (the others ignore it).
+// max_step bounds an adaptive integrator's step (the others ignore it). Given the network,
+// sdirk2 and sdirk4 on a network of several step groups step each group on its own
+// (core/island_sdirk.hpp); without it, the whole network on one step.
 std::unique_ptr<Stepper> make_stepper(const std::string& name, int state_dim, double dt,
                                       double tolerance = 0.0,
-                                      double max_step = std::numeric_limits<double>::infinity());
+                                      double max_step = std::numeric_limits<double>::infinity(),
+                                      const Network* network = nullptr);
 // The tableau of an explicit RK integrator name, or nullptr (symplectic Euler, adaptive).
 const Tableau* find_tableau(const std::string& name);
 // Same, but throws std::invalid_argument for a name without a tableau.

@@ -52,7 +52,7 @@ RowSampler::RowSampler(Network& network, const RunOptions& options, const Steppe
       row_blend_(n_),
       end_signals_(n_),
       end_signals_t_(std::numeric_limits<double>::quiet_NaN()) {
-  if (dense_ && stepper.start_derivative() == nullptr) {
+  if (dense_ && !stepper.interpolates() && stepper.start_derivative() == nullptr) {
     throw std::logic_error("RowSampler: a variable step without its start derivative");
   }
   std::vector<std::string> columns{"t"};
@@ -153,6 +153,10 @@ Verdict RowSampler::after_step(const StepTaken& step) {
     return stop_if_non_finite();
   }
   const RowTimer timer(result_.row_seconds);
+  if (stepper_.interpolates()) {
+    sample_interpolated(step);
+    return stop_if_non_finite();
+  }
   const Vec& start_derivative = *stepper_.start_derivative();  // at step.t, the pending end
   if (pending_) {
     f1_ = start_derivative;
@@ -199,6 +203,25 @@ void RowSampler::sample_linear(const StepTaken& step) {
     }
     ++sample_;
   }
+}
+
+void RowSampler::sample_interpolated(const StepTaken& step) {
+  const double h = step.t_now - step.t;
+  while (sample_ < total_samples_ &&
+         static_cast<double>(sample_) * sample_period_ <= step.t_now + 1e-9 * T_) {
+    const double ts = static_cast<double>(sample_) * sample_period_;
+    if ((ts - step.t) / h > 1.0 - 1e-9) {
+      network_.write_signals(step.t_now, step.x, h, row_now_);
+    } else {
+      stepper_.interpolate(ts, x_row_);
+      network_.project(x_row_);
+      network_.write_signals(ts, x_row_, h, row_now_);
+    }
+    emit(ts, row_now_);
+    ++sample_;
+  }
+  t1_ = step.t_now;
+  t0_ = step.t;
 }
 
 void RowSampler::sample_dense() {

@@ -8,6 +8,9 @@
 //   the rows of every existing run, bit for bit). The signals at a step's end are kept: they are
 //   the next step's start signals (same time, same state, same tau), so a step with rows
 //   inside it evaluates the network once for its rows, not twice.
+// - A stepper that interpolates its own steps (Stepper::interpolates: sdirk on several
+//   islands, each on its own steps) gives the state at each row's time inside the step
+//   just taken; the rows are written at once.
 // - A variable step (rk4_adaptive, whose steps span several rows in smooth phases): rows come
 //   from the state interpolated by a cubic Hermite (core/hermite.hpp) from both ends' values
 //   and derivatives, quaternions renormalized (Network::project), then
@@ -48,6 +51,9 @@ class RowSampler final : public RunObserver {
   void sample_linear(const StepTaken& step);
   // Writes the rows in (t0_, t1_] from the pending step, its end derivative in f1_.
   void sample_dense();
+  // Writes the rows in (t, t_now] of a step from the stepper's own interpolation
+  // (Stepper::interpolates: groups that took steps of their own within it).
+  void sample_interpolated(const StepTaken& step);
 
   // Rows per block to the sink: at most kBlockRows, and at most kBlockBytes of them (a scene
   // of 120000 columns would otherwise fill a 245 MB block).

@@ -34,7 +34,7 @@ RunResult simulate(Network& network, const RunOptions& options, const ProgressCa
   const bool fixed_step = !is_adaptive(options.integrator);
   const long total_steps = static_cast<long>(std::ceil(end / T - 1e-9));
   auto stepper = make_stepper(options.integrator, network.state_dim(), T, options.tolerance,
-                              adaptive_step_bound(options));
+                              adaptive_step_bound(options), &network);
   Vec x = network.initial_state();
   Vec x_prev = x;
 

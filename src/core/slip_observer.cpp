@@ -53,7 +53,7 @@ void locate_on_body(Network& network, int impedance, const Vec& x0, SlipHistory&
 
 SlipObserver::SlipObserver(Network& network, const RunOptions& options, const Stepper& stepper,
                            RunResult& result, const Vec& x0)
-    : network_(network), result_(result), histories_(result.slip_events) {
+    : network_(network), stepper_(stepper), result_(result), histories_(result.slip_events) {
   const double resolution = options.event_resolution >= 0.0 ? options.event_resolution : options.dt;
   for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
     const auto& imp = *network.impedances()[i];
@@ -69,6 +69,7 @@ SlipObserver::SlipObserver(Network& network, const RunOptions& options, const St
     observe(slipping_.size() - 1, 0.0, x0, options.dt);
   }
   capture_ = !slipping_.empty() && stepper.evaluates_start_first();
+  if (stepper.interpolates()) part_state_ = x0;
   if (capture_) {
     for (int i : slipping_) {
       captured_inputs_.push_back(network.captured_input(i));
@@ -132,7 +133,18 @@ void SlipObserver::after_advance(const Vec& x) { settle(x); }
 
 Verdict SlipObserver::after_step(const StepTaken& step) {
   const double tau = step.t_now - step.t;
-  if (capture_) {
+  if (stepper_.interpolates()) {
+    // Each element at the ends of its own part's steps (exact states, its own step as tau),
+    // as if its part were stepped alone: not at the run loop's steps, where its state may be
+    // interpolated inside a step of its own.
+    for (std::size_t m = 0; m < slipping_.size(); ++m) {
+      stepper_.part_step_ends(slipping_[m], step.t, step.t_now, ends_);
+      for (const PartStepEnd& end : ends_) {
+        stepper_.part_step_state(slipping_[m], end.segment, part_state_);
+        observe(m, end.time, part_state_, end.length);
+      }
+    }
+  } else if (capture_) {
     pending_ = true;
     pending_time_ = step.t_now;
     pending_tau_ = tau;

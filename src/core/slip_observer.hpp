@@ -4,7 +4,8 @@
 // points (RunResult::body_events, core/body_events.hpp). Where the stepper evaluates the network
 // first at the step's start state, the slips of the state a step ends at are read from the next
 // step's first evaluation (Network::capture_slip_inputs_next, issue 13): one step later, with the
-// same bits, and no second evaluation of the maps.
+// same bits, and no second evaluation of the maps. Where the stepper's parts take steps of
+// their own (Stepper::interpolates), each element is observed at its part's own step ends.
 #pragma once
 
 #include <vector>
@@ -38,6 +39,7 @@ class SlipObserver final : public RunObserver {
   void settle(const Vec& state);
 
   Network& network_;
+  const Stepper& stepper_;
   RunResult& result_;  // its body_events are made from the histories at the end
   std::vector<SlipHistory>& histories_;
   std::vector<int> slipping_;                   // impedance index of each history
@@ -47,6 +49,8 @@ class SlipObserver final : public RunObserver {
   bool requested_ = false;
   double pending_time_ = 0.0, pending_tau_ = 0.0;
   std::vector<ConstVecRef> captured_inputs_, captured_states_;  // views, made once
+  std::vector<PartStepEnd> ends_;  // a stepper whose parts take steps of their own
+  Vec part_state_;
 };
 
 }  // namespace stiction::core

@@ -38,12 +38,16 @@ double scaled_error(const Vec& difference, const Vec& x, const Vec& floor, doubl
   return std::isfinite(worst) ? worst : 1e10;
 }
 
-bool same_regimes(Network& network, const Vec& a, std::size_t a_regimes, const Vec& b, double tau) {
-  if (network.regime_signature(b, tau) != a_regimes) return false;
+bool same_regimes(Network& network, const Vec& a, std::size_t a_regimes, const Vec& b, double tau,
+                  const Island* part) {
+  if (network.regime_signature(b, tau, part) != a_regimes) return false;
   // A clamping friction element sliding at both ends whose slip reversed passed through
   // zero, where its friction holds: a switch there and back within the step. (A stuck
   // element's spring vibrating reverses all the time; that is no switch.)
-  for (int i = 0; i < static_cast<int>(network.impedances().size()); ++i) {
+  const int count = part != nullptr ? static_cast<int>(part->impedances.size())
+                                    : static_cast<int>(network.impedances().size());
+  for (int k = 0; k < count; ++k) {
+    const int i = part != nullptr ? part->impedances[static_cast<std::size_t>(k)] : k;
     const Capabilities& c = network.capabilities(i);
     if (c.slip == nullptr || c.friction == nullptr) continue;
     const Slot s = network.impedance_slot(i);
@@ -58,13 +62,18 @@ bool same_regimes(Network& network, const Vec& a, std::size_t a_regimes, const V
 }
 
 double locate_switch(Network& network, double t, double h, const Vec& x, std::size_t start_regimes,
-                     double tau, const std::function<bool(double, Vec&)>& take_step, Vec& probe) {
+                     double tau, const std::function<bool(double, Vec&)>& take_step, Vec& probe,
+                     const Island* part) {
   const double precision = std::max(kSwitchPrecision * h, 1e-13 * std::max(1.0, std::abs(t)));
   double lo = 0.0, hi = h;
   while (hi - lo > precision) {
     const double mid = 0.5 * (lo + hi);
-    probe = x;
-    if (take_step(mid, probe) && same_regimes(network, x, start_regimes, probe, tau)) {
+    if (part != nullptr) {
+      for (int e : part->states) probe[e] = x[e];
+    } else {
+      probe = x;
+    }
+    if (take_step(mid, probe) && same_regimes(network, x, start_regimes, probe, tau, part)) {
       lo = mid;
     } else {
       hi = mid;

@@ -47,7 +47,9 @@ double scaled_error(const Vec& difference, const Vec& x, const Vec& floor, doubl
 //
 // Whether state b has every element in the regime it has at a (signature a_regimes,
 // Network::regime_signature with tau), and no slip velocity reversed from a to b.
-bool same_regimes(Network& network, const Vec& a, std::size_t a_regimes, const Vec& b, double tau);
+// part: only that part's elements (Network::regime_signature with the same part).
+bool same_regimes(Network& network, const Vec& a, std::size_t a_regimes, const Vec& b, double tau,
+                  const Island* part = nullptr);
 
 // Relative precision (of the trial step) to which a change of regime is located.
 inline constexpr double kSwitchPrecision = 1e-4;
@@ -56,9 +58,12 @@ inline constexpr double kSwitchPrecision = 1e-4;
 // bisection on the step length, to within kSwitchPrecision h, where
 // take_step(length, probe) advances probe (set to x) by one step of `length` and returns
 // false if it could not (counted as past the switch). Regimes are classified with `tau`
-// throughout, so that the comparison depends on the state alone.
+// throughout, so that the comparison depends on the state alone. With a part, only its
+// elements are compared and only its state entries of probe are set (start_regimes: its
+// signature).
 double locate_switch(Network& network, double t, double h, const Vec& x, std::size_t start_regimes,
-                     double tau, const std::function<bool(double, Vec&)>& take_step, Vec& probe);
+                     double tau, const std::function<bool(double, Vec&)>& take_step, Vec& probe,
+                     const Island* part = nullptr);
 
 // The shortest step an adaptive integrator takes at time t before it gives up (below it the
 // step is lost in the rounding of t).
