@@ -3,7 +3,10 @@
 // - the tableaux: row sums, stiffly accurate, the embedded weights consistent, and the traits
 //   table says what the tableaux are;
 // - order: at fixed steps on a smooth nonlinear problem (a pendulum on a joint spring), halving
-//   the step divides the error by 2^p (4 for sdirk2, 16 for sdirk4);
+//   the step divides the error by 2^p (4 for sdirk2, 16 for sdirk4); on stick-slip (generated
+//   masses on a spring on a belt) too, in the state and in the switch times, the fixed steps
+//   landing on the switches; and sdirk2's on pendulums with Coulomb joint friction, once the
+//   step resolves their short sticks;
 // - a sphere launched sliding at K = 1e7 N/m sticks at v0 / ((1 + M R^2 / J) mu g) and rolls at
 //   v0 / (1 + J / (M R^2)), the paper's parameters and generated ones, error-controlled;
 // - adaptive steps land on the switch: one step ends just before the stick;
@@ -371,9 +374,13 @@ TEST_CASE(
     "sdirk: halving the fixed step divides the error by 2^order on a stick-slip problem "
     "too (switches landed on)",
     "[sdirk]") {
-  // Generated belts, two stick-slip cycles; the reference is sdirk4 at 1.25e-4 s.
-  // A fixed step across a switch has a local error of the size of the force's jump times
-  // the step: unlanded, the error would fall as h (ratio 2).
+  // Generated belts, two stick-slip cycles; the reference is sdirk4 at 1.25e-4 s. A fixed
+  // step across a switch has a local error of the size of the force's jump times the step:
+  // unlanded, the error would fall as h (ratio 2). The state's error is scaled by 1 cm and
+  // v_b. sdirk4's errors here are 1e-7 to 1e-12 (s, or relative): its band is wider (11 to
+  // 23 around 16; measured 15.5 to 17.2 on the state, 16.0 to 19.6 on the switch times) and
+  // switch time errors below 1e-10 s are left out (one stick of three cases stops at 4e-11 s,
+  // not traced; Newton's tolerance is 1e-12 relative per stage).
   std::mt19937 rng(3636);
   struct Case {
     const char* name;
@@ -387,7 +394,7 @@ TEST_CASE(
     const SwitchRun reference = run_switches("sdirk4", belt_oscillator(b), 1.25e-4, duration);
     REQUIRE(reference.switches.size() >= 5);
     for (const Case c :
-         {Case{"sdirk2", 2e-3, 3.2, 5.0, 0.0}, Case{"sdirk4", 4e-3, 12.0, 20.0, 1e-10}}) {
+         {Case{"sdirk2", 2e-3, 3.2, 5.0, 0.0}, Case{"sdirk4", 4e-3, 11.0, 23.0, 1e-10}}) {
       std::vector<double> state_errors, switch_errors;
       for (int level = 0; level < 4; ++level) {
         const SwitchRun run =
