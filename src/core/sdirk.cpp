@@ -22,7 +22,9 @@ const SdirkTableau& sdirk2_tableau() {
 }
 
 const SdirkTableau& sdirk4_tableau() {
-  // Hairer & Wanner, Solving ODEs II, Table IV.6.5 (their code SDIRK4's first method).
+  // Hairer & Wanner, Solving ODEs II, Table IV.6.5 (their code SDIRK4's first method), a
+  // row of the tableau a line.
+  // clang-format off
   static const SdirkTableau t{"sdirk4",
                               5,
                               0.25,
@@ -34,6 +36,7 @@ const SdirkTableau& sdirk4_tableau() {
                               {59.0 / 48, -17.0 / 96, 225.0 / 32, -85.0 / 12, 0.0},
                               4,
                               3};
+  // clang-format on
   return t;
 }
 
@@ -59,7 +62,9 @@ SdirkStepper::SdirkStepper(const SdirkTableau& tableau, int state_dim, double dt
       floor_(Vec::Ones(state_dim)),
       probe_(Vec::Zero(state_dim)),
       f_start_(Vec::Zero(state_dim)),
-      stage_start_(Vec::Zero(state_dim)) {
+      stage_start_(Vec::Zero(state_dim)),
+      kept_y_(y_),
+      kept_start_(Vec::Zero(state_dim)) {
   implicit_.keep_start_slope(true);
 }
 
@@ -100,19 +105,101 @@ bool SdirkStepper::step(Network& network, double t, double h, Vec& x) {
   return true;
 }
 
-double SdirkStepper::advance(Network& network, double t, double limit, Vec& x) {
-  const auto last = static_cast<std::size_t>(tableau_.stages - 1);
-  if (!(tolerance_ > 0.0)) {
-    const double h = std::min(dt_, limit);
-    if (!step(network, t, h, x)) {
-      std::ostringstream message;
-      message << name() << ": Newton's iteration did not converge in a stage of a step of " << h
-              << " s at t = " << t << " s";
-      throw std::runtime_error(message.str());
-    }
-    f_start_.swap(stage_start_);
-    return h;
+bool SdirkStepper::stages_switch(Network& network, const Vec& x, std::size_t start_regimes,
+                                 double tau) {
+  bool same = true;
+  for (const Vec& y : y_) same = same && same_regimes(network, x, start_regimes, y, tau);
+  return !same;
+}
+
+void SdirkStepper::not_converged(double t, double h) const {
+  std::ostringstream message;
+  message << name() << ": Newton's iteration did not converge in a stage of a step of " << h
+          << " s at t = " << t << " s";
+  throw std::runtime_error(message.str());
+}
+
+double SdirkStepper::accept_fixed(double t, double h, Vec& x) {
+  x.swap(y_[static_cast<std::size_t>(tableau_.stages - 1)]);
+  f_start_.swap(stage_start_);
+  if (off_grid_ && h == grid_end_ - t) off_grid_ = false;
+  return h;
+}
+
+double SdirkStepper::cross_fixed(Network& network, double t, double h, double regular, double limit,
+                                 Vec& x) {
+  // Newton's iteration may cycle on the kink of a clamp whose switch lies at the stage's
+  // solution: then a longer step, up to the grid point.
+  for (;;) {
+    const double length = std::min(h, limit);
+    if (stages(network, t, length, x)) return accept_fixed(t, length, x);
+    if (h >= regular) not_converged(t, length);
+    h = std::min(4.0 * h, regular);
   }
+}
+
+double SdirkStepper::advance_fixed(Network& network, double t, double limit, Vec& x) {
+  // Off the grid (after a landed switch) the step ends at the grid point the cut step was
+  // heading to; one within rounding of t is passed for the next.
+  if (off_grid_ && grid_end_ - t <= min_adaptive_step(t)) grid_end_ += dt_;
+  const double regular = off_grid_ ? grid_end_ - t : dt_;
+  if (crossing_) {  // the short step across a located switch, not located again
+    crossing_ = false;
+    return cross_fixed(network, t, std::min(window_, regular), regular, limit, x);
+  }
+  const bool refining = refining_;
+  refining_ = false;
+  const double h = std::min(refining ? std::min(window_, regular) : regular, limit);
+  // A window searched again whose step does not converge holds the switch (as a probe of
+  // locate_switch that does not converge counts as past it).
+  const bool converged = stages(network, t, h, x);
+  if (!converged && !refining) not_converged(t, h);
+  // Regimes are classified at each state itself (tau = 0). A stage's clamp, given the
+  // stage's start e and tau = gamma h, is the element's law at the stage's solution
+  // (|B v + K e| <= F there), so tau = 0 tells which side each stage is on. With tau =
+  // gamma h the classification is that of a step of gamma h further: a stuck element's
+  // flips gamma h before its breakaway (its slip is F' / K, tau K times that is tau F'), and
+  // a step starting closer than that reads as sliding from its start and crosses the
+  // breakaway unlanded (measured: the belt's slip onsets then fell on grid points).
+  const double tau = 0.0;
+  const std::size_t start_regimes = network.regime_signature(x, tau);
+  if (converged && !stages_switch(network, x, start_regimes, tau)) return accept_fixed(t, h, x);
+  // A probe counts as past the switch when any of its stages is (a higher-order method's
+  // stages are off the trajectory near a switch, its end may be back on the old side). The
+  // last probe before the switch keeps its stages: the step to the switch.
+  double kept = -1.0;
+  const double land = locate_switch(
+      network, t, h, x, start_regimes, tau,
+      [&](double length, Vec& probe) {
+        if (!step(network, t, length, probe) || stages_switch(network, x, start_regimes, tau)) {
+          return false;
+        }
+        std::swap(y_, kept_y_);
+        kept_start_ = stage_start_;
+        kept = length;
+        return true;
+      },
+      probe_);
+  ++switches_;
+  if (!off_grid_) {
+    grid_end_ = t + dt_;
+    off_grid_ = true;
+  }
+  if (land != kept) return cross_fixed(network, t, land, regular, limit, x);  // at t already
+  std::swap(y_, kept_y_);
+  stage_start_.swap(kept_start_);
+  // The switch lies within locate_switch's precision after the landing: that window is
+  // searched again, until the precision is at its floor; then a step of the window crosses
+  // it.
+  const double floor = 1e-13 * std::max(1.0, std::abs(t));
+  window_ = 2.0 * std::max(kSwitchPrecision * h, floor);
+  (kSwitchPrecision * h > floor ? refining_ : crossing_) = true;
+  return accept_fixed(t, land, x);
+}
+
+double SdirkStepper::advance(Network& network, double t, double limit, Vec& x) {
+  if (!(tolerance_ > 0.0)) return advance_fixed(network, t, limit, x);
+  const auto last = static_cast<std::size_t>(tableau_.stages - 1);
   for (;;) {
     const double h = std::min(h_, limit);
     const bool converged = stages(network, t, h, x);
@@ -136,9 +223,7 @@ double SdirkStepper::advance(Network& network, double t, double limit, Vec& x) {
     const double tau = tableau_.gamma * h;
     if (!crossing_) {
       const std::size_t start_regimes = network.regime_signature(x, tau);
-      bool same = true;
-      for (const Vec& y : y_) same = same && same_regimes(network, x, start_regimes, y, tau);
-      if (!same) {
+      if (stages_switch(network, x, start_regimes, tau)) {
         const double land = locate_switch(
             network, t, h, x, start_regimes, tau,
             [&](double length, Vec& probe) { return step(network, t, length, probe); }, probe_);

@@ -31,6 +31,18 @@
 // regime than x, or a sliding element whose slip reversed there, and the step is cut to end
 // just before the switch; a short step crosses it.
 //
+// Fixed steps (tolerance 0, for measuring the order) land on switches too, or the error of
+// the step across each switch (the force's jump times the step) would make every method
+// first order on stick-slip. They differ from the error-controlled steps' landing in three
+// ways, each needed for the order to show (docs/study.md, "sdirk2, sdirk4"): regimes are
+// classified at the state itself (tau = 0: the clamp a stage obeys), since with tau = gamma h
+// a stuck element reads as sliding gamma h before its breakaway and a step starting there
+// crosses it unlanded; a probe of the bisection is past the switch when any of its stages is
+// (sdirk4's inner stages cross before its end does, which may even come back); and the
+// window of locate_switch's precision (1e-4 of the step, an error of first order) is
+// searched again until it is at rounding. The steps then return to the grid of multiples of
+// dt from the run's start.
+//
 // Tableaux:
 // - sdirk2: Alexander (1977), gamma = 1 - 1/sqrt(2), c = (gamma, 1), b = (1 - gamma, gamma);
 //   embedded bhat = (1, 0) (first order), err = gamma h (k2 - k1).
@@ -68,7 +80,10 @@ const SdirkTableau& sdirk_tableau_by_name(const std::string& name);
 class SdirkStepper final : public Stepper {
  public:
   // tolerance > 0: error-controlled steps starting from dt, at most max_step; tolerance 0:
-  // fixed steps of dt without error control (for measuring the order).
+  // fixed steps of dt without error control (for measuring the order), landing on switches
+  // (above): a step whose stages change regime is cut to end just before the switch, a
+  // short step crosses it, and the next ends on the grid of multiples of dt again (so
+  // halving dt halves every regular step). Without switches, steps of exactly dt.
   SdirkStepper(const SdirkTableau& tableau, int state_dim, double dt, double tolerance,
                double max_step = std::numeric_limits<double>::infinity());
   const std::string& name() const override { return tableau_.name; }
@@ -92,6 +107,18 @@ class SdirkStepper final : public Stepper {
   bool stages(Network& network, double t, double h, const Vec& x);
   // The scaled, filtered error estimate of the stages just computed (step h, start x).
   double estimate(double h);
+  // Whether a stage just computed is in another regime than the start x (signature
+  // start_regimes, classified with tau), or has a sliding element's slip reversed.
+  bool stages_switch(Network& network, const Vec& x, std::size_t start_regimes, double tau);
+  // Throws std::runtime_error: a fixed step of h from t whose stages did not converge.
+  [[noreturn]] void not_converged(double t, double h) const;
+  // Takes the stages just computed (step h from t) as the step; h.
+  double accept_fixed(double t, double h, Vec& x);
+  // A fixed step across a switch at t: h, or longer (up to `regular`) if its stages do not
+  // converge.
+  double cross_fixed(Network& network, double t, double h, double regular, double limit, Vec& x);
+  // advance() at tolerance 0: fixed steps on the grid, landing on switches.
+  double advance_fixed(Network& network, double t, double limit, Vec& x);
 
   SdirkTableau tableau_;
   ImplicitEulerStepper implicit_;
@@ -100,11 +127,20 @@ class SdirkStepper final : public Stepper {
   double max_step_;
   double h_;
   StepController controller_;
-  std::vector<Vec> k_, y_;  // stage slopes and solutions, allocated once
+  std::vector<Vec> k_, y_;             // stage slopes and solutions, allocated once
   Vec err_, floor_, probe_, f_start_;  // floor_: ones (see above)
-  Vec stage_start_;  // the start slope of the stages last computed
+  Vec stage_start_;                    // the start slope of the stages last computed
   double last_error_ = 0.0;
   bool crossing_ = false;  // the next step crosses a located switch: not located again
+  // Fixed steps: the window after a landing in which the switch lies, searched again
+  // (refining_) or crossed; whether (off_grid_) the steps are heading back to the grid point
+  // grid_end_ after a landed switch.
+  double window_ = 0.0;
+  std::vector<Vec> kept_y_;  // the stages of the last probe before a switch
+  Vec kept_start_;
+  bool refining_ = false;
+  bool off_grid_ = false;
+  double grid_end_ = 0.0;
   long switches_ = 0;
   long rejections_ = 0;
 };
