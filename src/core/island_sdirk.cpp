@@ -276,9 +276,13 @@ void IslandSdirkStepper::part_step_ends(int impedance, double t0, double t1,
   const int index = group_of_impedance_[static_cast<std::size_t>(impedance)];
   if (index < 0) return;
   const Group& g = groups_[static_cast<std::size_t>(index)];
+  // The run loop's times are t + h, which may be a rounding off a group's (the run's end
+  // included): a step ending within that of t1 is in (t0, t1]. Steps are far longer
+  // (min_adaptive_step).
+  const double slack = 1e-15 * std::max(1.0, std::abs(t1));
   for (std::size_t k = 0; k < g.used; ++k) {
     const Segment& seg = g.segments[k];
-    if (seg.t1 > t0 && seg.t1 <= t1) {
+    if (seg.t1 > t0 + slack && seg.t1 <= t1 + slack) {
       ends.push_back({seg.t1, seg.t1 - seg.t0, static_cast<int>(k)});
     }
   }
