@@ -4,9 +4,11 @@
 // - a sphere among many takes the steps it takes alone, to the bit, so the work is the sum
 //   of the spheres' own (linear in their number) and one sphere's switch costs the others
 //   nothing;
-// - the rows between the run loop's steps come from each sphere's own steps.
+// - parts of every kind (a box, a joint with friction, two spheres joined by their contact)
+//   step among others as they step alone, and alone as SdirkStepper steps them, to the bit.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <sstream>
 #include <string>
@@ -14,6 +16,7 @@
 
 #include "core/integrator.hpp"
 #include "core/island_sdirk.hpp"
+#include "core/sdirk.hpp"
 #include "core/simulation.hpp"
 #include "scene/scene.hpp"
 
@@ -157,4 +160,130 @@ TEST_CASE("island sdirk: a sphere among many takes the steps it takes alone, to 
   INFO(macro_steps << " steps of the run loop, " << together.group_steps()
                    << " steps of single spheres; alone " << alone_steps);
   CHECK(together.group_steps() == alone_steps);
+}
+
+namespace {
+
+// A generated scene of separate parts of every kind, 2 m apart: a sphere launched sliding, a
+// box launched sliding at a random yaw, a pendulum with Coulomb joint friction, and two
+// spheres on the floor rolling into each other (one part: their contact joins them).
+// only: the number of the one part to write (-1: all).
+std::string mixed_scene(std::uint32_t seed, int parts, int only, double duration) {
+  std::mt19937 rng(seed);
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<>(lo, hi)(rng);
+  };
+  std::ostringstream text;
+  text.precision(17);
+  text << "name = \"mixed\"\ngravity = [0.0, 0.0, " << -kG << "]\n[simulation]\nintegrator = "
+       << "\"sdirk2\"\ndt = 1e-4\ntolerance = 1e-6\nduration = " << duration
+       << "\noutput_rate = 60.0\n";
+  for (int k = 0; k < parts; ++k) {
+    // Every part draws its numbers whether written or not: the same part in either scene.
+    const int kind = k % 4;
+    const double x0 = 2.0 * k, mass = uniform(0.2, 3.0), mu = uniform(0.1, 0.6);
+    const double a = uniform(-1.0, 1.0), b = uniform(-1.0, 1.0), c = uniform(0.05, 0.3);
+    if (only >= 0 && only != k) continue;
+    const std::string n = std::to_string(k);
+    const auto floor = [&](const std::string& body, const std::string& other) {
+      text << "[impedances.floor_" << body << "]\ntype = \"kikuuwe_contact\"\nbody = \"" << body
+           << "\"\n"
+           << (other.empty() ? "" : "other = \"" + other + "\"\n")
+           << "stiffness = 1e6\ndamping = " << 30.0 * mass << "\nmu = " << mu
+           << (other.empty() ? "\nsettle = true\n" : "\n");
+    };
+    if (kind == 0 || kind == 1) {
+      const std::string body = (kind == 0 ? "ball" : "box") + n;
+      text << "[bodies." << body << "]\ntype = \"rigid_body\"\nmass = " << mass;
+      if (kind == 0) {
+        text << "\nshape = \"sphere\"\nradius = " << c << "\nposition = [" << x0 << ", 0.0, " << c;
+      } else {
+        text << "\nshape = \"box\"\nsize = [" << 2.0 * c << ", " << c + 0.05 << ", " << c
+             << "]\nposition = [" << x0 << ", 0.0, " << 0.5 * c << "]\norientation = ["
+             << std::cos(a) << ", 0.0, 0.0, " << std::sin(a);
+      }
+      text << "]\nvelocity = [" << 2.0 * a << ", " << 2.0 * b << ", 0.0]\n";
+      floor(body, "");
+    } else if (kind == 2) {
+      text << "[bodies.arm" << n << "]\ntype = \"planar_arm\"\naxis = [0.0, -1.0, 0.0]\nbase = ["
+           << x0 << ", 0.0, 0.6]\nlinks = [{ length = 0.5, width = 0.03, mass = " << mass
+           << " }]\nangles = [" << -1.5707963267948966 + 0.3 * a << "]\n"
+           << "[impedances.joint" << n << "]\ntype = \"kikuuwe_friction\"\nbody = \"arm" << n
+           << "\"\njoint = 0\nstiffness = 5000.0\ndamping = 1.0\nforce_limit = " << 0.05 * c
+           << "\n";
+    } else {
+      const double r = 0.1;
+      for (int side = 0; side < 2; ++side) {
+        const std::string body = "pair" + n + (side == 0 ? "a" : "b");
+        text << "[bodies." << body << "]\ntype = \"rigid_body\"\nmass = " << mass
+             << "\nshape = \"sphere\"\nradius = " << r << "\nposition = ["
+             << x0 + (side == 0 ? -0.3 : 0.3) << ", " << (side == 0 ? 0.05 * b : 0.0) << ", " << r
+             << "]\nvelocity = [" << (side == 0 ? 1.0 + a : -0.5) << ", 0.0, 0.0]\n";
+        floor(body, "");
+      }
+      text << "[impedances.touch" << n << "]\ntype = \"kikuuwe_contact\"\nbody = \"pair" << n
+           << "a\"\nother = \"pair" << n << "b\"\nstiffness = 1e6\ndamping = 10.0\nmu = " << mu
+           << "\n";
+    }
+  }
+  return text.str();
+}
+
+// Steps a scene's network from its initial state to `duration` with the given stepper.
+core::Vec run_to(core::Network& network, core::Stepper& stepper, double duration) {
+  core::Vec x = network.initial_state();
+  double t = 0.0;
+  while (t < duration) t += stepper.advance(network, t, duration - t, x);
+  return x;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "island sdirk: parts of every kind (spheres, boxes, a joint with friction, a colliding "
+    "pair) step among others as they step alone, and alone as one step for all",
+    "[sdirk][islands]") {
+  const double duration = 1.0;
+  for (const std::uint32_t seed : {11u, 12u}) {
+    const int parts = 8;
+    scene::Scene all = load(mixed_scene(seed, parts, -1, duration));
+    const std::vector<core::Island> groups = core::step_groups(*all.network);
+    REQUIRE(groups.size() == static_cast<std::size_t>(parts));  // the pair is one part
+    core::IslandSdirkStepper together(core::sdirk2_tableau(), groups, all.network->state_dim(),
+                                      1e-4, 1e-6, 4.0 / 60.0);
+    const core::Vec x = run_to(*all.network, together, duration);
+    REQUIRE(x.allFinite());
+    long alone_steps = 0;
+    for (int k = 0; k < parts; ++k) {
+      scene::Scene one = load(mixed_scene(seed, parts, k, duration));
+      core::IslandSdirkStepper alone(core::sdirk2_tableau(), core::step_groups(*one.network),
+                                     one.network->state_dim(), 1e-4, 1e-6, 4.0 / 60.0);
+      const core::Vec y = run_to(*one.network, alone, duration);
+      alone_steps += alone.group_steps();
+      // One step for all (SdirkStepper) on the part alone: the same method, so the same
+      // steps and the same state, to the bit.
+      scene::Scene again = load(mixed_scene(seed, parts, k, duration));
+      core::SdirkStepper whole(core::sdirk2_tableau(), again.network->state_dim(), 1e-4, 1e-6,
+                               4.0 / 60.0);
+      const core::Vec z = run_to(*again.network, whole, duration);
+      double worst_whole = 0.0;
+      bool same = true;
+      for (const core::LayoutEntry& e : one.network->layout()) {
+        for (const core::LayoutEntry& f : all.network->layout()) {
+          if (f.component != e.component) continue;
+          REQUIRE(f.size == e.size);
+          for (int i = 0; i < e.size; ++i) {
+            same = same && y[e.offset + i] == x[f.offset + i];
+            worst_whole = std::max(worst_whole, std::abs(y[e.offset + i] - z[e.offset + i]) /
+                                                    (1.0 + std::abs(z[e.offset + i])));
+          }
+        }
+      }
+      INFO("seed " << seed << ", part " << k << " (kind " << k % 4 << "): alone and one step "
+                   << "for all differ by " << worst_whole << " at most");
+      CHECK(same);
+      CHECK(worst_whole == 0.0);
+    }
+    CHECK(together.group_steps() == alone_steps);
+  }
 }
