@@ -153,7 +153,14 @@ double SdirkStepper::advance_fixed(Network& network, double t, double limit, Vec
   // A window searched again whose step does not converge holds the switch (as a probe of
   // locate_switch that does not converge counts as past it).
   const bool converged = stages(network, t, h, x);
-  if (!converged && !refining) not_converged(t, h);
+  if (!converged && !refining) {
+    // A short step back to the grid just after a switch may cycle on its kink too (a belt's
+    // stick 7e-7 s before a point of the grid of 1.25e-4 s: the step from the stick to the
+    // grid point did not converge): then the step to the next grid point.
+    if (!off_grid_ || regular >= dt_ || h < regular) not_converged(t, h);
+    grid_end_ += dt_;
+    return advance_fixed(network, t, limit, x);
+  }
   // Regimes are classified at each state itself (tau = 0). A stage's clamp, given the
   // stage's start e and tau = gamma h, is the element's law at the stage's solution
   // (|B v + K e| <= F there), so tau = 0 tells which side each stage is on. With tau =
