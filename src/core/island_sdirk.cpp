@@ -48,6 +48,7 @@ void IslandSdirkStepper::restart(double t, const Vec& x) {
     g.t = t;
     g.h = std::min(dt_, max_step_);
     g.crossing = false;
+    g.refining = false;
     g.at_switch = false;
     g.used = 0;
   }
@@ -136,7 +137,6 @@ void IslandSdirkStepper::take(Network& network, Group& g, double h, double t_lim
 
 double IslandSdirkStepper::step_group(Network& network, Group& g, double t_limit) {
   const int index = static_cast<int>(&g - groups_.data());
-  const auto last = static_cast<std::size_t>(tableau_.stages - 1);
   for (;;) {
     const double h = std::min(g.h, t_limit - g.t);
     const bool converged = stages(network, index, g.t, h, state_);
@@ -155,34 +155,29 @@ double IslandSdirkStepper::step_group(Network& network, Group& g, double t_limit
       }
       continue;
     }
-    // A step across a change of regime is cut to end just before it (as SdirkStepper's).
-    const double tau = tableau_.gamma * h;
+    // A step across a change of regime is cut to end just before it, as SdirkStepper's
+    // (core/sdirk.hpp's land_before_switch: regimes at tau = 0, a probe past the switch when
+    // any of its stages is).
     if (!g.crossing) {
-      const std::size_t start_regimes = network.regime_signature(state_, tau, &g.part);
-      bool same = true;
-      for (const Vec& y : y_) {
-        same = same && same_regimes(network, state_, start_regimes, y, tau, &g.part);
-      }
-      if (!same) {
+      const std::size_t start_regimes = network.regime_signature(state_, 0.0, &g.part);
+      if (stages_switch(network, state_, start_regimes, y_, &g.part)) {
         const double t0 = g.t;
-        const double land = locate_switch(
-            network, t0, h, state_, start_regimes, tau,
-            [&](double length, Vec& probe) {
-              if (!stages(network, index, t0, length, probe)) return false;
-              for (int i : g.part.states) probe[i] = y_[last][i];
-              return true;
-            },
-            probe_, &g.part);
-        ++switches_;
+        const double land = land_before_switch(
+            network, t0, h, state_, start_regimes, y_,
+            [&](double length) { return stages(network, index, t0, length, state_); }, probe_,
+            &g.part);
+        if (!g.refining) ++switches_;
         if (land < h) {
           if (!stages(network, index, t0, land, state_)) {  // the step to the switch
             g.h = 0.25 * land;
             continue;
           }
           take(network, g, land, t_limit);
-          g.crossing = true;
+          const SwitchWindow window = window_after_landing(t0, h);
+          g.crossing = window.crossing;
+          g.refining = !window.crossing;
           g.at_switch = true;
-          g.h = std::max(2.0 * kSwitchPrecision * h, 1e-13 * std::max(1.0, std::abs(t0)));
+          g.h = window.length;
           return land;
         }
         // The switch is at the step's end: the step stands (its stages computed anew: the
@@ -195,6 +190,7 @@ double IslandSdirkStepper::step_group(Network& network, Group& g, double t_limit
     }
     g.at_switch = g.crossing;  // the step that crossed a switch ends at one too
     g.crossing = false;
+    g.refining = false;
     take(network, g, h, t_limit);
     // A step cut short by the limit says little about the next one: keep g.h then. A factor
     // of 1..1.2 keeps the step, so that the stages' iteration matrices are reused.

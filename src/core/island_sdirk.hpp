@@ -70,6 +70,7 @@ class IslandSdirkStepper final : public Stepper {
     double t = 0.0;                 // its own time: its entries of state_ are its state there
     double h = 0.0;                 // its next trial step
     bool crossing = false;          // its next step crosses a located switch: not located again
+    bool refining = false;          // its next step searches a located switch's window again
     bool at_switch = false;         // its last step landed on or crossed a switch, ending at t
     std::vector<Segment> segments;  // its steps since the run loop's last time (reused)
     std::size_t used = 0;

@@ -47,6 +47,37 @@ const SdirkTableau& sdirk_tableau_by_name(const std::string& name) {
   throw std::invalid_argument("integrator '" + name + "' is not an SDIRK tableau");
 }
 
+bool stages_switch(Network& network, const Vec& x, std::size_t x_regimes, const std::vector<Vec>& y,
+                   const Island* part) {
+  for (const Vec& stage : y) {
+    if (!same_regimes(network, x, x_regimes, stage, 0.0, part)) return true;
+  }
+  return false;
+}
+
+double land_before_switch(Network& network, double t, double h, const Vec& x, std::size_t x_regimes,
+                          const std::vector<Vec>& y, const std::function<bool(double)>& stages,
+                          Vec& probe, const Island* part) {
+  const Vec& end = y.back();
+  return locate_switch(
+      network, t, h, x, x_regimes, 0.0,
+      [&](double length, Vec& state) {
+        if (!stages(length) || stages_switch(network, x, x_regimes, y, part)) return false;
+        if (part != nullptr) {
+          for (int e : part->states) state[e] = end[e];
+        } else {
+          state = end;
+        }
+        return true;
+      },
+      probe, part);
+}
+
+SwitchWindow window_after_landing(double t, double h) {
+  const double floor = 1e-13 * std::max(1.0, std::abs(t));
+  return {2.0 * std::max(kSwitchPrecision * h, floor), !(kSwitchPrecision * h > floor)};
+}
+
 SdirkStepper::SdirkStepper(const SdirkTableau& tableau, int state_dim, double dt, double tolerance,
                            double max_step)
     : tableau_(tableau),
@@ -105,13 +136,6 @@ bool SdirkStepper::step(Network& network, double t, double h, Vec& x) {
   return true;
 }
 
-bool SdirkStepper::stages_switch(Network& network, const Vec& x, std::size_t start_regimes,
-                                 double tau) {
-  bool same = true;
-  for (const Vec& y : y_) same = same && same_regimes(network, x, start_regimes, y, tau);
-  return !same;
-}
-
 void SdirkStepper::not_converged(double t, double h) const {
   std::ostringstream message;
   message << name() << ": Newton's iteration did not converge in a stage of a step of " << h
@@ -153,7 +177,14 @@ double SdirkStepper::advance_fixed(Network& network, double t, double limit, Vec
   // A window searched again whose step does not converge holds the switch (as a probe of
   // locate_switch that does not converge counts as past it).
   const bool converged = stages(network, t, h, x);
-  if (!converged && !refining) not_converged(t, h);
+  if (!converged && !refining) {
+    // A short step back to the grid just after a switch may cycle on its kink too (a belt's
+    // stick 7e-7 s before a point of the grid of 1.25e-4 s: the step from the stick to the
+    // grid point did not converge): then the step to the next grid point.
+    if (!off_grid_ || regular >= dt_ || h < regular) not_converged(t, h);
+    grid_end_ += dt_;
+    return advance_fixed(network, t, limit, x);
+  }
   // Regimes are classified at each state itself (tau = 0). A stage's clamp, given the
   // stage's start e and tau = gamma h, is the element's law at the stage's solution
   // (|B v + K e| <= F there), so tau = 0 tells which side each stage is on. With tau =
@@ -163,7 +194,7 @@ double SdirkStepper::advance_fixed(Network& network, double t, double limit, Vec
   // breakaway unlanded (measured: the belt's slip onsets then fell on grid points).
   const double tau = 0.0;
   const std::size_t start_regimes = network.regime_signature(x, tau);
-  if (converged && !stages_switch(network, x, start_regimes, tau)) return accept_fixed(t, h, x);
+  if (converged && !stages_switch(network, x, start_regimes, y_)) return accept_fixed(t, h, x);
   // A probe counts as past the switch when any of its stages is (a higher-order method's
   // stages are off the trajectory near a switch, its end may be back on the old side). The
   // last probe before the switch keeps its stages: the step to the switch.
@@ -171,7 +202,7 @@ double SdirkStepper::advance_fixed(Network& network, double t, double limit, Vec
   const double land = locate_switch(
       network, t, h, x, start_regimes, tau,
       [&](double length, Vec& probe) {
-        if (!step(network, t, length, probe) || stages_switch(network, x, start_regimes, tau)) {
+        if (!step(network, t, length, probe) || stages_switch(network, x, start_regimes, y_)) {
           return false;
         }
         std::swap(y_, kept_y_);
@@ -180,7 +211,7 @@ double SdirkStepper::advance_fixed(Network& network, double t, double limit, Vec
         return true;
       },
       probe_);
-  ++switches_;
+  if (!refining) ++switches_;
   if (!off_grid_) {
     grid_end_ = t + dt_;
     off_grid_ = true;
@@ -191,9 +222,9 @@ double SdirkStepper::advance_fixed(Network& network, double t, double limit, Vec
   // The switch lies within locate_switch's precision after the landing: that window is
   // searched again, until the precision is at its floor; then a step of the window crosses
   // it.
-  const double floor = 1e-13 * std::max(1.0, std::abs(t));
-  window_ = 2.0 * std::max(kSwitchPrecision * h, floor);
-  (kSwitchPrecision * h > floor ? refining_ : crossing_) = true;
+  const SwitchWindow window = window_after_landing(t, h);
+  window_ = window.length;
+  (window.crossing ? crossing_ : refining_) = true;
   return accept_fixed(t, land, x);
 }
 
@@ -219,15 +250,16 @@ double SdirkStepper::advance(Network& network, double t, double limit, Vec& x) {
       }
       continue;
     }
-    // A step across a change of regime is cut to end just before it (as rk4_adaptive's).
-    const double tau = tableau_.gamma * h;
+    // A step across a change of regime is cut to end just before it, as the fixed steps'
+    // (core/sdirk.hpp says why each part of the landing is needed): regimes at each state
+    // itself, a probe past the switch when any of its stages is, the window searched again.
     if (!crossing_) {
-      const std::size_t start_regimes = network.regime_signature(x, tau);
-      if (stages_switch(network, x, start_regimes, tau)) {
-        const double land = locate_switch(
-            network, t, h, x, start_regimes, tau,
-            [&](double length, Vec& probe) { return step(network, t, length, probe); }, probe_);
-        ++switches_;
+      const std::size_t start_regimes = network.regime_signature(x, 0.0);
+      if (stages_switch(network, x, start_regimes, y_)) {
+        const double land = land_before_switch(
+            network, t, h, x, start_regimes, y_,
+            [&](double length) { return stages(network, t, length, x); }, probe_);
+        if (!refining_) ++switches_;
         if (land < h) {
           if (!stages(network, t, land, x)) {  // the step to the switch
             h_ = 0.25 * land;
@@ -236,8 +268,10 @@ double SdirkStepper::advance(Network& network, double t, double limit, Vec& x) {
           last_error_ = estimate(land);
           x.swap(y_[last]);
           f_start_.swap(stage_start_);
-          crossing_ = true;
-          h_ = std::max(2.0 * kSwitchPrecision * h, 1e-13 * std::max(1.0, std::abs(t)));
+          const SwitchWindow window = window_after_landing(t, h);
+          crossing_ = window.crossing;
+          refining_ = !window.crossing;
+          h_ = window.length;
           evaluations_ = implicit_.evaluations();
           return land;
         }
@@ -250,6 +284,7 @@ double SdirkStepper::advance(Network& network, double t, double limit, Vec& x) {
       }
     }
     crossing_ = false;
+    refining_ = false;
     last_error_ = error;
     x.swap(y_[last]);
     f_start_.swap(stage_start_);

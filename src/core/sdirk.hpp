@@ -26,22 +26,32 @@
 // L-stable method damps it within the tolerance of the velocities. A switch the step would
 // jump over, e swinging from +F/K to -F/K, is landed on instead.) A trial step whose
 // stages do not converge is retried at a quarter of its length. A next step within 1..1.2
-// times the last keeps the last (its iteration matrix is reused). Regime switches are landed
-// on as rk4_adaptive lands on them (core/step_control.hpp): any stage solution y_r in another
-// regime than x, or a sliding element whose slip reversed there, and the step is cut to end
-// just before the switch; a short step crosses it.
+// times the last keeps the last (its iteration matrix is reused).
+//
+// Regime switches are landed on, at error-controlled and at fixed steps alike (below,
+// land_before_switch): a step with any stage solution y_r in another regime than x, or a
+// sliding element whose slip reversed there, is cut to end just before the switch
+// (core/step_control.hpp's locate_switch); the window of locate_switch's precision (1e-4 of
+// the step) in which the switch then lies is searched again until it is at rounding, and a
+// step of that window crosses it. Each part is needed (docs/study.md, "sdirk2, sdirk4"):
+// - regimes are classified at the state itself (tau = 0: the clamp a stage obeys); with tau
+//   = gamma h a stuck element reads as sliding gamma h before its breakaway, and a step
+//   starting there crosses it unlanded;
+// - a probe of the bisection is past the switch when any of its stages is (sdirk4's inner
+//   stages cross before its end does, which may even come back);
+// - the window is an error of first order (the force's jump times the window): at fixed
+//   steps it makes every method first order; error-controlled, a step of it across a belt's
+//   breakaway (1e-6 s after steps of 5e-3 s) left the velocity 1.3e-6 m/s off, within the
+//   tolerance 1e-6, but through the contact's damping (2500 N s/m) that held the element
+//   stuck for another 9e-5 s.
+// Without them, error-controlled runs of generated belts ended up to 1.2e-3 m off at
+// tolerance 1e-6 and 2e-4 m at 1e-8; with them within 5 tolerances
+// (tests/physics/test_sdirk.cpp).
 //
 // Fixed steps (tolerance 0, for measuring the order) land on switches too, or the error of
 // the step across each switch (the force's jump times the step) would make every method
-// first order on stick-slip. They differ from the error-controlled steps' landing in three
-// ways, each needed for the order to show (docs/study.md, "sdirk2, sdirk4"): regimes are
-// classified at the state itself (tau = 0: the clamp a stage obeys), since with tau = gamma h
-// a stuck element reads as sliding gamma h before its breakaway and a step starting there
-// crosses it unlanded; a probe of the bisection is past the switch when any of its stages is
-// (sdirk4's inner stages cross before its end does, which may even come back); and the
-// window of locate_switch's precision (1e-4 of the step, an error of first order) is
-// searched again until it is at rounding. The steps then return to the grid of multiples of
-// dt from the run's start.
+// first order on stick-slip; after a landing they return to the grid of multiples of dt
+// from the run's start.
 //
 // Tableaux:
 // - sdirk2: Alexander (1977), gamma = 1 - 1/sqrt(2), c = (gamma, 1), b = (1 - gamma, gamma);
@@ -50,6 +60,8 @@
 //   L-stable, stiffly accurate), with its embedded third-order solution.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -76,6 +88,34 @@ const SdirkTableau& sdirk2_tableau();
 const SdirkTableau& sdirk4_tableau();
 // The tableau of an SDIRK integrator name; throws std::invalid_argument for another name.
 const SdirkTableau& sdirk_tableau_by_name(const std::string& name);
+
+// Landing on regime switches, shared by SdirkStepper's steps (fixed and error-controlled) and
+// IslandSdirkStepper's (part: a step group's elements and state entries; nullptr: the whole
+// network). Regimes are classified at each state itself, tau = 0 (core/sdirk.cpp says why).
+//
+// Whether any stage solution in y (all the stages of a step from x) is in another regime
+// than x (signature x_regimes, Network::regime_signature at tau 0 with the same part), or
+// has a sliding element's slip reversed.
+bool stages_switch(Network& network, const Vec& x, std::size_t x_regimes, const std::vector<Vec>& y,
+                   const Island* part = nullptr);
+// The length of the step from (t, x) that ends just before the first switch within h
+// (core/step_control.hpp's locate_switch), where stages(length) computes into y the stages
+// of a step of that length from x, false if one did not converge. A probe counts as past
+// the switch when its stages did not converge or any of them is past (sdirk4's inner stages
+// cross before its end does, and the end may come back to the old side).
+double land_before_switch(Network& network, double t, double h, const Vec& x, std::size_t x_regimes,
+                          const std::vector<Vec>& y, const std::function<bool(double)>& stages,
+                          Vec& probe, const Island* part = nullptr);
+// After a step landed just before a switch located within a trial step of h at t: the
+// switch lies in a window of locate_switch's precision (1e-4 h) from there. Its error is of
+// first order (the force's jump times the window), so the window is searched again (the
+// next step's length, crossing false) until the precision is at rounding; then a step of the
+// window crosses it (crossing true, not located again).
+struct SwitchWindow {
+  double length;
+  bool crossing;
+};
+SwitchWindow window_after_landing(double t, double h);
 
 class SdirkStepper final : public Stepper {
  public:
@@ -107,9 +147,6 @@ class SdirkStepper final : public Stepper {
   bool stages(Network& network, double t, double h, const Vec& x);
   // The scaled, filtered error estimate of the stages just computed (step h, start x).
   double estimate(double h);
-  // Whether a stage just computed is in another regime than the start x (signature
-  // start_regimes, classified with tau), or has a sliding element's slip reversed.
-  bool stages_switch(Network& network, const Vec& x, std::size_t start_regimes, double tau);
   // Throws std::runtime_error: a fixed step of h from t whose stages did not converge.
   [[noreturn]] void not_converged(double t, double h) const;
   // Takes the stages just computed (step h from t) as the step; h.
@@ -131,14 +168,15 @@ class SdirkStepper final : public Stepper {
   Vec err_, floor_, probe_, f_start_;  // floor_: ones (see above)
   Vec stage_start_;                    // the start slope of the stages last computed
   double last_error_ = 0.0;
-  bool crossing_ = false;  // the next step crosses a located switch: not located again
-  // Fixed steps: the window after a landing in which the switch lies, searched again
-  // (refining_) or crossed; whether (off_grid_) the steps are heading back to the grid point
-  // grid_end_ after a landed switch.
+  // After a landing: the next step searches the window in which the switch lies again
+  // (refining_), or crosses it (crossing_: not located again).
+  bool crossing_ = false;
+  bool refining_ = false;
+  // Fixed steps: that window; whether (off_grid_) the steps are heading back to the grid
+  // point grid_end_ after a landed switch.
   double window_ = 0.0;
   std::vector<Vec> kept_y_;  // the stages of the last probe before a switch
   Vec kept_start_;
-  bool refining_ = false;
   bool off_grid_ = false;
   double grid_end_ = 0.0;
   long switches_ = 0;
