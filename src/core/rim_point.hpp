@@ -21,7 +21,7 @@ struct RimPoint {
   Vec3 axis{0.0, 0.0, 1.0};    // body frame, unit
   Vec3 radial{1.0, 0.0, 0.0};  // body frame, unit, normal to axis (the flat-face leg direction)
   double radius = 0.0;
-  double half_length = 0.0;    // signed: the leg's cap, +L/2 or -L/2 along the axis
+  double half_length = 0.0;             // signed: the leg's cap, +L/2 or -L/2 along the axis
   double cos_leg = 1.0, sin_leg = 0.0;  // the leg's angle from the point nearest the plane
 
   // Leg `index` (0..kPoints-1) of a cylinder of `radius` and `length`.
@@ -45,7 +45,13 @@ struct RimPoint {
     // direction so that it stays defined (and continuous) when the caps lie parallel to the
     // surface. The lean fades out as (1 - |d_perp| / kBlend)^2: exactly zero beyond a tilt of
     // kBlend, so a cylinder on its rim touches at its lowest point.
-    const Vec3 d_perp = -normal + normal.dot(a) * a;
+    // Near flat, d_perp is the small difference of two unit vectors: on a plane whose normal
+    // is not a world axis it carries ~1e-16 of rounding along a, which the lean scales by
+    // 1 / kBlend into the point leaving the cap plane by ~1e-15 m (normal force jitter that
+    // kept the implicit integrator's Newton iteration from converging on a coin lying on a
+    // tilted plane). Removing its part along a again keeps the point in the cap plane.
+    Vec3 d_perp = -normal + normal.dot(a) * a;
+    d_perp -= d_perp.dot(a) * a;
     const double fade = std::max(0.0, 1.0 - d_perp.norm() / kBlend);
     const Vec3 u = (d_perp + kBlend * fade * fade * (q * radial)).normalized();
     const Vec3 v = a.cross(u);
