@@ -313,19 +313,24 @@ void ImplicitEulerStepper::evaluate_part(Network& network, IslandSolve& s, doubl
   count_part_evaluation(s);
 }
 
-std::string ImplicitEulerStepper::describe(const Network& network, const IslandSolve& s) const {
-  std::ostringstream text;
-  if (islands_.size() == 1) return "";
-  text << " in the island of ";
-  const Island& part = s.island;
+std::string in_island_of(const Network& network, const Island& part) {
+  std::string name;
   if (!part.admittances.empty()) {
-    text << "'" << network.admittances()[static_cast<std::size_t>(part.admittances.front())]->name()
-         << "'";
+    name = network.admittances()[static_cast<std::size_t>(part.admittances.front())]->name();
   } else if (!part.impedances.empty()) {
-    text << "'" << network.impedances()[static_cast<std::size_t>(part.impedances.front())]->name()
-         << "'";
+    name = network.impedances()[static_cast<std::size_t>(part.impedances.front())]->name();
   }
-  text << " (" << part.admittances.size() << " bodies, " << part.impedances.size() << " elements)";
+  std::string text = " in the island of '";
+  text += name;
+  text += "'";
+  return text;
+}
+
+std::string ImplicitEulerStepper::describe(const Network& network, const IslandSolve& s) const {
+  if (islands_.size() == 1) return "";
+  std::ostringstream text;
+  text << in_island_of(network, s.island) << " (" << s.island.admittances.size() << " bodies, "
+       << s.island.impedances.size() << " elements)";
   return text.str();
 }
 
@@ -407,20 +412,7 @@ bool ImplicitEulerStepper::solve_stage(Network& network, double t, double h, Vec
 }
 
 bool ImplicitEulerStepper::apply_inverse(Vec& v, int group) {
-  const StepGroup& g = groups_.at(static_cast<std::size_t>(group));
-  for (int k : g.islands) {
-    if (!islands_[static_cast<std::size_t>(k)].lu_valid) return false;
-  }
-  for (int k : g.islands) {
-    IslandSolve& s = islands_[static_cast<std::size_t>(k)];
-    for (Eigen::Index r = 0; r < s.residual.size(); ++r) {
-      s.residual[r] = v[s.solved[static_cast<std::size_t>(r)]];
-    }
-    correct(s);
-    for (Eigen::Index r = 0; r < s.delta.size(); ++r)
-      v[s.solved[static_cast<std::size_t>(r)]] = s.delta[r];
-  }
-  return true;
+  return apply_inverse_over(v, &groups_.at(static_cast<std::size_t>(group)).islands);
 }
 
 void ImplicitEulerStepper::set_scale(IslandSolve& s, const Vec& x) {
@@ -726,11 +718,18 @@ void ImplicitEulerStepper::correct(IslandSolve& s) {
   }
 }
 
-bool ImplicitEulerStepper::apply_inverse(Vec& v) {
-  for (const IslandSolve& s : islands_) {
-    if (!s.lu_valid) return false;
+bool ImplicitEulerStepper::apply_inverse(Vec& v) { return apply_inverse_over(v, nullptr); }
+
+bool ImplicitEulerStepper::apply_inverse_over(Vec& v, const std::vector<int>* listed) {
+  const std::size_t count = listed != nullptr ? listed->size() : islands_.size();
+  const auto island = [&](std::size_t k) -> IslandSolve& {
+    return islands_[listed != nullptr ? static_cast<std::size_t>((*listed)[k]) : k];
+  };
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!island(k).lu_valid) return false;
   }
-  for (IslandSolve& s : islands_) {
+  for (std::size_t k = 0; k < count; ++k) {
+    IslandSolve& s = island(k);
     for (Eigen::Index r = 0; r < s.residual.size(); ++r) {
       s.residual[r] = v[s.solved[static_cast<std::size_t>(r)]];
     }

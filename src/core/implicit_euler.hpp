@@ -49,6 +49,10 @@
 
 namespace stiction::core {
 
+// An island named for a user in a message: " in the island of 'its first body'" (or its
+// first element where it has no body).
+std::string in_island_of(const Network& network, const Island& part);
+
 // The state entries an implicit step solves for: all but the states of clamped friction
 // (their law solves them in closed form). True = solved.
 std::vector<bool> implicitly_solved_slots(const Network& network);
@@ -194,6 +198,8 @@ class ImplicitEulerStepper final : public Stepper {
   void set_pattern(Network& network, IslandSolve& s) const;
   // delta = the iteration matrix's inverse applied to the residual.
   void correct(IslandSolve& s);
+  // apply_inverse over the listed islands (nullptr: all).
+  bool apply_inverse_over(Vec& v, const std::vector<int>* listed);
   // (Re)builds islands_ for the current detached_ set, keeping the matrices of the islands
   // that are unchanged.
   void build_islands(Network& network);

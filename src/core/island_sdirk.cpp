@@ -298,17 +298,7 @@ void IslandSdirkStepper::interpolate(double t, Vec& x) const {
 }
 
 std::string IslandSdirkStepper::describe(const Network& network, const Group& g) const {
-  std::ostringstream text;
-  text << " in the island of ";
-  const Island& part = g.part;
-  if (!part.admittances.empty()) {
-    text << "'" << network.admittances()[static_cast<std::size_t>(part.admittances.front())]->name()
-         << "'";
-  } else if (!part.impedances.empty()) {
-    text << "'" << network.impedances()[static_cast<std::size_t>(part.impedances.front())]->name()
-         << "'";
-  }
-  return text.str();
+  return in_island_of(network, g.part);
 }
 
 }  // namespace stiction::core
