@@ -72,12 +72,7 @@ std::string coin_scene(const Coin& c, double dt, double duration) {
 }
 
 double creep(const core::Trajectory& tr, double from, double to) {
-  double worst = 0.0;
-  for (const char* name :
-       {"coin.p.x", "coin.p.y", "coin.p.z", "coin.q.w", "coin.q.x", "coin.q.y", "coin.q.z"}) {
-    worst = std::max(worst, std::abs(column_at(tr, name, to) - column_at(tr, name, from)));
-  }
-  return worst;
+  return testing::pose_change(tr, "coin", from, to);
 }
 
 }  // namespace

@@ -117,12 +117,7 @@ constexpr Integrator kIntegrators[] = {{"rk4", 1e-4}, {"implicit", 1e-3}};
 
 // Position and orientation of the body from `from` to `to`: the largest change of an entry.
 double creep(const core::Trajectory& tr, double from, double to) {
-  double worst = 0.0;
-  for (const char* name :
-       {"can.p.x", "can.p.y", "can.p.z", "can.q.w", "can.q.x", "can.q.y", "can.q.z"}) {
-    worst = std::max(worst, std::abs(column_at(tr, name, to) - column_at(tr, name, from)));
-  }
-  return worst;
+  return testing::pose_change(tr, "can", from, to);
 }
 
 }  // namespace

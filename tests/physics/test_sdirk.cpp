@@ -177,6 +177,15 @@ struct SwitchRun {
   std::vector<double> switches;
 };
 
+// The largest difference of a run's switch times from the reference's (the same count).
+double switch_error(const SwitchRun& run, const SwitchRun& reference) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < run.switches.size(); ++i) {
+    worst = std::max(worst, std::abs(run.switches[i] - reference.switches[i]));
+  }
+  return worst;
+}
+
 SwitchRun run_switches(const std::string& name, scene::Scene scene, double h, double duration,
                        double tolerance = 0.0) {
   core::Network& network = *scene.network;
@@ -431,11 +440,7 @@ TEST_CASE(
         const SwitchRun run =
             run_switches(c.name, belt_oscillator(b), c.h / (1 << level), duration);
         REQUIRE(run.switches.size() == reference.switches.size());
-        double worst = 0.0;
-        for (std::size_t i = 0; i < run.switches.size(); ++i) {
-          worst = std::max(worst, std::abs(run.switches[i] - reference.switches[i]));
-        }
-        switch_errors.push_back(worst);
+        switch_errors.push_back(switch_error(run, reference));
         state_errors.push_back(
             std::max(std::abs(run.x - reference.x) / 0.01, std::abs(run.v - reference.v) / b.v_b));
       }
@@ -485,11 +490,7 @@ TEST_CASE(
       const SwitchRun run = run_switches("sdirk2", friction_pendulum(mass, friction, angle),
                                          5e-4 / (1 << level), duration);
       REQUIRE(run.switches.size() == reference.switches.size());
-      double worst = 0.0;
-      for (std::size_t i = 0; i < run.switches.size(); ++i) {
-        worst = std::max(worst, std::abs(run.switches[i] - reference.switches[i]));
-      }
-      switch_errors.push_back(worst);
+      switch_errors.push_back(switch_error(run, reference));
       state_errors.push_back(
           std::max(std::abs(run.x - reference.x), std::abs(run.v - reference.v)));
     }
@@ -521,9 +522,7 @@ struct BeltErrors {
 BeltErrors belt_errors(const SwitchRun& run, const SwitchRun& reference) {
   BeltErrors e;
   e.state = std::max(std::abs(run.x - reference.x), std::abs(run.v - reference.v));
-  for (std::size_t i = 0; i < run.switches.size(); ++i) {
-    e.switches = std::max(e.switches, std::abs(run.switches[i] - reference.switches[i]));
-  }
+  e.switches = switch_error(run, reference);
   return e;
 }
 

@@ -1,6 +1,8 @@
 // Reading a run's rows at a time, for the closed-form tests.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/trajectory.hpp"
@@ -17,6 +19,19 @@ inline int row_at(const core::Trajectory& tr, double t) {
 // Column `name` of that row.
 inline double column_at(const core::Trajectory& tr, const std::string& name, double t) {
   return tr.at(row_at(tr, t), *tr.find(name));
+}
+
+// How far body `body`'s pose moved from `from` to `to`: the largest change of its position
+// and orientation entries (p.x .. q.z), the creep of a held or stopped body.
+inline double pose_change(const core::Trajectory& tr, const std::string& body, double from,
+                          double to) {
+  double worst = 0.0;
+  for (const char* entry : {".p.x", ".p.y", ".p.z", ".q.w", ".q.x", ".q.y", ".q.z"}) {
+    std::string name = body;
+    name += entry;
+    worst = std::max(worst, std::abs(column_at(tr, name, to) - column_at(tr, name, from)));
+  }
+  return worst;
 }
 
 }  // namespace stiction::testing
