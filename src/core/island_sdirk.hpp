@@ -85,7 +85,7 @@ class IslandSdirkStepper final : public Stepper {
   // The scaled, filtered error estimate of g's stages just computed.
   double estimate(int index, double h);
   // Takes the step just computed (stages of h from g's time): records it, moves g.
-  void take(Network& network, Group& g, double h, double t_limit);
+  void take(Group& g, double h, double t_limit);
   // g's state at time s, within [its first segment's start, g.t], on its entries of x.
   void group_state_at(const Group& g, double s, Vec& x) const;
   std::string describe(const Network& network, const Group& g) const;
@@ -98,8 +98,7 @@ class IslandSdirkStepper final : public Stepper {
   std::vector<int> group_of_impedance_;  // -1: in no group
   Vec state_;                            // each group's entries at its own time
   std::vector<Vec> k_, y_;  // stage slopes and solutions (each group writes its entries)
-  Vec err_, probe_, stage_start_, f_end_;
-  double end_evaluations_ = 0.0;  // of the step ends' slopes, in whole-network units
+  Vec err_, probe_, stage_start_;
   bool started_ = false;
   double handed_t_ = 0.0;  // the time and state the last advance() handed back
   Vec handed_x_;
