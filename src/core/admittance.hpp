@@ -41,6 +41,12 @@ class Admittance {
     derivative(Eigen::Map<const Vec>(x, state_size()), Eigen::Map<const Vec>(u_hat, input_size()),
                Eigen::Map<Vec>(x_dot, state_size()));
   }
+  // Whether derivative(x, u_hat) is affine in u_hat at a fixed x, as for every body whose
+  // input is a force: M(x)^-1 (u_hat - c(x)). The implicit step then forms a body's column
+  // of its matrix from the elements touching that body alone (core/jacobian_pattern.hpp: a
+  // neighbour's rate changes by the same amount whatever the other forces on it). The
+  // default is false (an element supplied in Python may be anything).
+  virtual bool affine_in_input() const { return false; }
   // Called once after every full step: bring the state back to its manifold (unit
   // quaternions). Never inside a derivative, so RK stages see plain vector arithmetic.
   virtual void project(VecRef /*x*/) const {}

@@ -153,6 +153,7 @@ ImplicitEulerStepper::ImplicitEulerStepper(int state_dim, double dt)
       f_(Vec::Zero(state_dim)),
       probe_(Vec::Zero(state_dim)),
       f_probe_(Vec::Zero(state_dim)),
+      f_star_(Vec::Zero(state_dim)),
       last_eval_(Vec::Zero(state_dim)),
       stage_(Vec::Zero(state_dim)) {}
 
@@ -313,6 +314,14 @@ void ImplicitEulerStepper::evaluate_part(Network& network, IslandSolve& s, doubl
   count_part_evaluation(s);
 }
 
+void ImplicitEulerStepper::evaluate_star(Network& network, const Island& star, double t,
+                                         const Vec& y, double h, Vec& out) {
+  network.derivative_part(t, y.data(), h, out.data(), star);
+  part_evaluations_ +=
+      static_cast<double>(star.states.size()) / static_cast<double>(network.state_dim());
+  evaluations_ = whole_evaluations_ + static_cast<long>(part_evaluations_);
+}
+
 std::string in_island_of(const Network& network, const Island& part) {
   std::string name;
   if (!part.admittances.empty()) {
@@ -434,12 +443,13 @@ double ImplicitEulerStepper::scaled_norm(const IslandSolve& s, const Vec& correc
 void ImplicitEulerStepper::set_pattern(Network& network, IslandSolve& s) const {
   const auto n = static_cast<Eigen::Index>(s.solved.size());
   if (compress_) {
-    s.pattern = jacobian_pattern(network, s.island, s.solved);
+    s.pattern = jacobian_pattern(network, s.island, s.solved, stars_);
   } else {
     s.pattern = JacobianPattern{};
     std::vector<int> all(static_cast<std::size_t>(n));
     for (Eigen::Index k = 0; k < n; ++k) all[static_cast<std::size_t>(k)] = static_cast<int>(k);
     for (Eigen::Index k = 0; k < n; ++k) s.pattern.groups.push_back({static_cast<int>(k)});
+    s.pattern.group_star.assign(static_cast<std::size_t>(n), -1);
     s.pattern.rows.assign(static_cast<std::size_t>(n), all);
   }
   s.sparse =
@@ -487,7 +497,18 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
   column_steps_.resize(static_cast<std::size_t>(n));
   double* values = s.sparse ? s.sparse_matrix.valuePtr() : nullptr;
   const int* outer = s.sparse ? s.sparse_matrix.outerIndexPtr() : nullptr;
-  for (const std::vector<int>& group : s.pattern.groups) {
+  int star_at_rest = -1;  // the star whose unperturbed rates f_star_ holds
+  for (std::size_t g = 0; g < s.pattern.groups.size(); ++g) {
+    const std::vector<int>& group = s.pattern.groups[g];
+    // A star (core/jacobian_pattern.hpp) is evaluated unperturbed too, once for all the
+    // groups of its colour; its rows are differenced against that.
+    const int star = s.pattern.group_star[g];
+    if (star >= 0 && star != star_at_rest) {
+      evaluate_star(network, s.pattern.stars[static_cast<std::size_t>(star)], t_eval, probe_, h,
+                    f_star_);
+      star_at_rest = star;
+    }
+    const Vec& at_rest = star >= 0 ? f_star_ : f_;
     for (int k : group) {
       const int j = s.solved[static_cast<std::size_t>(k)];
       // About sqrt(eps) relative, taken as the difference actually stored, so that the
@@ -495,7 +516,12 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
       probe_[j] += 1.5e-8 * std::max(std::abs(eval_[j]), 1e-3);
       column_steps_[static_cast<std::size_t>(k)] = probe_[j] - eval_[j];
     }
-    evaluate_part(network, s, t_eval, probe_, h, f_probe_);
+    if (star >= 0) {
+      evaluate_star(network, s.pattern.stars[static_cast<std::size_t>(star)], t_eval, probe_, h,
+                    f_probe_);
+    } else {
+      evaluate_part(network, s, t_eval, probe_, h, f_probe_);
+    }
     ++matrix_evaluations_;
     for (int k : group) {
       const int j = s.solved[static_cast<std::size_t>(k)];
@@ -505,7 +531,7 @@ void ImplicitEulerStepper::refresh_matrix(Network& network, IslandSolve& s, doub
       for (std::size_t q = 0; q < rows.size(); ++q) {
         const int r = rows[q];
         const int i = s.solved[static_cast<std::size_t>(r)];
-        const double change = h * (f_probe_[i] - f_[i]) / delta;
+        const double change = h * (f_probe_[i] - at_rest[i]) / delta;
         if (values != nullptr) {
           values[outer[k] + static_cast<int>(q)] = (r == k ? 1.0 : 0.0) - change;
         } else {

@@ -83,6 +83,11 @@ class ImplicitEulerStepper final : public Stepper {
   // one column per evaluation (for comparison: both give the same matrix). Call before the
   // first step.
   void set_compressed_differences(bool on) { compress_ = on; }
+  // Whether a compressed group of a large island may be evaluated on its star, the elements
+  // its columns change (true, the default; core/jacobian_pattern.hpp); false evaluates the
+  // whole island for every group (for comparison: the same matrix but for rounding in the
+  // rows of the bodies beside the perturbed ones). Call before the first step.
+  void set_star_columns(bool on) { stars_ = on; }
   // Islands of at least this many unknowns whose pattern is sparse are factored by a sparse
   // LU (default kSparseUnknowns). Call before the first step.
   void set_sparse_unknowns(Eigen::Index n) { sparse_unknowns_ = n; }
@@ -222,6 +227,9 @@ class ImplicitEulerStepper final : public Stepper {
   bool split(Network& network, IslandSolve& s, double t, double h, Vec& x, int depth);
   // The island's part of F at (t, y) into out.
   void evaluate_part(Network& network, IslandSolve& s, double t, const Vec& y, double h, Vec& out);
+  // The star's part of F at (t, y) into out, counted by its share of the state.
+  void evaluate_star(Network& network, const Island& star, double t, const Vec& y, double h,
+                     Vec& out);
   // F at the merged iterate into f_, and the island's residual.
   void evaluate_iterate(Network& network, IslandSolve& s, double t_end, double h);
   // Moves the iterate back along the last Newton step to where a sliding clamped-friction
@@ -251,12 +259,13 @@ class ImplicitEulerStepper final : public Stepper {
   const IslandSolve* failed_ = nullptr;
   Vec step_start_;
   // Whole-state vectors; each island reads and writes only its own entries.
-  Vec start_, iterate_, eval_, f_, probe_, f_probe_, last_eval_, stage_;
+  Vec start_, iterate_, eval_, f_, probe_, f_probe_, f_star_, last_eval_, stage_;
   double part_evaluations_ = 0.0;  // island evaluations, in whole-network units
   long whole_evaluations_ = 0;
   long matrices_formed_ = 0;
   long matrix_evaluations_ = 0;
   bool compress_ = true;
+  bool stars_ = true;
   Eigen::Index sparse_unknowns_ = kSparseUnknowns;
   std::vector<double> column_steps_;
   bool keep_start_slope_ = false;

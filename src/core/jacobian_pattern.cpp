@@ -19,14 +19,54 @@ namespace {
 struct Block {
   int offset = 0;
   int size = 0;
+  int admittance = -1;       // the network's index of its body, or -1 (an element's own state)
   std::vector<int> columns;  // its solved entries, as indices into `solved`
   std::vector<int> reach;    // the blocks whose rates it can change (itself included)
 };
 
+// The star of a colour's member blocks (the header): appended to pattern.stars if it is
+// small enough and exact enough to use; its index, or -1.
+int add_star(const Network& network, const Island& island, const std::vector<Block>& blocks,
+             const std::vector<std::vector<int>>& cliques, const std::vector<int>& members,
+             JacobianPattern& pattern) {
+  std::vector<char> member(blocks.size(), 0), in_star(blocks.size(), 0);
+  for (int b : members)
+    member[static_cast<std::size_t>(b)] = in_star[static_cast<std::size_t>(b)] = 1;
+  Island star;
+  for (std::size_t k = 0; k < cliques.size(); ++k) {
+    const auto& clique = cliques[k];
+    if (std::none_of(clique.begin(), clique.end(),
+                     [&](int b) { return member[static_cast<std::size_t>(b)] != 0; })) {
+      continue;
+    }
+    star.impedances.push_back(island.impedances[k]);
+    for (int b : clique) in_star[static_cast<std::size_t>(b)] = 1;
+  }
+  if (static_cast<double>(star.impedances.size()) >
+      kStarShare * static_cast<double>(island.impedances.size())) {
+    return -1;
+  }
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    if (in_star[b] == 0) continue;
+    const Block& block = blocks[b];
+    for (int e = block.offset; e < block.offset + block.size; ++e) star.states.push_back(e);
+    if (block.admittance < 0) continue;
+    // A neighbour sees only the star's forces: its rows are right only if its rate is
+    // affine in them.
+    const auto& body = network.admittances()[static_cast<std::size_t>(block.admittance)];
+    if (member[b] == 0 && !body->affine_in_input()) return -1;
+    star.admittances.push_back(block.admittance);
+  }
+  std::sort(star.admittances.begin(), star.admittances.end());
+  std::sort(star.states.begin(), star.states.end());
+  pattern.stars.push_back(std::move(star));
+  return static_cast<int>(pattern.stars.size()) - 1;
+}
+
 }  // namespace
 
 JacobianPattern jacobian_pattern(const Network& network, const Island& island,
-                                 const std::vector<int>& solved) {
+                                 const std::vector<int>& solved, bool use_stars) {
   std::vector<Block> blocks;
   // Admittance index -> its block, by the admittance's address (maps name them by pointer).
   std::vector<std::pair<const Admittance*, int>> block_of_body;
@@ -35,7 +75,7 @@ JacobianPattern jacobian_pattern(const Network& network, const Island& island,
     if (s.state_size == 0) continue;
     block_of_body.emplace_back(network.admittances()[static_cast<std::size_t>(j)].get(),
                                static_cast<int>(blocks.size()));
-    blocks.push_back({s.state_offset, s.state_size, {}, {}});
+    blocks.push_back({s.state_offset, s.state_size, j, {}, {}});
   }
   std::sort(block_of_body.begin(), block_of_body.end());
   std::vector<int> own_block(island.impedances.size(), -1);
@@ -43,7 +83,7 @@ JacobianPattern jacobian_pattern(const Network& network, const Island& island,
     const Slot s = network.impedance_slot(island.impedances[k]);
     if (s.state_size == 0) continue;
     own_block[k] = static_cast<int>(blocks.size());
-    blocks.push_back({s.state_offset, s.state_size, {}, {}});
+    blocks.push_back({s.state_offset, s.state_size, -1, {}, {}});
   }
   for (Block& b : blocks) {
     const auto first = std::lower_bound(solved.begin(), solved.end(), b.offset);
@@ -54,9 +94,9 @@ JacobianPattern jacobian_pattern(const Network& network, const Island& island,
   }
   // Each element's clique: the bodies its map moves (those in the island with a state) and
   // its own state.
-  std::vector<int> clique;
+  std::vector<std::vector<int>> cliques(island.impedances.size());
   for (std::size_t k = 0; k < island.impedances.size(); ++k) {
-    clique.clear();
+    std::vector<int>& clique = cliques[k];
     for (const Admittance* body : network.map_of(island.impedances[k]).admittances()) {
       const auto it =
           std::lower_bound(block_of_body.begin(), block_of_body.end(), std::make_pair(body, -1));
@@ -114,7 +154,10 @@ JacobianPattern jacobian_pattern(const Network& network, const Island& island,
     chosen->members.push_back(static_cast<int>(b));
     chosen->width = std::max(chosen->width, block.columns.size());
   }
+  const bool stars_may_pay = use_stars && island.impedances.size() >= kStarElements;
   for (const Colour& c : colours) {
+    const int star =
+        stars_may_pay ? add_star(network, island, blocks, cliques, c.members, pattern) : -1;
     for (std::size_t k = 0; k < c.width; ++k) {
       std::vector<int> group;
       for (int b : c.members) {
@@ -122,6 +165,7 @@ JacobianPattern jacobian_pattern(const Network& network, const Island& island,
         if (k < columns.size()) group.push_back(columns[k]);
       }
       pattern.groups.push_back(std::move(group));
+      pattern.group_star.push_back(star);
     }
   }
   return pattern;

@@ -16,20 +16,37 @@
 // a pile with every pair in contact is one clique and gains nothing. Since an evaluation
 // changes no row outside its perturbed blocks' row sets by even a bit, the compressed
 // matrix equals the one-column-at-a-time matrix to the bit.
+//
+// Stars: a group's rows change only through the elements whose clique holds a perturbed
+// block. In a large island those are few (a body of a pile of 64 with a contact between
+// every two: 63 of 2016 elements), so the group is evaluated on its star (those elements and
+// the bodies they move) twice, unperturbed and perturbed, instead of on the whole island
+// once. A perturbed body's input is whole in its star (every element on it is there), so
+// its rows are the island's to the bit; a neighbour's input lacks the forces of the
+// elements outside, which moves its rate by the same amount in both evaluations when the
+// rate is affine in the input (Admittance::affine_in_input): its rows differ from the
+// island's by rounding only. A star is used when the island has at least kStarElements
+// elements (impedances: a box's contact is one per corner) and the star at most kStarShare
+// of them (two evaluations of it then cost at most 80% of the island's one), so small
+// islands (every bundled scene) keep their matrices to the bit.
 #pragma once
 
 #include <Eigen/Core>
 #include <vector>
 
+#include "core/islands.hpp"
+
 namespace stiction::core {
 
 class Network;
-struct Island;
 
 struct JacobianPattern {
   // Columns (indices into the island's solved entries) perturbed together, one evaluation
   // each.
   std::vector<std::vector<int>> groups;
+  // Per group: the index of its star in `stars`, or -1 (the whole island is evaluated).
+  std::vector<int> group_star;
+  std::vector<Island> stars;
   // Per column: the rows (indices into the solved entries, ascending) its difference can
   // change. Always holds the column's own row.
   std::vector<std::vector<int>> rows;
@@ -39,7 +56,12 @@ struct JacobianPattern {
 
 // solved: the island's solved state entries (ascending; ImplicitEulerStepper's
 // IslandSolve::solved).
+// use_stars: whether groups may be evaluated on their stars (false: the whole island).
 JacobianPattern jacobian_pattern(const Network& network, const Island& island,
-                                 const std::vector<int>& solved);
+                                 const std::vector<int>& solved, bool use_stars = true);
+
+// The thresholds for stars (above).
+inline constexpr std::size_t kStarElements = 32;
+inline constexpr double kStarShare = 0.4;
 
 }  // namespace stiction::core

@@ -361,7 +361,8 @@ TEST_CASE("check on a long URDF chain with joint limits stays within its work bo
   CHECK(out.find(last, over) != std::string::npos);
 }
 
-TEST_CASE("a stop set during a run ends it before the next step, for every integrator", "[bounded]") {
+TEST_CASE("a stop set during a run ends it before the next step, for every integrator",
+          "[bounded]") {
   // A step of a large scene can take seconds (an adaptive step of 64 coincident bodies and
   // their 2016 pair contacts: 9 ms in Release, up to 0.7 s under the sanitizers), so a stop
   // (a signal, the fuzz targets' time budget) must be seen before the next step, not the

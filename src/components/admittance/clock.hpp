@@ -21,6 +21,7 @@ class Clock final : public core::Admittance {
                   core::VecRef x_dot) const override {
     x_dot[0] = 1.0;
   }
+  bool affine_in_input() const override { return true; }
   std::vector<core::SignalInfo> signals() const override { return {}; }
   void write_signals(core::ConstVecRef /*x*/, core::VecRef /*out*/) const override {}
   double energy(core::ConstVecRef /*x*/) const override { return 0.0; }

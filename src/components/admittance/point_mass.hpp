@@ -23,6 +23,7 @@ class PointMass final : public core::Body {
   std::vector<std::string> state_labels() const override;
   void initial_state(core::VecRef x) const override;
   void derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::VecRef x_dot) const override;
+  bool affine_in_input() const override { return true; }
   std::vector<core::SignalInfo> signals() const override;
   void write_signals(core::ConstVecRef x, core::VecRef out) const override;
   double energy(core::ConstVecRef x) const override;

@@ -30,6 +30,7 @@ class RigidBody final : public core::Body {
   void derivative(core::ConstVecRef x, core::ConstVecRef u_hat, core::VecRef x_dot) const override {
     derivative_at(x.data(), u_hat.data(), x_dot.data());
   }
+  bool affine_in_input() const override { return true; }
   void derivative_at(const double* x, const double* u_hat, double* x_dot) const override;
   void project(core::VecRef x) const override;
   void solve_kinematics(const double* start, double* iterate, double h) const override;
