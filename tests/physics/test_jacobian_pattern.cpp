@@ -163,6 +163,26 @@ Run run(const std::string& text, double dt, double duration, bool compress,
   return out;
 }
 
+// A generated scene of one island (structural: as `check` sees it), its solved entries and
+// its pattern.
+struct OneIsland {
+  explicit OneIsland(const std::string& text)
+      : scene(scene::load_scene(scene::SceneSource::from_text(text, "generated.toml"))) {
+    const std::vector<bool> solved_flags = core::implicitly_solved_slots(*scene.network);
+    const auto islands = core::find_islands(*scene.network);
+    REQUIRE(islands.size() == 1);
+    island = islands.front();
+    for (int e : island.states) {
+      if (solved_flags[static_cast<std::size_t>(e)]) solved.push_back(e);
+    }
+    pattern = core::jacobian_pattern(*scene.network, island, solved);
+  }
+  scene::Scene scene;
+  core::Island island;
+  std::vector<int> solved;
+  core::JacobianPattern pattern;
+};
+
 constexpr Eigen::Index kNever = 1 << 30;
 
 }  // namespace
@@ -173,17 +193,9 @@ TEST_CASE(
     "[implicit][jacobian]") {
   std::mt19937 rng(36);
   for (int count : {2, 5, 12, 30}) {
-    auto scene =
-        scene::load_scene(scene::SceneSource::from_text(tower(rng, count, 1e-3), "t.toml"));
-    const std::vector<bool> solved_flags = core::implicitly_solved_slots(*scene.network);
-    const auto islands = core::find_islands(*scene.network);
-    REQUIRE(islands.size() == 1);
-    std::vector<int> solved;
-    for (int e : islands.front().states) {
-      if (solved_flags[static_cast<std::size_t>(e)]) solved.push_back(e);
-    }
-    const core::JacobianPattern pattern =
-        core::jacobian_pattern(*scene.network, islands.front(), solved);
+    const OneIsland one(tower(rng, count, 1e-3));
+    const std::vector<int>& solved = one.solved;
+    const core::JacobianPattern& pattern = one.pattern;
     INFO(count << " boxes, " << solved.size() << " unknowns");
     CHECK(solved.size() == static_cast<std::size_t>(13 * count));
     // Box k reaches boxes k - 1, k, k + 1: three colours (two for two boxes).
@@ -264,22 +276,14 @@ TEST_CASE(
     INFO(count << " bodies, dt " << dt);
     // The pattern of the whole (structural) island: every body's colour has a star of its
     // contacts (with every other body: all of them move in it) and its floor.
-    auto scene = scene::load_scene(scene::SceneSource::from_text(text, "pile.toml"));
-    const std::vector<bool> solved_flags = core::implicitly_solved_slots(*scene.network);
-    const auto islands = core::find_islands(*scene.network);
-    REQUIRE(islands.size() == 1);
-    std::vector<int> solved;
-    for (int e : islands.front().states) {
-      if (solved_flags[static_cast<std::size_t>(e)]) solved.push_back(e);
-    }
-    const core::JacobianPattern pattern =
-        core::jacobian_pattern(*scene.network, islands.front(), solved);
+    const OneIsland one(text);
+    const core::JacobianPattern& pattern = one.pattern;
     CHECK(pattern.groups.size() == static_cast<std::size_t>(13 * count));
     for (std::size_t g = 0; g < pattern.groups.size(); ++g) {
       REQUIRE(pattern.group_star[g] >= 0);
       const core::Island& star = pattern.stars[static_cast<std::size_t>(pattern.group_star[g])];
       CHECK(static_cast<double>(star.impedances.size()) <=
-            core::kStarShare * static_cast<double>(islands.front().impedances.size()));
+            core::kStarShare * static_cast<double>(one.island.impedances.size()));
       CHECK(star.admittances.size() == static_cast<std::size_t>(count));
     }
     // Structural islands (every pair kept in the island, apart or not) and 0.1 s: bodies
