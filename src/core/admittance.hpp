@@ -45,7 +45,7 @@ class Admittance {
   // input is a force: M(x)^-1 (u_hat - c(x)). The implicit step then forms a body's column
   // of its matrix from the elements touching that body alone (core/jacobian_pattern.hpp: a
   // neighbour's rate changes by the same amount whatever the other forces on it). The
-  // default is false (an element supplied in Python may be anything).
+  // default is false: an admittance opts in once its rate is known to be affine.
   virtual bool affine_in_input() const { return false; }
   // Called once after every full step: bring the state back to its manifold (unit
   // quaternions). Never inside a derivative, so RK stages see plain vector arithmetic.
