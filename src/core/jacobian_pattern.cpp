@@ -42,14 +42,20 @@ int add_star(const Network& network, const Island& island, const std::vector<Blo
     star.impedances.push_back(island.impedances[k]);
     for (int b : clique) in_star[static_cast<std::size_t>(b)] = 1;
   }
-  if (static_cast<double>(star.impedances.size()) >
-      kStarShare * static_cast<double>(island.impedances.size())) {
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    if (in_star[b] == 0) continue;
+    const Block& block = blocks[b];
+    for (int e = block.offset; e < block.offset + block.size; ++e) star.states.push_back(e);
+  }
+  // Its cost by the measure evaluations are counted in (state entries): an arm's star holds
+  // the whole arm, however few of its elements.
+  if (static_cast<double>(star.states.size()) >
+      kStarShare * static_cast<double>(island.states.size())) {
     return -1;
   }
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     if (in_star[b] == 0) continue;
     const Block& block = blocks[b];
-    for (int e = block.offset; e < block.offset + block.size; ++e) star.states.push_back(e);
     if (block.admittance < 0) continue;
     // A neighbour sees only the star's forces: its rows are right only if its rate is
     // affine in them.

@@ -27,8 +27,10 @@
 // rate is affine in the input (Admittance::affine_in_input): its rows differ from the
 // island's by rounding only. A star is used when the island has at least kStarElements
 // elements (impedances: a box's contact is one per corner) and the star at most kStarShare
-// of them (two evaluations of it then cost at most 80% of the island's one), so small
-// islands (every bundled scene) keep their matrices to the bit.
+// of its state entries (two evaluations of it then cost at most 80% of the island's one, by
+// the measure evaluations are counted in; an arm's star holds the whole arm, so a star of
+// one joint's element is not cheaper), so small islands (every bundled scene) keep their
+// matrices to the bit.
 #pragma once
 
 #include <Eigen/Core>
